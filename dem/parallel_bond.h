@@ -1,0 +1,70 @@
+// The parallel bond of Potyondy & Cundall (2004, Int. J. Rock Mech. Min. Sci. 41:1329), PHYSICS.md
+// §1.2: a cemented cylinder of radius R_bar between two spheres, acting in parallel with their
+// contact. Incremental law with Delta u = v_rel dt and Delta theta = (omega_j - omega_i) dt:
+//   F_n += -k_n A du_n          (compression positive)
+//   F_s += -k_s A du_s          (carried with the contact plane first)
+//   M_t += -k_s J dtheta_n      (twist, a scalar along n)
+//   M_b += -k_n I dtheta_s      (bending, carried with the contact plane first)
+// Rim stresses sigma = -F_n/A + beta |M_b| R/I (tension positive), tau = |F_s|/A + beta |M_t| R/J.
+// The bond breaks for good when sigma >= sigma_c or tau >= c - sigma tan(phi).
+#pragma once
+
+#include "dem/interactions.h"
+#include "dem/pair_kinematics.h"
+
+#include <cmath>
+
+namespace anticrack::dem
+{
+  /// Advances bond b by one step and writes its load on the pair into `load`. Returns the elastic
+  /// energy released if the bond broke during this step (0 otherwise).
+  inline double update_parallel_bond(BondList &bonds, Index b, const PairKinematics &k, double dt,
+                                     PairLoad &load)
+  {
+    if (bonds.state[b] != BondState::intact)
+    {
+      load = PairLoad{};
+      return 0;
+    }
+    const Vec3 rotation = contact_plane_rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
+    rotate_with_contact_plane(bonds.shear_force[b], rotation, k.normal);
+    rotate_with_contact_plane(bonds.bending_moment[b], rotation, k.normal);
+    bonds.normal[b] = k.normal;
+
+    const double du_n = k.relative_velocity.dot(k.normal) * dt;
+    const Vec3 du_s = k.relative_velocity * dt - du_n * k.normal;
+    const Vec3 dtheta = k.relative_spin * dt;
+    const double dtheta_n = dtheta.dot(k.normal);
+    const Vec3 dtheta_s = dtheta - dtheta_n * k.normal;
+
+    bonds.normal_force[b] -= bonds.normal_stiffness[b] * du_n;
+    bonds.shear_force[b] -= bonds.shear_stiffness[b] * du_s;
+    bonds.twist_moment[b] -= bonds.twist_stiffness[b] * dtheta_n;
+    bonds.bending_moment[b] -= bonds.bending_stiffness[b] * dtheta_s;
+
+    if (bonds.may_fail(b))
+    {
+      const auto [sigma, tau] = bonds.rim_stresses(b);
+      const bool tensile_failure = sigma >= bonds.tensile_strength[b];
+      const bool shear_failure = tau >= bonds.cohesion[b] - sigma * bonds.tan_friction[b];
+      if (tensile_failure || shear_failure)
+      {
+        const double released = bonds.elastic_energy(b);
+        bonds.state[b] = tensile_failure ? BondState::broken_tension : BondState::broken_shear;
+        bonds.normal_force[b] = 0;
+        bonds.shear_force[b].setZero();
+        bonds.twist_moment[b] = 0;
+        bonds.bending_moment[b].setZero();
+      load = PairLoad{};
+      return released;
+      }
+    }
+
+    // Loads on j; i gets the reaction. Moments act as pure couples.
+    const Vec3 moment = bonds.twist_moment[b] * k.normal + bonds.bending_moment[b];
+    load.force_on_j = bonds.normal_force[b] * k.normal + bonds.shear_force[b];
+    load.torque_on_j = k.arm_j.cross(load.force_on_j) + moment;
+    load.torque_on_i = -k.arm_i.cross(load.force_on_j) - moment;
+    return 0;
+  }
+} // namespace anticrack::dem

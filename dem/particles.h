@@ -1,0 +1,50 @@
+// Sphere storage in structure-of-arrays form: one contiguous array per attribute, indexed by the
+// particle's position in the store (its id). Clump members are ordinary particles with a clump id.
+#pragma once
+
+#include "dem/types.h"
+
+#include <vector>
+
+namespace anticrack::dem
+{
+  /// Degrees of freedom a particle may have blocked. A blocked DOF keeps the velocity it has
+  /// (zero for "fixed"), whatever force acts on it; the force it feels is the boundary reaction.
+  enum BlockedDofs : std::uint8_t
+  {
+    free_dofs = 0,
+    block_translation = 1,
+    block_rotation = 2,
+    block_all = block_translation | block_rotation
+  };
+
+  struct ParticleStore
+  {
+    // --- kinematic state (velocities live at half steps in the leapfrog scheme)
+    std::vector<Vec3> position;
+    std::vector<Vec3> velocity;
+    std::vector<Vec3> angular_velocity;
+    // --- per-step results
+    std::vector<Vec3> force;
+    std::vector<Vec3> torque;
+    // --- properties
+    std::vector<double> radius;
+    std::vector<double> mass;
+    std::vector<double> inertia; ///< moment of inertia of a solid sphere, 2/5 m R^2
+    std::vector<int> material_id;
+    std::vector<int> group_id;
+    std::vector<std::uint8_t> blocked;
+    std::vector<int> clump_id; ///< -1 when the particle is not part of a clump
+
+    [[nodiscard]] Index size() const { return static_cast<Index>(position.size()); }
+
+    /// Append a solid sphere of the given density; returns its id.
+    Index add_sphere(const Vec3 &x, double r, double density, int material = 0, int group = 0);
+
+    /// Resize every array consistently (used by readers).
+    void resize(Index n);
+
+    /// True when every array has the same length.
+    [[nodiscard]] bool consistent() const;
+  };
+} // namespace anticrack::dem

@@ -1,0 +1,133 @@
+// The DEM system: particles, interactions, boundaries and the time loop.
+//
+// One step (leapfrog, velocities at half steps, as in PFC and YADE):
+//   1. rebuild the Verlet list if some particle moved more than skin/2;
+//   2. one kernel per pair fills a per-pair load buffer (parallel over pairs): a bonded pair in the
+//      Verlet list gets its bond and its contact from one evaluation of the pair kinematics; bonds
+//      whose particles are too far apart to be listed are evaluated on their own;
+//   3. every particle gathers its pair loads in a fixed order, adds gravity and wall contacts
+//      (parallel over particles; the fixed order makes 1 and N threads agree bit for bit);
+//   4. clumps sum their members' loads;
+//   5. leapfrog update with Cundall local damping, F_w <- F_w - alpha |F_w| sign(v_w);
+//   6. walls move (prescribed velocity or servo), energies are booked, stability is checked.
+#pragma once
+
+#include "dem/clumps.h"
+#include "dem/domain.h"
+#include "dem/energy.h"
+#include "dem/interactions.h"
+#include "dem/materials.h"
+#include "dem/neighbor_list.h"
+#include "dem/particles.h"
+#include "dem/walls.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace anticrack::dem
+{
+  struct IntegrationSettings
+  {
+    Vec3 gravity = Vec3::Zero();        ///< [m/s^2]
+    double local_damping = 0.0;         ///< alpha of Cundall's local damping [-], 0 <= alpha < 1
+    double time_step = 0.0;             ///< fixed step [s]; 0 selects the automatic critical step
+    double time_step_safety = 0.5;      ///< dt = safety * dt_crit in automatic mode
+    bool enforce_critical_step = true;  ///< refuse a fixed step above the critical estimate
+    Index time_step_interval = 100;     ///< steps between re-evaluations of dt_crit
+    double verlet_skin = 0.0;           ///< [m]; 0 selects 0.1 * mean radius
+    Index stability_check_interval = 100; ///< steps between energy-balance checks
+    double energy_drift_tolerance = 0.25; ///< abort when the balance drifts by more (relative)
+  };
+
+  /// What a bonding pass should bond.
+  struct BondingRule
+  {
+    double gap_tolerance = 0.0;  ///< bond pairs with gap <= tolerance * min(R_i, R_j)
+  };
+
+  class DemSystem
+  {
+  public:
+    // --- model (public: generators, tests and I/O fill and read these directly)
+    ParticleStore particles;
+    Domain domain;
+    MaterialTable materials;
+    ContactList contacts;
+    BondList bonds;
+    std::vector<Clump> clumps;
+    std::vector<Wall> walls;
+    IntegrationSettings settings;
+
+    // --- run state (public for checkpoint I/O)
+    double time = 0;
+    Index step_count = 0;
+    double dt = 0;
+    EnergyLedger ledger;               ///< path functions accumulate here
+    double initial_balance = 0;        ///< balance() at initialise()
+    std::vector<Vec3> previous_velocity;          ///< v(n-1/2), for the kinetic energy
+    std::vector<Vec3> previous_angular_velocity;
+    std::vector<Vec3> wall_shear;      ///< tangential force of sphere-wall contacts, [wall * N + p]
+
+    /// Bonds every pair of particles whose materials allow bonding and whose gap is within the
+    /// rule's tolerance; parameters from the material with the smaller id. Returns the count.
+    Index bond_touching_pairs(const BondingRule &rule = {});
+
+    /// Adds a clump made of `members`; returns its index.
+    Index add_clump(const std::vector<Index> &members);
+
+    /// Validates the set-up, builds the neighbour list and chooses the time step. Call once before
+    /// stepping (and again after changing particles, bonds or clumps by hand).
+    void initialise();
+
+    /// Re-establishes derived data after a checkpoint has been loaded (no change of state).
+    void resume();
+
+    void step();
+    /// Runs n steps; `observer(step_count)` is called after every step when given.
+    void run(Index n, const std::function<void(const DemSystem &)> &observer = {});
+
+    /// Critical time step estimate min(sqrt(m/K), sqrt(I/K_rot)) over free particles and clumps,
+    /// with the summed stiffness of candidate contacts, bonds and wall contacts (PHYSICS.md §1.3).
+    /// `where` receives the limiting particle (or -1 - clump index).
+    [[nodiscard]] double critical_time_step(Index *where = nullptr) const;
+
+    /// Current energies: state functions computed now, path functions from the ledger.
+    [[nodiscard]] EnergyLedger energy() const;
+
+    /// Forces a neighbour-list rebuild now (positions get wrapped into the periodic box).
+    void rebuild_neighbors();
+
+    [[nodiscard]] Index neighbor_builds() const { return neighbor_list_.builds(); }
+    [[nodiscard]] double skin() const { return skin_; }
+
+    /// Number of OpenMP threads used by the force and update loops.
+    static void set_threads(int threads);
+    static int threads();
+
+  private:
+    void compute_pair_loads();
+    void compute_unlisted_bond_loads();
+    void match_bonds_to_contacts();
+    void gather_and_integrate();
+    void integrate_clumps();
+    void move_walls();
+    void update_time_step();
+    void build_incidence();
+    void check_stability();
+
+    NeighborList neighbor_list_;
+    double skin_ = 0;
+    bool incidence_valid_ = false;
+    std::vector<Index> bond_of_contact_;  ///< bond of each listed pair, -1 if none
+    std::vector<Index> unlisted_bonds_;   ///< bonds whose pair is not in the Verlet list
+    std::vector<PairLoad> bond_load_;     ///< loads of the unlisted bonds, indexed by bond
+    // Particle -> pair incidence in CSR form: entry = (index << 2) | (unlisted bond << 1) | (particle is j)
+    std::vector<Index> incidence_offset_;
+    std::vector<Index> incidence_;
+    std::vector<Vec3> wall_load_;     ///< force on particle p from wall w, [w * N + p]
+    std::vector<double> wall_overlap_;///< overlap of particle p with wall w at the last step
+    Index dt_limiting_particle_ = -1;
+    double dt_critical_ = 0;
+  };
+} // namespace anticrack::dem
