@@ -82,6 +82,11 @@ namespace anticrack::dem
     const Vec3 vs = k.relative_velocity - vn * k.normal;
 
     // Tangential spring, increment -k_s du_s, then Coulomb's cap on the elastic normal force.
+    // Sliding dissipates (|F_trial| - cap)(|F_old| + cap) / (2 k_s): the slip length times the mean
+    // of the force before and after the step, which is what the leapfrog's trapezoidal work sees;
+    // it reduces to slip x cap at a constant cap and to (F_old^2 - cap^2)/(2 k_s) when the cap
+    // shrinks without tangential motion.
+    const Vec3 old_shear = shear_force;
     shear_force -= ks * dt * vs;
     const double cap = p.friction * fn_elastic;
     const double trial = shear_force.norm();
@@ -90,7 +95,7 @@ namespace anticrack::dem
     {
       sliding = true;
       const Vec3 capped = trial > 0 ? Vec3(shear_force * (cap / trial)) : Vec3::Zero();
-      dissipation.friction += (trial - cap) * cap / ks; // slip length times sliding force
+      dissipation.friction += (trial - cap) * (old_shear.norm() + cap) / (2 * ks);
       shear_force = capped;
     }
 

@@ -38,36 +38,46 @@ namespace anticrack::dem
     return k;
   }
 
-  /// Small rotation of the contact plane over one step: the rotation taking the old normal to the
-  /// new one, plus the spin of the pair about the normal.
-  inline Vec3 contact_plane_rotation(const Vec3 &old_normal, const Vec3 &new_normal, const Vec3 &mean_spin,
-                                     double dt)
+  /// The rotation of the contact plane over one step: first the rotation taking the old normal to
+  /// the new one about their common perpendicular t = n_old x n_new (Rodrigues' formula in the
+  /// division-only form v' = c v + t x v + t (t.v)/(1 + c), c = n_old.n_new), then the spin of the
+  /// pair about the new normal by psi = dt (omega_mean . n), applied as a Cayley rotation
+  /// ((1 - h^2) v + 2 h n x v)/(1 + h^2), h = psi/2, whose angle 2 atan(h) differs from psi by
+  /// psi^3/12. Both are exact rotations, so lengths are preserved and a pre-loaded bond keeps its
+  /// load under rigid rotation; the final projection only removes round-off.
+  struct ContactPlaneRotation
   {
-    return old_normal.cross(new_normal) + new_normal * (dt * mean_spin.dot(new_normal));
-  }
+    Vec3 tilt;            ///< n_old x n_new
+    double tilt_cos;      ///< n_old . n_new
+    double tilt_factor;   ///< 1 / (1 + n_old . n_new)
+    Vec3 normal;          ///< n_new
+    double spin_cos;      ///< (1 - h^2) / (1 + h^2)
+    double spin_sin;      ///< 2 h / (1 + h^2)
 
-  /// Carries a vector that lives in the contact plane (shear force, bending moment) along with the
-  /// plane's small rotation; the result is projected back onto the plane and keeps its length
-  /// (a rotation does not stretch).
-  inline void rotate_with_contact_plane(Vec3 &v, const Vec3 &rotation, const Vec3 &new_normal)
-  {
-    const double length2 = v.squaredNorm();
-    if (length2 == 0)
-      return;
-    v += rotation.cross(v);
-    v -= v.dot(new_normal) * new_normal;
-    const double new_length2 = v.squaredNorm();
-    if (new_length2 <= 0)
-      return;
-    // Restore the length: sqrt(ratio) with one Newton step from 1 when the per-step rotation is
-    // small (error (ratio - 1)^2 / 8), the exact root otherwise.
-    const double ratio = length2 / new_length2;
-    v *= std::abs(ratio - 1) < 1e-4 ? 0.5 * (1 + ratio) : std::sqrt(ratio);
-  }
+    ContactPlaneRotation(const Vec3 &old_normal, const Vec3 &new_normal, const Vec3 &mean_spin, double dt)
+      : tilt(old_normal.cross(new_normal))
+      , tilt_cos(old_normal.dot(new_normal))
+      , tilt_factor(1.0 / (1.0 + tilt_cos))
+      , normal(new_normal)
+    {
+      const double h = 0.5 * dt * mean_spin.dot(new_normal);
+      const double scale = 1.0 / (1.0 + h * h);
+      spin_cos = (1 - h * h) * scale;
+      spin_sin = 2 * h * scale;
+    }
 
+    void apply(Vec3 &v) const
+    {
+      v = tilt_cos * v + tilt.cross(v) + (tilt.dot(v) * tilt_factor) * tilt;
+      v = spin_cos * v + spin_sin * normal.cross(v);
+      v -= v.dot(normal) * normal;
+    }
+  };
+
+  /// Convenience form for a single vector.
   inline void rotate_with_contact_plane(Vec3 &v, const Vec3 &old_normal, const Vec3 &new_normal,
                                         const Vec3 &mean_spin, double dt)
   {
-    rotate_with_contact_plane(v, contact_plane_rotation(old_normal, new_normal, mean_spin, dt), new_normal);
+    ContactPlaneRotation(old_normal, new_normal, mean_spin, dt).apply(v);
   }
 } // namespace anticrack::dem

@@ -183,7 +183,18 @@ namespace anticrack::dem
     previous_angular_velocity = particles.angular_velocity;
     wall_shear.assign(walls.size() * particles.size(), Vec3::Zero());
     rebuild_neighbors();
+    update_wall_overlaps();
     initial_balance = energy().balance();
+    // Leapfrog treats the initial velocities as v(-1/2). The first step books gravity's work as
+    // m g.v(-1/2) dt while the kinetic energy 1/2 m v(-1/2).v(1/2) grows by only half of it; the
+    // other half belongs to the fictitious step before the start. Count it in the reference.
+    double first_step_offset = 0;
+    for (Index p = 0; p < particles.size(); ++p)
+      if (particles.clump_id[p] < 0 && !(particles.blocked[p] & block_translation))
+        first_step_offset += 0.5 * particles.mass[p] * settings.gravity.dot(particles.velocity[p]) * dt;
+    for (const Clump &clump : clumps)
+      first_step_offset += 0.5 * clump.mass * settings.gravity.dot(clump.velocity) * dt;
+    initial_balance -= first_step_offset;
   }
 
   void DemSystem::resume()
@@ -198,6 +209,7 @@ namespace anticrack::dem
       throw SetupError("checkpoint: sphere-wall state does not match the walls and particles");
     const double saved_dt = dt;
     rebuild_neighbors();
+    update_wall_overlaps();
     // The checkpoint was written right after a rebuild, which re-evaluated dt already.
     if (saved_dt > 0)
       dt = saved_dt;
@@ -218,9 +230,22 @@ namespace anticrack::dem
                                                    particles.position[bonds.j[b]]);
     match_bonds_to_contacts();
     build_incidence();
-    wall_load_.assign(walls.size() * particles.size(), Vec3::Zero());
-    wall_overlap_.assign(walls.size() * particles.size(), 0.0);
+    // Sphere-wall loads and overlaps belong to the last step and survive a rebuild.
+    if (wall_load_.size() != walls.size() * particles.size())
+      wall_load_.assign(walls.size() * particles.size(), Vec3::Zero());
+    if (wall_overlap_.size() != walls.size() * particles.size())
+      wall_overlap_.assign(walls.size() * particles.size(), 0.0);
     update_time_step();
+  }
+
+  void DemSystem::update_wall_overlaps()
+  {
+    // Sphere-wall overlaps from the current geometry (the kernels store them during a step), so
+    // that energy() counts initial or restored wall contacts before the first step.
+    const Index n = particles.size();
+    for (std::size_t w = 0; w < walls.size(); ++w)
+      for (Index p = 0; p < n; ++p)
+        wall_overlap_[w * n + p] = particles.radius[p] - (particles.position[p] - walls[w].point).dot(walls[w].normal);
   }
 
   void DemSystem::build_incidence()
@@ -598,7 +623,9 @@ namespace anticrack::dem
                                           previous_velocity[p], v_minus, damping_work, external_work);
       const Vec3 w_plus = leapfrog_update(rotation_blocked, alpha, torque, particles.inertia[p], dt, old_spin,
                                           previous_angular_velocity[p], w_minus, damping_work, external_work);
-      gravity_work += mass * gravity.dot(0.5 * (v_minus + v_plus)) * dt;
+      // Gravity's work up to the state the ledger reports (forces of this step, i.e. positions
+      // x(n)): m g.(x(n) - x(n-1)) = m g.v(n-1/2) dt. See initialise() for the first step.
+      gravity_work += mass * gravity.dot(v_minus) * dt;
       // Blocked DOFs keep the prescribed velocity as their "previous" one (see leapfrog_update).
       previous_velocity[p] = translation_blocked ? v_plus : v_minus;
       previous_angular_velocity[p] = rotation_blocked ? w_plus : w_minus;
@@ -652,7 +679,7 @@ namespace anticrack::dem
                                           v_old, v_minus, damping, external);
       const Vec3 v_mean = 0.5 * (v_minus + v_plus);
       external += clump.applied_force(time).dot(v_mean) * dt;
-      ledger.gravity_potential -= clump.mass * gravity.dot(v_mean) * dt;
+      ledger.gravity_potential -= clump.mass * gravity.dot(v_minus) * dt;
 
       // Rotation: leapfrog on the angular momentum, omega = I_world^-1 L.
       if (clump.rotation_locked)
@@ -743,7 +770,7 @@ namespace anticrack::dem
                  0.5 * clump.angular_velocity.dot(clump.angular_momentum);
 #pragma omp parallel for schedule(static) reduction(+ : elastic_contacts)
     for (Index c = 0; c < contacts.size(); ++c)
-      if (contacts.active[c])
+      if (contacts.overlap[c] > 0) // touching at the last evaluation (or at the build)
       {
         const Index i = contacts.i[c], j = contacts.j[c];
         elastic_contacts +=
@@ -769,8 +796,17 @@ namespace anticrack::dem
   {
     const EnergyLedger e = energy();
     const double drift = std::abs(e.balance() - initial_balance);
+    // Absolute floor: the energy of every particle moving by 1e-6 of its radius per critical time
+    // step, 1/2 m (1e-6 R / dt_c)^2, i.e. of a 1e-6 R deflection of its stiffest springs. Below it
+    // the balance is round-off (a sample at rest), above it an unstable step grows exponentially.
+    double floor = 0;
+    for (Index p = 0; p < particles.size(); ++p)
+    {
+      const double v = 1e-6 * particles.radius[p] / dt_critical_;
+      floor += 0.5 * particles.mass[p] * v * v;
+    }
     const double scale = std::max({std::abs(initial_balance), e.kinetic + e.elastic_contacts + e.elastic_bonds,
-                                   std::abs(e.external_work), e.dissipated(), std::abs(e.gravity_potential)});
+                                   std::abs(e.external_work), e.dissipated(), std::abs(e.gravity_potential), floor});
     if (!std::isfinite(e.balance()) || (drift > 0 && drift > settings.energy_drift_tolerance * scale))
     {
       std::ostringstream message;

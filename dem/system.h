@@ -114,6 +114,7 @@ namespace anticrack::dem
     void move_walls();
     void update_time_step();
     void build_incidence();
+    void update_wall_overlaps();
     void check_stability();
 
     NeighborList neighbor_list_;

@@ -1,0 +1,360 @@
+#include "app/dem_scene.h"
+
+#include "app/input_error.h"
+#include "dem/force_history.h"
+#include "dem/lattice.h"
+
+#include <hdf5.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <random>
+#include <sstream>
+
+namespace anticrack::app
+{
+  std::string to_string(const dem::WallControl control)
+  {
+    switch (control)
+    {
+      case dem::WallControl::fixed:
+        return "fixed";
+      case dem::WallControl::velocity:
+        return "velocity";
+      case dem::WallControl::servo:
+        return "servo";
+    }
+    return "unknown";
+  }
+
+  int apply_thread_count(const int threads)
+  {
+    // Without an explicit count the OpenMP default applies: OMP_NUM_THREADS, else every core.
+    if (threads > 0)
+      dem::DemSystem::set_threads(threads);
+    return dem::DemSystem::threads();
+  }
+
+  namespace
+  {
+    using parameters::Walls;
+
+    /// Positions and radii of an anticrack snapshot (/particles/position N x 3, /particles/radius N).
+    /// Only these two arrays are taken: the scene supplies everything else.
+    void read_snapshot_spheres(const std::string &file, std::vector<Vec3> &position,
+                               std::vector<double> &radius)
+    {
+      const std::string where = "DEM/Sample/Snapshot file = " + file + ": ";
+      // Silence HDF5's own error stack printout; we report the failure ourselves.
+      H5E_auto2_t old_handler;
+      void *old_data;
+      H5Eget_auto2(H5E_DEFAULT, &old_handler, &old_data);
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+      struct Restore
+      {
+        H5E_auto2_t handler;
+        void *data;
+        ~Restore() { H5Eset_auto2(H5E_DEFAULT, handler, data); }
+      } restore{old_handler, old_data};
+
+      const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (f < 0)
+        throw InputError(where + "not an HDF5 file that can be opened");
+      auto read = [&](const char *name, int columns, double *data, hsize_t &rows) {
+        const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
+        if (set < 0)
+          return false;
+        const hid_t space = H5Dget_space(set);
+        hsize_t dims[2] = {0, 0};
+        const int rank = H5Sget_simple_extent_ndims(space);
+        H5Sget_simple_extent_dims(space, dims, nullptr);
+        H5Sclose(space);
+        const bool shape_ok = rank == (columns == 1 ? 1 : 2) && (columns == 1 || dims[1] == hsize_t(columns));
+        herr_t status = -1;
+        if (shape_ok && data == nullptr)
+          status = 0; // size query only
+        else if (shape_ok)
+          status = H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+        rows = dims[0];
+        H5Dclose(set);
+        return status >= 0;
+      };
+      hsize_t n = 0, n_radius = 0;
+      bool ok = read("/particles/position", 3, nullptr, n) && read("/particles/radius", 1, nullptr, n_radius) &&
+                n == n_radius;
+      if (ok)
+      {
+        position.resize(n);
+        radius.resize(n);
+        ok = read("/particles/position", 3, position.data()->data(), n) &&
+             read("/particles/radius", 1, radius.data(), n_radius);
+      }
+      H5Fclose(f);
+      if (!ok)
+        throw InputError(where + "needs /particles/position (N x 3) and /particles/radius (N) of an "
+                                 "anticrack snapshot");
+    }
+
+    void add_sample(const SceneParameters &scene, dem::DemSystem &system)
+    {
+      const auto &d = scene.dem;
+      if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
+      {
+        dem::LatticeSpec spec;
+        spec.cells = d.sample.lattice_size;
+        spec.radius = d.sample.radius;
+        spec.spacing = d.sample.spacing;
+        spec.origin = d.sample.origin;
+        spec.material = 0;
+        spec.velocity_amplitude = d.sample.velocity_amplitude;
+        spec.seed = d.seed;
+        dem::add_simple_cubic_lattice(system, spec);
+        return;
+      }
+
+      std::vector<Vec3> position;
+      std::vector<double> radius;
+      read_snapshot_spheres(d.sample.snapshot_file, position, radius);
+      std::mt19937_64 rng(d.seed);
+      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+      for (std::size_t k = 0; k < position.size(); ++k)
+      {
+        for (int a = 0; a < 3; ++a)
+          if (!d.domain.periodic[a] &&
+              !(position[k][a] >= d.domain.lower[a] && position[k][a] <= d.domain.upper[a]))
+            throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": sphere " +
+                             std::to_string(k) + " at (" + format_vector(position[k]) +
+                             ") m lies outside DEM/Domain");
+        if (!(radius[k] > 0))
+          throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": sphere " +
+                           std::to_string(k) + " has radius " + std::to_string(radius[k]));
+        const Index p = system.particles.add_sphere(system.domain.wrap(position[k]), radius[k],
+                                                    d.material.density, 0);
+        if (d.sample.velocity_amplitude > 0)
+          for (int a = 0; a < 3; ++a)
+            system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
+      }
+    }
+
+    /// Fixed base and loaded clump (PHYSICS.md 1.5). Both start at rest.
+    void add_boundary_particles(const SceneParameters &scene, DemModel &model)
+    {
+      const auto &bp = scene.dem.boundary;
+      auto &particles = model.system.particles;
+      const Index n = particles.size();
+      double z_min = std::numeric_limits<double>::infinity(), z_max = -z_min;
+      for (Index p = 0; p < n; ++p)
+        z_min = std::min(z_min, particles.position[p][2]), z_max = std::max(z_max, particles.position[p][2]);
+      const std::string range = "the sphere centres span z = [" + format_number(z_min) + ", " +
+                                format_number(z_max) + "] m";
+
+      std::vector<Index> clump_members;
+      for (Index p = 0; p < n; ++p)
+      {
+        const double z = particles.position[p][2];
+        if (bp.fix_below && z < *bp.fix_below)
+        {
+          model.fixed_particles.push_back(p);
+          particles.blocked[p] = dem::block_all;
+          particles.velocity[p].setZero();
+          particles.angular_velocity[p].setZero();
+        }
+        else if (bp.clump_above && z > *bp.clump_above)
+        {
+          clump_members.push_back(p);
+          particles.velocity[p].setZero();
+          particles.angular_velocity[p].setZero();
+        }
+      }
+      if (bp.fix_below && model.fixed_particles.empty())
+        throw InputError("DEM/Boundary particles/Fix below [m] = " + format_number(*bp.fix_below) +
+                         " selects no sphere: " + range + ".");
+      if (bp.clump_above && clump_members.empty())
+        throw InputError("DEM/Boundary particles/Clump above [m] = " + format_number(*bp.clump_above) +
+                         " selects no sphere: " + range + ".");
+      const Index free = n - static_cast<Index>(model.fixed_particles.size() + clump_members.size());
+      if (n > 0 && free == 0)
+        throw InputError("DEM/Boundary particles: Fix below [m] and Clump above [m] leave no free "
+                         "sphere between the base and the clump (" + range + ").");
+      if (clump_members.empty())
+        return;
+      model.clump = model.system.add_clump(clump_members);
+      dem::Clump &clump = model.system.clumps[model.clump];
+      clump.rotation_locked = bp.clump_rotation_locked;
+      if (bp.clump_force_rate != 0)
+        clump.applied_force = dem::ForceHistory::ramp(bp.clump_force_rate, bp.clump_force_direction);
+    }
+
+    void add_walls(const SceneParameters &scene, DemModel &model)
+    {
+      const auto &d = scene.dem;
+      const Vec3 length = d.domain.upper - d.domain.lower;
+      for (int f = 0; f < 6; ++f)
+      {
+        const auto &face = d.walls.face[f];
+        if (!face.active)
+          continue;
+        const int a = Walls::axis(f);
+        dem::Wall wall;
+        wall.name = Walls::face_names[f];
+        wall.normal = Vec3::Zero();
+        wall.normal[a] = -Walls::side(f); // inward
+        wall.point = Walls::side(f) < 0 ? d.domain.lower : d.domain.upper;
+        wall.control = face.control;
+        wall.velocity = face.control == dem::WallControl::velocity ? Vec3(face.velocity * wall.normal) :
+                                                                     Vec3::Zero();
+        wall.contact = d.material.contact;
+        wall.target_stress = face.target_stress;
+        wall.area = length[(a + 1) % 3] * length[(a + 2) % 3];
+        wall.servo_gain = face.servo_gain;
+        wall.max_speed = face.max_speed;
+        model.system.walls.push_back(wall);
+        model.wall_face.push_back(f);
+      }
+    }
+  } // namespace
+
+  std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, const int threads)
+  {
+    const auto &d = scene.dem;
+    auto model = std::make_unique<DemModel>();
+    dem::DemSystem &system = model->system;
+    apply_thread_count(threads);
+
+    try
+    {
+      system.domain.lower = d.domain.lower;
+      system.domain.upper = d.domain.upper;
+      system.domain.periodic = d.domain.periodic;
+      const Vec3 length = d.domain.upper - d.domain.lower;
+      model->base_area = length[0] * length[1];
+
+      dem::Material material;
+      material.density = d.material.density;
+      material.contact = d.material.contact;
+      material.bond = d.bond.bond;
+      system.materials.add(material);
+
+      add_sample(scene, system);
+      if (system.particles.size() == 0)
+        throw InputError("DEM/Sample: the sample has no spheres.");
+      // Clump before bonds: bonds inside the rigid clump would carry no load but cost time.
+      add_boundary_particles(scene, *model);
+      if (d.bond.bond.enabled)
+        model->initial_bonds = system.bond_touching_pairs(dem::BondingRule{d.bond.gap_tolerance});
+      add_walls(scene, *model);
+      system.settings = d.integration.settings;
+      system.initialise();
+      model->critical_time_step = system.critical_time_step();
+    }
+    catch (const dem::SetupError &e)
+    {
+      throw InputError("Invalid scene file <" + scene.file + ">: the DEM model cannot be set up: " +
+                       e.what());
+    }
+    catch (const dem::NumericalError &e)
+    {
+      // At set-up this can only be a fixed time step above the critical one.
+      throw InputError("Invalid scene file <" + scene.file + ">: " + e.what() +
+                       " (DEM/Integration/Time step [s])");
+    }
+    catch (const InputError &e)
+    {
+      throw InputError("Invalid scene file <" + scene.file + ">: " + e.what());
+    }
+    return model;
+  }
+
+  void describe_dem_model(std::ostream &out, const SceneParameters &scene, const DemModel &model)
+  {
+    const auto &d = scene.dem;
+    const auto &system = model.system;
+    const auto &o = scene.output;
+    const char *axis_name[3] = {"x", "y", "z"};
+    std::ostringstream s;
+    s << std::setprecision(6);
+
+    s << "Scene " << scene.file << "\n"
+      << "  file sha256         " << scene.file_sha256 << "\n"
+      << "  parameters sha256   " << scene.parameters_sha256 << "\n"
+      << "Components: ";
+    for (std::size_t k = 0; k < scene.components.size(); ++k)
+      s << (k ? ", " : "") << scene.components[k];
+    s << "\n\nDEM\n"
+      << "  domain              [" << format_vector(d.domain.lower) << "] - [" << format_vector(d.domain.upper)
+      << "] m, periodic in";
+    bool any_periodic = false;
+    for (int a = 0; a < 3; ++a)
+      if (d.domain.periodic[a])
+        s << " " << axis_name[a], any_periodic = true;
+    if (!any_periodic)
+      s << " none";
+    s << "\n  sample              ";
+    if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
+      s << "simple cubic lattice " << d.sample.lattice_size[0] << " x " << d.sample.lattice_size[1] << " x "
+        << d.sample.lattice_size[2] << ", R = " << d.sample.radius << " m, spacing " << d.sample.spacing << " m";
+    else
+      s << "snapshot " << d.sample.snapshot_file;
+    s << "\n  particles           " << system.particles.size() << " (" << model.fixed_particles.size()
+      << " fixed";
+    if (model.clump >= 0)
+      s << ", " << system.clumps[model.clump].members.size() << " in the clump";
+    s << ")\n  bonds               " << model.initial_bonds;
+    if (!d.bond.bond.enabled)
+      s << " (bonding disabled)";
+    s << "\n  contact law         "
+      << (d.material.contact.law == dem::ContactLaw::linear ? "linear" : "hertz-mindlin") << "\n";
+    s << "  walls               " << (system.walls.empty() ? "none\n" : "\n");
+    for (const auto &w : system.walls)
+    {
+      s << "    " << std::left << std::setw(4) << w.name << std::right << to_string(w.control);
+      if (w.control == dem::WallControl::velocity)
+        s << ", " << w.velocity.dot(w.normal) << " m/s inwards";
+      if (w.control == dem::WallControl::servo)
+        s << ", target " << w.target_stress << " Pa on " << w.area << " m^2";
+      s << "\n";
+    }
+    s << "  clump               ";
+    if (model.clump < 0)
+      s << "none\n";
+    else
+    {
+      const auto &c = system.clumps[model.clump];
+      s << c.members.size() << " spheres, mass " << c.mass << " kg, force F(t) = "
+        << d.boundary.clump_force_rate << " N/s x t x (" << format_vector(d.boundary.clump_force_direction)
+        << ")" << (c.rotation_locked ? ", rotation locked" : "") << "\n";
+    }
+    const double dt = system.dt;
+    s << "  critical time step  " << model.critical_time_step << " s\n"
+      << "  time step           " << dt << " s ("
+      << (d.integration.settings.time_step > 0 ? "fixed" : "automatic, safety factor ");
+    if (!(d.integration.settings.time_step > 0))
+      s << d.integration.settings.time_step_safety;
+    s << ")\n"
+      << "  steps               " << d.steps << "\n"
+      << "  simulated time      " << d.steps * dt << " s"
+      << (d.integration.settings.time_step > 0 ? "" : " (approximately: dt is re-evaluated)") << "\n"
+      << "  local damping       " << d.integration.settings.local_damping << "\n"
+      << "  threads             " << dem::DemSystem::threads() << "\n";
+
+    auto every = [&](Index interval, const std::string &what) {
+      if (interval > 0)
+        s << "  " << what << " every " << interval << " steps (" << (d.steps + interval - 1) / interval + 1
+          << " files at most)\n";
+    };
+    s << "\nOutputs (into the -o directory)\n"
+      << "  summary.json\n"
+      << "  history.h5          every " << (o.history_interval > 0 ? std::to_string(o.history_interval) : "-")
+      << " steps (" << (o.history_interval > 0 ? d.steps / o.history_interval + 2 : 2) << " rows at most)\n";
+    every(o.snapshot_interval, "snapshots/         ");
+    if (o.snapshot_interval > 0 && o.write_paraview)
+      s << "  paraview/           .vtp and .pvd at every snapshot\n";
+    if (o.checkpoint_interval > 0)
+      s << "  checkpoint.h5       every " << o.checkpoint_interval << " steps and at the end\n";
+    out << s.str();
+  }
+} // namespace anticrack::app

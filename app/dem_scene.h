@@ -1,0 +1,41 @@
+// From scene parameters to a ready-to-run DemSystem: domain, material, sample, boundary particles
+// (fixed base, loaded clump), bonds, walls and integration settings, then initialise(). Problems
+// that show only once the sample exists (a `Fix below` that selects every sphere, a clump with no
+// member) are InputErrors like those of the scene file; the engine's SetupErrors are re-raised as
+// InputErrors too. Nothing here writes files.
+#pragma once
+
+#include "app/scene_parameters.h"
+#include "dem/system.h"
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anticrack::app
+{
+  /// The DEM model of a scene and the bookkeeping the application needs beside the system.
+  struct DemModel
+  {
+    dem::DemSystem system;
+    std::vector<Index> fixed_particles;   ///< the base (Boundary particles/Fix below)
+    Index clump = -1;                     ///< index into system.clumps, -1 without a clump
+    std::vector<int> wall_face;           ///< face index (0..5 = x-..z+) of system.walls[w]
+    Index initial_bonds = 0;              ///< bonds created when the sample was built
+    double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
+    double critical_time_step = 0;        ///< dt_crit at initialise() [s]
+  };
+
+  /// Builds and initialises the model; `threads` <= 0 means all available.
+  std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, int threads);
+
+  /// Sets the engine's thread count (0: all available) and returns the count in use.
+  int apply_thread_count(int threads);
+
+  /// What `anticrack check` prints: components, sample, walls, clump, time step, outputs.
+  void describe_dem_model(std::ostream &out, const SceneParameters &scene, const DemModel &model);
+
+  /// Names of wall controls and contact laws for messages and summaries.
+  std::string to_string(dem::WallControl control);
+} // namespace anticrack::app

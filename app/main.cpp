@@ -1,0 +1,149 @@
+// anticrack: the command-line front end.
+//
+//   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T]
+//   anticrack check SCENE.prm [--threads T]
+//   anticrack params [--format prm|description|json]
+//   anticrack bench dem --lattice n --steps S --threads T
+//
+// Exit codes: 0 success, 1 numerical failure of a run that has started, 2 bad input (scene,
+// command line, checkpoint that does not match), 130 interrupted. Bad input is always found before
+// anything is written.
+#include "app/bench.h"
+#include "app/dem_run.h"
+#include "app/input_error.h"
+#include "app/scene_parameters.h"
+#include "dem/types.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <string>
+
+#ifndef ANTICRACK_GIT_VERSION
+#  define ANTICRACK_GIT_VERSION "unknown"
+#endif
+
+namespace
+{
+  using namespace anticrack::app;
+
+  void print_framed_error(const std::string &title, const std::string &message)
+  {
+    const std::string rule(78, '-');
+    std::cerr << "\n" << rule << "\n" << title << "\n\n" << message << "\n" << rule << "\n";
+  }
+
+  std::string join_arguments(int argc, char **argv)
+  {
+    std::string line;
+    for (int k = 0; k < argc; ++k)
+      line += (k ? " " : "") + std::string(argv[k]);
+    return line;
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  CLI::App app{"anticrack: bonded-particle DEM of snow and rock, calibration and finite elements.\n"
+               "Scenes are deal.II parameter files; `anticrack params` lists every entry."};
+  app.set_version_flag("--version", ANTICRACK_GIT_VERSION);
+  app.require_subcommand(1);
+
+  // --- run
+  RunOptions run_options;
+  auto *run = app.add_subcommand("run", "Run a scene and write its results into a directory");
+  run->add_option("scene", run_options.scene_file, "Scene file (.prm)")->required()->check(CLI::ExistingFile);
+  run->add_option("-o,--output", run_options.output_directory,
+                  "Output directory (summary.json, history.h5, snapshots/, paraview/, checkpoint.h5)")
+    ->required();
+  auto *resume_flag = run->add_flag("--resume", run_options.resume,
+                "Continue from DIR/checkpoint.h5 up to DEM/Steps (the scene must match the checkpoint)");
+  run->add_flag("--overwrite", run_options.overwrite,
+                "Replace the outputs of an earlier run in DIR (otherwise such a directory is refused)")
+    ->excludes(resume_flag);
+  run->add_option("--threads", run_options.threads, "OpenMP threads (0: all available); overrides DEM/Threads")
+    ->check(CLI::NonNegativeNumber);
+
+  // --- check
+  std::string check_file;
+  int check_threads = -1;
+  auto *check = app.add_subcommand("check", "Validate a scene and build its model; print what would run");
+  check->add_option("scene", check_file, "Scene file (.prm)")->required()->check(CLI::ExistingFile);
+  check->add_option("--threads", check_threads, "OpenMP threads (0: all available)")
+    ->check(CLI::NonNegativeNumber);
+
+  // --- params
+  std::string format = "prm";
+  auto *params = app.add_subcommand("params", "Print every scene parameter with its default, pattern and "
+                                              "documentation");
+  params->add_option("--format", format, "prm (a complete scene with comments), description, or json")
+    ->check(CLI::IsMember({"prm", "description", "json"}))
+    ->capture_default_str();
+
+  // --- bench
+  BenchOptions bench_options;
+  auto *bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  auto *bench_dem_command = bench->add_subcommand(
+    "dem", "Time the DEM engine on a bonded periodic simple-cubic lattice; prints one JSON line");
+  bench_dem_command->add_option("--lattice", bench_options.lattice, "Spheres per edge n (n^3 spheres)")
+    ->check(CLI::PositiveNumber)
+    ->capture_default_str();
+  bench_dem_command->add_option("--steps", bench_options.steps, "Time steps to time")
+    ->check(CLI::PositiveNumber)
+    ->capture_default_str();
+  bench_dem_command->add_option("--threads", bench_options.threads, "OpenMP threads (0: all available)")
+    ->check(CLI::NonNegativeNumber)
+    ->capture_default_str();
+
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError &e)
+  {
+    const int code = app.exit(e);
+    return code == 0 ? exit_success : exit_bad_input;
+  }
+
+  try
+  {
+    if (*run)
+    {
+      run_options.command_line = join_arguments(argc, argv);
+      return run_scene(run_options);
+    }
+    if (*check)
+      return check_scene(check_file, check_threads);
+    if (*params)
+    {
+      print_parameter_documentation(std::cout, format == "json"        ? ParameterFormat::json :
+                                               format == "description" ? ParameterFormat::description :
+                                                                         ParameterFormat::prm);
+      return exit_success;
+    }
+    if (*bench_dem_command)
+      return bench_dem(bench_options);
+  }
+  catch (const InputError &e)
+  {
+    print_framed_error("anticrack: invalid input (nothing was written)", e.what());
+    return exit_bad_input;
+  }
+  catch (const anticrack::dem::SetupError &e)
+  {
+    print_framed_error("anticrack: invalid set-up", e.what());
+    return exit_bad_input;
+  }
+  catch (const anticrack::dem::NumericalError &e)
+  {
+    print_framed_error("anticrack: numerical failure", e.what());
+    return exit_numerical_failure;
+  }
+  catch (const std::exception &e)
+  {
+    print_framed_error("anticrack: error", e.what());
+    return exit_numerical_failure;
+  }
+  return exit_success;
+}

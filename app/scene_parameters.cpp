@@ -1,0 +1,798 @@
+#include "app/scene_parameters.h"
+
+#include "app/hashing.h"
+#include "app/input_error.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+namespace anticrack::app
+{
+  using dealii::ParameterHandler;
+  namespace Patterns = dealii::Patterns;
+
+  namespace
+  {
+    const std::string vector_pattern_help = " Three comma-separated numbers x, y, z.";
+
+    std::unique_ptr<Patterns::PatternBase> vector3()
+    {
+      return std::make_unique<Patterns::List>(Patterns::Double(), 3, 3);
+    }
+
+    Vec3 get_vector(const ParameterHandler &prm, const std::string &name)
+    {
+      const auto parts = dealii::Utilities::split_string_list(prm.get(name), ',');
+      Vec3 v;
+      for (int a = 0; a < 3; ++a)
+        v[a] = dealii::Utilities::string_to_double(parts.at(a));
+      return v;
+    }
+
+    /// Entries that may be left empty: Patterns::List of zero or one double.
+    std::optional<double> get_optional_double(const ParameterHandler &prm, const std::string &name)
+    {
+      const std::string value = dealii::Utilities::trim(prm.get(name));
+      if (value.empty())
+        return std::nullopt;
+      return dealii::Utilities::string_to_double(value);
+    }
+  } // namespace
+
+  std::string format_number(const double x)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << x;
+    return s.str();
+  }
+
+  std::string format_vector(const Vec3 &v)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << v[0] << ", " << v[1] << ", " << v[2];
+    return s.str();
+  }
+
+  namespace parameters
+  {
+    // ------------------------------------------------------------------------------- Output
+    void Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Snapshot interval [steps]", "0", Patterns::Integer(0),
+                        "Steps between HDF5 snapshots snapshots/snapshot_NNNNNN.h5 (the state for "
+                        "post-processing; NNNNNN is the step). When positive, snapshots are also "
+                        "written at the first and the last step. 0 writes none.");
+      prm.declare_entry("Checkpoint interval [steps]", "0", Patterns::Integer(0),
+                        "Steps between restart files checkpoint.h5 (overwritten each time, plus "
+                        "checkpoint.json with the scene's hash); `anticrack run --resume` continues "
+                        "from the last one. When positive, a checkpoint is also written at the last "
+                        "step. 0 writes none.");
+      prm.declare_entry("History interval [steps]", "100", Patterns::Integer(0),
+                        "Steps between rows of the time series history.h5 (energies, bonds, wall "
+                        "stresses, clump motion). The first and last steps are always recorded; "
+                        "0 records only those.");
+      prm.declare_entry("Progress interval [steps]", "1000", Patterns::Integer(0),
+                        "Steps between progress reports on the console. 0 is quiet.");
+      prm.declare_entry("Write ParaView", "false", Patterns::Bool(),
+                        "Write paraview/particles_NNNNNN.vtp and bonds_NNNNNN.vtp with "
+                        "particles.pvd and bonds.pvd collections at every snapshot step.");
+      prm.leave_subsection();
+    }
+
+    void Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      snapshot_interval = prm.get_integer("Snapshot interval [steps]");
+      checkpoint_interval = prm.get_integer("Checkpoint interval [steps]");
+      history_interval = prm.get_integer("History interval [steps]");
+      progress_interval = prm.get_integer("Progress interval [steps]");
+      write_paraview = prm.get_bool("Write ParaView");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------- Domain
+    void Domain::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Domain");
+      prm.declare_entry("Lower corner [m]", "0, 0, 0", *vector3(),
+                        "x_min: lower corner of the axis-aligned simulation box. Units: m." +
+                          vector_pattern_help);
+      prm.declare_entry("Upper corner [m]", "0.02, 0.02, 0.02", *vector3(),
+                        "x_max: upper corner of the simulation box, above the lower corner along "
+                        "every axis. Units: m." + vector_pattern_help);
+      prm.declare_entry("Periodic axes", "", Patterns::MultipleSelection("x|y|z"),
+                        "Axes along which the box is periodic (a comma-separated subset of x, y, "
+                        "z; empty for none). Contacts and bonds across a periodic face use the "
+                        "minimum image; walls cannot sit on a periodic axis.");
+      prm.leave_subsection();
+    }
+
+    void Domain::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Domain");
+      lower = get_vector(prm, "Lower corner [m]");
+      upper = get_vector(prm, "Upper corner [m]");
+      periodic = {false, false, false};
+      for (const auto &axis : dealii::Utilities::split_string_list(prm.get("Periodic axes"), ','))
+        periodic[axis == "x" ? 0 : axis == "y" ? 1 : 2] = true;
+      prm.leave_subsection();
+    }
+
+    // ----------------------------------------------------------------------------- Material
+    void Material::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      prm.declare_entry("Density [kg/m^3]", "1e4", Patterns::Double(0),
+                        "rho: density of the spheres (seed 002 uses 10 000 kg/m^3 without "
+                        "gravity to speed up quasi-static tests). Units: kg/m^3.");
+      prm.declare_entry("Contact law", "linear", Patterns::Selection("linear|hertz-mindlin"),
+                        "Force-overlap law of sphere-sphere and sphere-wall contacts "
+                        "(PHYSICS.md 1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
+                        "L = R_i + R_j, k_s = k_n / kappa; `hertz-mindlin` has "
+                        "F_n = 4/3 E* sqrt(R*) delta^(3/2) and k_t = 8 G* sqrt(R* delta). Both "
+                        "cap the tangential force by Coulomb's law |F_s| <= mu F_n.");
+      prm.declare_entry("Contact modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E_c: contact modulus of the linear law (PFC 'deformability'). Units: Pa.");
+      prm.declare_entry("Stiffness ratio", "3", Patterns::Double(0),
+                        "kappa = k_n / k_s: normal-to-shear stiffness ratio of the linear law. "
+                        "Units: none.");
+      prm.declare_entry("Friction coefficient", "0.5", Patterns::Double(0),
+                        "mu = tan(phi_contact): Coulomb friction coefficient of contacts. Units: "
+                        "none.");
+      prm.declare_entry("Damping ratio", "0", Patterns::Double(0, 1),
+                        "beta_d: ratio of the contact dashpots to critical damping, "
+                        "c = 2 beta_d sqrt(m_eff k). 0 switches the dashpots off. Units: none.");
+      prm.declare_entry("Young modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E: Young's modulus of the grain material (Hertz-Mindlin law only). Units: "
+                        "Pa.");
+      prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(0, 0.5),
+                        "nu: Poisson's ratio of the grain material (Hertz-Mindlin law only). "
+                        "Units: none.");
+      prm.leave_subsection();
+    }
+
+    void Material::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      density = prm.get_double("Density [kg/m^3]");
+      contact.law = prm.get("Contact law") == "linear" ? dem::ContactLaw::linear :
+                                                         dem::ContactLaw::hertz_mindlin;
+      contact.contact_modulus = prm.get_double("Contact modulus [Pa]");
+      contact.stiffness_ratio = prm.get_double("Stiffness ratio");
+      contact.friction = prm.get_double("Friction coefficient");
+      contact.damping_ratio = prm.get_double("Damping ratio");
+      contact.young_modulus = prm.get_double("Young modulus [Pa]");
+      contact.poisson_ratio = prm.get_double("Poisson ratio");
+      prm.leave_subsection();
+    }
+
+    // --------------------------------------------------------------------------------- Bond
+    void Bond::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bond");
+      prm.declare_entry("Enabled", "true", Patterns::Bool(),
+                        "Whether touching spheres are joined by parallel bonds (Potyondy & "
+                        "Cundall 2004; PHYSICS.md 1.2) when the sample is built.");
+      prm.declare_entry("Modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E_bar: bond modulus, k_n_bar = E_bar / L per unit area with "
+                        "L = R_i + R_j. Units: Pa.");
+      prm.declare_entry("Stiffness ratio", "3", Patterns::Double(0),
+                        "kappa_bar = k_n_bar / k_s_bar: normal-to-shear stiffness ratio of the "
+                        "bond. Units: none.");
+      prm.declare_entry("Radius multiplier", "1", Patterns::Double(0),
+                        "lambda_bar: bond radius R_bar = lambda_bar min(R_i, R_j). Units: none.");
+      prm.declare_entry("Tensile strength [Pa]", "1e6", Patterns::Double(0),
+                        "sigma_bar_c: the bond breaks in tension when the rim stress "
+                        "sigma_bar = -F_n/A + beta_bar |M_b| R_bar / I >= sigma_bar_c. Units: Pa.");
+      prm.declare_entry("Cohesion [Pa]", "1e6", Patterns::Double(0),
+                        "c_bar: the bond breaks in shear when the rim stress "
+                        "tau_bar = |F_s|/A + beta_bar |M_t| R_bar / J >= c_bar - sigma_bar "
+                        "tan(phi_bar). Units: Pa.");
+      prm.declare_entry("Friction angle [deg]", "0", Patterns::Double(0, 90),
+                        "phi_bar: friction angle of the bond's shear strength, below 90. Units: "
+                        "degrees.");
+      prm.declare_entry("Moment contribution factor", "1", Patterns::Double(0, 1),
+                        "beta_bar: weight of the bending and twisting moments in the rim "
+                        "stresses; 1 is the original parallel bond. Units: none.");
+      prm.declare_entry("Gap tolerance", "1e-6", Patterns::Double(0),
+                        "Pairs whose gap d - R_i - R_j is at most this times min(R_i, R_j) are "
+                        "bonded (overlapping pairs are bonded too). Units: none (relative to the "
+                        "smaller radius).");
+      prm.leave_subsection();
+    }
+
+    void Bond::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bond");
+      bond.enabled = prm.get_bool("Enabled");
+      bond.modulus = prm.get_double("Modulus [Pa]");
+      bond.stiffness_ratio = prm.get_double("Stiffness ratio");
+      bond.radius_multiplier = prm.get_double("Radius multiplier");
+      bond.tensile_strength = prm.get_double("Tensile strength [Pa]");
+      bond.cohesion = prm.get_double("Cohesion [Pa]");
+      friction_angle_deg = prm.get_double("Friction angle [deg]");
+      bond.friction_angle = friction_angle_deg * M_PI / 180.0;
+      bond.moment_factor = prm.get_double("Moment contribution factor");
+      gap_tolerance = prm.get_double("Gap tolerance");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------- Sample
+    void Sample::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Sample");
+      prm.declare_entry("Type", "simple cubic lattice",
+                        Patterns::Selection("simple cubic lattice|snapshot"),
+                        "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
+                        "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
+                        "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
+                        "and the rest come from this scene).");
+      prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
+                        "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
+      prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
+                        "R: sphere radius, at most half the spacing (lattice only). Units: m.");
+      prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
+                        "s: distance between neighbouring centres; s = 2R makes touching spheres "
+                        "(lattice only). Units: m.");
+      prm.declare_entry("Origin [m]", "0, 0, 0", *vector3(),
+                        "Lower corner of the lattice's bounding box; the lattice occupies "
+                        "[origin, origin + n s] and must lie inside the domain. Units: m." +
+                          vector_pattern_help);
+      prm.declare_entry("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
+                        "a: every velocity component starts uniformly random in [-a, a] (seeded "
+                        "by DEM/Random seed; fixed and clumped spheres start at rest). Units: m/s.");
+      prm.declare_entry("Snapshot file", "", Patterns::Anything(),
+                        "HDF5 snapshot (snapshots/snapshot_NNNNNN.h5 of an earlier run) to take "
+                        "the spheres from when Type = snapshot. A relative path is relative to "
+                        "the working directory.");
+      prm.leave_subsection();
+    }
+
+    void Sample::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Sample");
+      type = prm.get("Type") == "snapshot" ? Type::snapshot : Type::simple_cubic_lattice;
+      const auto sizes = dealii::Utilities::split_string_list(prm.get("Lattice size"), ',');
+      for (int a = 0; a < 3; ++a)
+        lattice_size[a] = dealii::Utilities::string_to_int(sizes.at(a));
+      radius = prm.get_double("Radius [m]");
+      spacing = prm.get_double("Spacing [m]");
+      origin = get_vector(prm, "Origin [m]");
+      velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
+      snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------------------------------- Integration
+    void Integration::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Integration");
+      prm.declare_entry("Gravity [m/s^2]", "0, 0, 0", *vector3(),
+                        "g: gravitational acceleration. Units: m/s^2." + vector_pattern_help);
+      prm.declare_entry("Local damping", "0.7", Patterns::Double(0, 1),
+                        "alpha: Cundall's local damping, F_w <- F_w - alpha |F_w| sign(v_w) for "
+                        "every force and moment component (PFC default 0.7; 0 is undamped). "
+                        "0 <= alpha < 1. Units: none.");
+      prm.declare_entry("Time step [s]", "0", Patterns::Double(0),
+                        "dt: fixed time step; 0 selects the automatic step "
+                        "dt = safety factor x dt_crit, re-evaluated every `Time step update "
+                        "interval` steps. Units: s.");
+      prm.declare_entry("Time step safety factor", "0.5", Patterns::Double(0, 1),
+                        "Fraction of the critical step dt_crit = min(sqrt(m/K), sqrt(I/K_rot)) "
+                        "used in automatic mode, in (0, 1]. Units: none.");
+      prm.declare_entry("Enforce critical time step", "true", Patterns::Bool(),
+                        "Refuse a fixed time step above the critical estimate.");
+      prm.declare_entry("Time step update interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between re-evaluations of the critical time step.");
+      prm.declare_entry("Verlet skin [m]", "0", Patterns::Double(0),
+                        "Extra distance of the Verlet neighbour list; the list is rebuilt when a "
+                        "sphere has moved more than half of it. 0 selects 0.1 x mean radius. "
+                        "Units: m.");
+      prm.declare_entry("Energy drift tolerance", "0.25", Patterns::Double(0),
+                        "The run stops with a numerical error when the energy balance "
+                        "kinetic + elastic + potential + dissipated - external work drifts from "
+                        "its initial value by more than this fraction. Units: none.");
+      prm.declare_entry("Stability check interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between checks of the energy balance and of NaNs.");
+      prm.leave_subsection();
+    }
+
+    void Integration::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Integration");
+      settings.gravity = get_vector(prm, "Gravity [m/s^2]");
+      settings.local_damping = prm.get_double("Local damping");
+      settings.time_step = prm.get_double("Time step [s]");
+      settings.time_step_safety = prm.get_double("Time step safety factor");
+      settings.enforce_critical_step = prm.get_bool("Enforce critical time step");
+      settings.time_step_interval = prm.get_integer("Time step update interval [steps]");
+      settings.verlet_skin = prm.get_double("Verlet skin [m]");
+      settings.energy_drift_tolerance = prm.get_double("Energy drift tolerance");
+      settings.stability_check_interval = prm.get_integer("Stability check interval [steps]");
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------------------------------------- Walls
+    void WallFace::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Active", "false", Patterns::Bool(),
+                        "Whether a planar wall sits on this face of the domain, pushing spheres "
+                        "inwards with the contact law of DEM/Material (linear law: L = R, "
+                        "A = pi R^2).");
+      prm.declare_entry("Control", "fixed", Patterns::Selection("fixed|velocity|servo"),
+                        "`fixed`: the wall stays put. `velocity`: it moves at `Velocity` along "
+                        "its inward normal. `servo`: its normal velocity is "
+                        "gain (sigma_target A - F_n), capped at `Max speed`, with A the face area.");
+      prm.declare_entry("Velocity [m/s]", "0", Patterns::Double(),
+                        "v: wall speed along the inward normal (positive compresses the sample). "
+                        "Units: m/s.");
+      prm.declare_entry("Target stress [Pa]", "0", Patterns::Double(0),
+                        "sigma_target: compressive normal stress held by a servo wall. Units: Pa.");
+      prm.declare_entry("Servo gain [m/(s N)]", "0", Patterns::Double(0),
+                        "G: servo wall speed per unit force error. Units: m/(s N).");
+      prm.declare_entry("Max speed [m/s]", "0", Patterns::Double(0),
+                        "Cap on the servo wall speed. Units: m/s.");
+    }
+
+    void WallFace::parse_parameters(ParameterHandler &prm)
+    {
+      active = prm.get_bool("Active");
+      const std::string c = prm.get("Control");
+      control = c == "fixed" ? dem::WallControl::fixed :
+                c == "velocity" ? dem::WallControl::velocity : dem::WallControl::servo;
+      velocity = prm.get_double("Velocity [m/s]");
+      target_stress = prm.get_double("Target stress [Pa]");
+      servo_gain = prm.get_double("Servo gain [m/(s N)]");
+      max_speed = prm.get_double("Max speed [m/s]");
+    }
+
+    void Walls::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Walls");
+      for (const char *name : face_names)
+      {
+        prm.enter_subsection(name);
+        WallFace::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+      prm.leave_subsection();
+    }
+
+    void Walls::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Walls");
+      for (int f = 0; f < 6; ++f)
+      {
+        prm.enter_subsection(face_names[f]);
+        face[f].parse_parameters(prm);
+        prm.leave_subsection();
+      }
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------- Boundary particles
+    void BoundaryParticles::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary particles");
+      prm.declare_entry("Fix below [m]", "", Patterns::List(Patterns::Double(), 0, 1),
+                        "Spheres whose centre has z below this are fixed (no translation, no "
+                        "rotation) and form the base; their reactions give the base stresses in "
+                        "history.h5. Empty for none. Units: m.");
+      prm.declare_entry("Clump above [m]", "", Patterns::List(Patterns::Double(), 0, 1),
+                        "Spheres whose centre has z above this form one rigid clump (the loading "
+                        "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
+      prm.declare_entry("Clump force rate [N/s]", "0", Patterns::Double(),
+                        "Fdot: the clump is loaded by F(t) = Fdot t d at its centre of mass. "
+                        "Units: N/s.");
+      prm.declare_entry("Clump force direction", "0, 0, -1", *vector3(),
+                        "d: direction of the clump force, normalised to unit length; the "
+                        "mixed-mode test at angle psi uses d = (sin psi, 0, -cos psi). Units: "
+                        "none." + vector_pattern_help);
+      prm.declare_entry("Clump rotation locked", "false", Patterns::Bool(),
+                        "Keep the clump from rotating (a guided platen).");
+      prm.leave_subsection();
+    }
+
+    void BoundaryParticles::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary particles");
+      fix_below = get_optional_double(prm, "Fix below [m]");
+      clump_above = get_optional_double(prm, "Clump above [m]");
+      clump_force_rate = prm.get_double("Clump force rate [N/s]");
+      clump_force_direction = get_vector(prm, "Clump force direction");
+      if (clump_force_direction.norm() > 0)
+        clump_force_direction.normalize();
+      clump_rotation_locked = prm.get_bool("Clump rotation locked");
+      prm.leave_subsection();
+    }
+
+    // ---------------------------------------------------------------------------------- DEM
+    void Dem::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("DEM");
+      prm.declare_entry("Steps", "1000", Patterns::Integer(1),
+                        "Number of time steps of the run (a resumed run continues up to this "
+                        "count).");
+      prm.declare_entry("Threads", "0", Patterns::Integer(0),
+                        "OpenMP threads of the force and update loops; 0 uses all available "
+                        "(OMP_NUM_THREADS or every core). `anticrack run --threads` overrides it. "
+                        "Results do not depend on it.");
+      prm.declare_entry("Random seed", "1", Patterns::Integer(0),
+                        "Seed of the random initial velocities.");
+      Domain::declare_parameters(prm);
+      Material::declare_parameters(prm);
+      Bond::declare_parameters(prm);
+      Sample::declare_parameters(prm);
+      Integration::declare_parameters(prm);
+      Walls::declare_parameters(prm);
+      BoundaryParticles::declare_parameters(prm);
+      prm.leave_subsection();
+    }
+
+    void Dem::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("DEM");
+      steps = prm.get_integer("Steps");
+      threads = static_cast<int>(prm.get_integer("Threads"));
+      seed = static_cast<std::uint64_t>(prm.get_integer("Random seed"));
+      domain.parse_parameters(prm);
+      material.parse_parameters(prm);
+      bond.parse_parameters(prm);
+      sample.parse_parameters(prm);
+      integration.parse_parameters(prm);
+      walls.parse_parameters(prm);
+      boundary.parse_parameters(prm);
+      prm.leave_subsection();
+    }
+  } // namespace parameters
+
+  void SceneParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Components", "dem", Patterns::MultipleSelection("dem"),
+                      "What the scene runs: `dem` is the bonded-particle simulation (calibration "
+                      "and finite elements will be added as further components).");
+    parameters::Output::declare_parameters(prm);
+    parameters::Dem::declare_parameters(prm);
+  }
+
+  void SceneParameters::parse_parameters(ParameterHandler &prm)
+  {
+    components = dealii::Utilities::split_string_list(prm.get("Components"), ',');
+    output.parse_parameters(prm);
+    dem.parse_parameters(prm);
+  }
+
+  // --------------------------------------------------------------------------- validation
+  namespace
+  {
+    /// Collects every problem of a scene so that the user sees them all in one go.
+    class Problems
+    {
+    public:
+      template <typename T>
+      void add(const std::string &entry, const T &value, const std::string &why)
+      {
+        std::ostringstream s;
+        s.precision(8);
+        s << entry << " = " << value << ": " << why;
+        list_.push_back(s.str());
+      }
+      void add(const std::string &text) { list_.push_back(text); }
+      [[nodiscard]] bool empty() const { return list_.empty(); }
+      [[nodiscard]] std::string text() const
+      {
+        std::string out;
+        for (const auto &p : list_)
+          out += "  - " + p + "\n";
+        return out;
+      }
+
+    private:
+      std::vector<std::string> list_;
+    };
+
+    std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
+
+    void validate(const SceneParameters &scene, Problems &problems)
+    {
+      using parameters::Sample;
+      const auto &d = scene.dem;
+      const char *axis_name[3] = {"x", "y", "z"};
+
+      if (scene.output.write_paraview && scene.output.snapshot_interval == 0)
+        problems.add("Output/Write ParaView", "true",
+                     "ParaView files are written at the snapshot steps: set Output/Snapshot "
+                     "interval [steps] > 0");
+      if (scene.components.empty())
+        problems.add("Components", "(empty)", "choose at least one component (dem)");
+
+      // The box.
+      const Vec3 length = d.domain.upper - d.domain.lower;
+      for (int a = 0; a < 3; ++a)
+        if (!(length[a] > 0))
+          problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
+                       std::string("must exceed DEM/Domain/Lower corner [m] = ") +
+                         vec(d.domain.lower) + " along " + axis_name[a]);
+
+      // Moduli that patterns only bound from below by zero.
+      const auto &m = d.material;
+      if (!(m.density > 0))
+        problems.add("DEM/Material/Density [kg/m^3]", m.density, "must be positive");
+      if (m.contact.law == dem::ContactLaw::linear)
+      {
+        if (!(m.contact.contact_modulus > 0))
+          problems.add("DEM/Material/Contact modulus [Pa]", m.contact.contact_modulus,
+                       "must be positive for the linear contact law");
+        if (!(m.contact.stiffness_ratio > 0))
+          problems.add("DEM/Material/Stiffness ratio", m.contact.stiffness_ratio, "must be positive");
+      }
+      else
+      {
+        if (!(m.contact.young_modulus > 0))
+          problems.add("DEM/Material/Young modulus [Pa]", m.contact.young_modulus,
+                       "must be positive for the Hertz-Mindlin law");
+        if (!(m.contact.poisson_ratio < 0.5))
+          problems.add("DEM/Material/Poisson ratio", m.contact.poisson_ratio,
+                       "must be below 0.5 for the Hertz-Mindlin law");
+      }
+
+      const auto &b = d.bond;
+      if (b.bond.enabled)
+      {
+        if (!(b.bond.modulus > 0))
+          problems.add("DEM/Bond/Modulus [Pa]", b.bond.modulus, "must be positive");
+        if (!(b.bond.stiffness_ratio > 0))
+          problems.add("DEM/Bond/Stiffness ratio", b.bond.stiffness_ratio, "must be positive");
+        if (!(b.bond.radius_multiplier > 0))
+          problems.add("DEM/Bond/Radius multiplier", b.bond.radius_multiplier, "must be positive");
+        if (!(b.friction_angle_deg < 90))
+          problems.add("DEM/Bond/Friction angle [deg]", b.friction_angle_deg, "must be below 90");
+      }
+
+      // The sample.
+      const auto &s = d.sample;
+      if (s.type == Sample::Type::simple_cubic_lattice)
+      {
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        if (!(s.spacing > 0))
+          problems.add("DEM/Sample/Spacing [m]", s.spacing, "must be positive");
+        else if (s.radius > 0.5 * s.spacing * (1 + 1e-12))
+          problems.add("DEM/Sample/Radius [m]", s.radius,
+                       "must be at most half of DEM/Sample/Spacing [m] = " +
+                         format_number(s.spacing) + ", or neighbouring spheres start overlapping");
+        if (b.bond.enabled && s.radius > 0 &&
+            s.spacing - 2 * s.radius > b.gap_tolerance * s.radius * (1 + 1e-12))
+          problems.add("DEM/Bond/Gap tolerance", b.gap_tolerance,
+                       "no lattice neighbours would be bonded: their gap spacing - 2 R = " +
+                         format_number(s.spacing - 2 * s.radius) +
+                         " m exceeds tolerance x R; raise the tolerance or set DEM/Bond/Enabled = "
+                         "false");
+        const double tol = 1e-9 * length.cwiseAbs().maxCoeff();
+        for (int a = 0; a < 3; ++a)
+        {
+          const double extent = s.lattice_size[a] * s.spacing;
+          const double top = s.origin[a] + extent;
+          if (s.origin[a] < d.domain.lower[a] - tol || top > d.domain.upper[a] + tol)
+          {
+            std::ostringstream why;
+            why << "the lattice spans [" << s.origin[a] << ", " << top << "] m along "
+                << axis_name[a] << " (origin + " << s.lattice_size[a] << " x spacing " << s.spacing
+                << " m), outside the domain [" << d.domain.lower[a] << ", " << d.domain.upper[a]
+                << "] m";
+            problems.add("DEM/Sample/Origin [m]", vec(s.origin), why.str());
+          }
+          if (d.domain.periodic[a] && length[a] > 0)
+          {
+            // Minimum-image search: a contact partner must be nearer than half the period.
+            const double skin = d.integration.settings.verlet_skin > 0 ?
+                                  d.integration.settings.verlet_skin :
+                                  0.1 * s.radius;
+            const double needed = 2 * (2 * s.radius + skin);
+            if (!(length[a] > needed))
+              problems.add(std::string("DEM/Domain/Periodic axes"), axis_name[a],
+                           "the period along " + std::string(axis_name[a]) + " (" +
+                             format_number(length[a]) + " m) must exceed 2 (2 R + skin) = " +
+                             format_number(needed) + " m for unique minimum images");
+          }
+        }
+      }
+      else
+      {
+        if (s.snapshot_file.empty())
+          problems.add("DEM/Sample/Snapshot file", "(empty)",
+                       "name the HDF5 snapshot to read when DEM/Sample/Type = snapshot");
+        else if (!std::ifstream(s.snapshot_file))
+          problems.add("DEM/Sample/Snapshot file", s.snapshot_file, "cannot be opened");
+      }
+
+      // Integration.
+      const auto &in = d.integration.settings;
+      if (!(in.local_damping < 1))
+        problems.add("DEM/Integration/Local damping", in.local_damping, "must be below 1");
+      if (!(in.time_step_safety > 0))
+        problems.add("DEM/Integration/Time step safety factor", in.time_step_safety,
+                     "must be in (0, 1]");
+
+      // Walls.
+      for (int f = 0; f < 6; ++f)
+      {
+        const auto &w = d.walls.face[f];
+        if (!w.active)
+          continue;
+        const std::string path = std::string("DEM/Walls/") + parameters::Walls::face_names[f];
+        const int a = parameters::Walls::axis(f);
+        if (d.domain.periodic[a])
+          problems.add(path + "/Active", "true",
+                       std::string("a wall cannot sit on the periodic axis ") + axis_name[a] +
+                         " (see DEM/Domain/Periodic axes)");
+        if (w.control == dem::WallControl::servo)
+        {
+          if (!(w.servo_gain > 0))
+            problems.add(path + "/Servo gain [m/(s N)]", w.servo_gain,
+                         "must be positive for a servo-controlled wall");
+          if (!(w.max_speed > 0))
+            problems.add(path + "/Max speed [m/s]", w.max_speed,
+                         "must be positive for a servo-controlled wall");
+        }
+      }
+
+      // Boundary particles.
+      const auto &bp = d.boundary;
+      if (bp.fix_below && bp.clump_above && *bp.clump_above < *bp.fix_below)
+        problems.add("DEM/Boundary particles/Clump above [m]", *bp.clump_above,
+                     "must not be below DEM/Boundary particles/Fix below [m] = " +
+                       format_number(*bp.fix_below) + ": a sphere cannot be fixed and clumped");
+      if (bp.clump_above && bp.clump_force_rate != 0 && bp.clump_force_direction.norm() == 0)
+        problems.add("DEM/Boundary particles/Clump force direction", vec(bp.clump_force_direction),
+                     "must be a nonzero vector when the clump force rate is nonzero");
+      if (!bp.clump_above && bp.clump_force_rate != 0)
+        problems.add("DEM/Boundary particles/Clump force rate [N/s]", bp.clump_force_rate,
+                     "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
+    }
+
+    std::string read_file_bytes(const std::string &file)
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in)
+        throw InputError("Cannot open the scene file <" + file + ">.");
+      return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+
+    /// Hash of the model-defining part of the parameters; see SceneParameters::resume_key_sha256.
+    std::string resume_key(const ParameterHandler &prm)
+    {
+      std::ostringstream json_text;
+      prm.print_parameters(json_text, ParameterHandler::ShortJSON);
+      auto json = nlohmann::json::parse(json_text.str());
+      json.erase("Output");
+      json["DEM"].erase("Steps");
+      json["DEM"].erase("Threads");
+      return sha256_hex(json.dump());
+    }
+  } // namespace
+
+  SceneParameters read_scene(const std::string &file)
+  {
+    SceneParameters scene;
+    scene.file = file;
+    const std::string bytes = read_file_bytes(file);
+    scene.file_sha256 = sha256_hex(bytes);
+
+    ParameterHandler prm;
+    SceneParameters::declare_parameters(prm);
+    try
+    {
+      std::istringstream input(bytes);
+      prm.parse_input(input, file);
+      scene.parse_parameters(prm);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's text names the line, the entry and the pattern; drop its stack trace.
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str() +
+                       "\n(`anticrack params` lists every entry with its pattern.)");
+    }
+    catch (const std::exception &e)
+    {
+      throw InputError("Invalid scene file <" + file + ">: " + e.what());
+    }
+
+    std::ostringstream canonical;
+    prm.print_parameters(canonical, ParameterHandler::ShortPRM);
+    scene.canonical_parameters = canonical.str();
+    scene.parameters_sha256 = sha256_hex(scene.canonical_parameters);
+    scene.resume_key_sha256 = resume_key(prm);
+
+    Problems problems;
+    validate(scene, problems);
+    if (!problems.empty())
+      throw InputError("Invalid scene file <" + file + ">:\n" + problems.text());
+    return scene;
+  }
+
+  namespace
+  {
+    void print_wrapped(std::ostream &out, const std::string &indent, const std::string &text)
+    {
+      constexpr std::size_t width = 96;
+      std::istringstream words(text);
+      std::string word, line;
+      while (words >> word)
+      {
+        if (!line.empty() && indent.size() + 2 + line.size() + 1 + word.size() > width)
+        {
+          out << indent << "# " << line << "\n";
+          line.clear();
+        }
+        line += (line.empty() ? "" : " ") + word;
+      }
+      if (!line.empty())
+        out << indent << "# " << line << "\n";
+    }
+
+    /// A complete scene with every entry at its default, each preceded by its documentation and
+    /// its pattern (deal.II's PRM style has no patterns, its Description style no defaults).
+    void print_documented_prm(std::ostream &out, const nlohmann::ordered_json &node, const std::string &indent)
+    {
+      for (const auto &[name, child] : node.items())
+      {
+        if (child.contains("default_value") && child.contains("pattern_description"))
+        {
+          print_wrapped(out, indent, child["documentation"].get<std::string>());
+          out << indent << "#   allowed: " << child["pattern_description"].get<std::string>() << "\n"
+              << indent << "set " << name << " = " << child["default_value"].get<std::string>() << "\n\n";
+        }
+        else
+        {
+          out << indent << "subsection " << name << "\n";
+          print_documented_prm(out, child, indent + "  ");
+          out << indent << "end\n\n";
+        }
+      }
+    }
+  } // namespace
+
+  void print_parameter_documentation(std::ostream &out, const ParameterFormat format)
+  {
+    ParameterHandler prm;
+    SceneParameters::declare_parameters(prm);
+    switch (format)
+    {
+      case ParameterFormat::prm:
+      {
+        std::ostringstream json;
+        prm.print_parameters(json, ParameterHandler::JSON | ParameterHandler::KeepDeclarationOrder);
+        out << "# Every anticrack scene parameter with its documentation, allowed values and default.\n"
+            << "# SI units unless the name says otherwise. This listing is itself a valid scene.\n\n";
+        print_documented_prm(out, nlohmann::ordered_json::parse(json.str()), "");
+        break;
+      }
+      case ParameterFormat::description:
+        prm.print_parameters(out,
+                             ParameterHandler::Description | ParameterHandler::KeepDeclarationOrder);
+        break;
+      case ParameterFormat::json:
+        prm.print_parameters(out, ParameterHandler::JSON | ParameterHandler::KeepDeclarationOrder);
+        break;
+    }
+  }
+} // namespace anticrack::app
+
+namespace anticrack::app
+{
+  std::string deal_ii_version() { return DEAL_II_PACKAGE_VERSION; }
+} // namespace anticrack::app

@@ -1,0 +1,207 @@
+// Scene files: deal.II ParameterHandler input (.prm), one parameter struct per subsection with
+// declare_parameters / parse_parameters (the step-44 layout), gathered in SceneParameters.
+//
+// Every quantity is SI inside the code; an entry's unit is part of its name ("Radius [m]"), and
+// every help string gives the symbol, the meaning and the unit. Pattern violations and unknown
+// entries are caught by ParameterHandler while reading; read_scene() then checks what a single
+// pattern cannot (upper corner above lower corner, the lattice fits the domain, no walls on a
+// periodic axis, ...) and reports every problem at once, naming the file, the entry with its
+// subsection path, the value and why it is refused. Nothing is written before this has passed.
+//
+// Only scene_parameters.cpp includes deal.II: the rest of the application sees plain structs.
+#pragma once
+
+#include "dem/materials.h"
+#include "dem/system.h"
+#include "dem/types.h"
+#include "dem/walls.h"
+
+#include <array>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace anticrack::app
+{
+  using dem::Index;
+  using dem::Vec3;
+
+  namespace parameters
+  {
+    /// subsection Output: what is written during a run and how often.
+    struct Output
+    {
+      Index snapshot_interval = 0;   ///< steps between HDF5 snapshots, 0 = none
+      Index checkpoint_interval = 0; ///< steps between checkpoints, 0 = none
+      Index history_interval = 100;  ///< steps between rows of history.h5
+      Index progress_interval = 1000;///< steps between progress lines, 0 = quiet
+      bool write_paraview = false;   ///< .vtp/.pvd files beside the snapshots
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Domain: the simulation box.
+    struct Domain
+    {
+      Vec3 lower = Vec3::Zero();
+      Vec3 upper = Vec3::Constant(0.02);
+      std::array<bool, 3> periodic = {false, false, false};
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Material: density and the contact law of every sphere (and of the walls).
+    struct Material
+    {
+      double density = 1e4;
+      dem::ContactParameters contact;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Bond: parallel bonds created between touching spheres.
+    struct Bond
+    {
+      dem::BondParameters bond;    ///< friction angle stored in radians
+      double friction_angle_deg = 0;
+      double gap_tolerance = 1e-6; ///< relative to the smaller radius
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Sample: where the spheres come from.
+    struct Sample
+    {
+      enum class Type
+      {
+        simple_cubic_lattice,
+        snapshot
+      };
+      Type type = Type::simple_cubic_lattice;
+      std::array<Index, 3> lattice_size = {10, 10, 10};
+      double radius = 1e-3;
+      double spacing = 2e-3;
+      Vec3 origin = Vec3::Zero();
+      double velocity_amplitude = 0;
+      std::string snapshot_file;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Integration: time stepping, damping and stability checks.
+    struct Integration
+    {
+      dem::IntegrationSettings settings;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Walls/<face>: a planar wall on one face of the domain box.
+    struct WallFace
+    {
+      bool active = false;
+      dem::WallControl control = dem::WallControl::fixed;
+      double velocity = 0;      ///< along the inward normal [m/s]
+      double target_stress = 0; ///< compressive [Pa]
+      double servo_gain = 0;    ///< [m/(s N)]
+      double max_speed = 0;     ///< [m/s]
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Walls: one WallFace per face, in the order of `face_names`.
+    struct Walls
+    {
+      static constexpr std::array<const char *, 6> face_names = {"x-", "x+", "y-", "y+", "z-", "z+"};
+      std::array<WallFace, 6> face;
+
+      /// Axis (0, 1, 2) and side (-1 lower, +1 upper) of face f.
+      static int axis(int f) { return f / 2; }
+      static int side(int f) { return f % 2 == 0 ? -1 : 1; }
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Boundary particles: fixed base and a loaded rigid clump on top.
+    struct BoundaryParticles
+    {
+      std::optional<double> fix_below;   ///< [m], z of the centre
+      std::optional<double> clump_above; ///< [m], z of the centre
+      double clump_force_rate = 0;       ///< dF/dt [N/s]
+      Vec3 clump_force_direction = -Vec3::UnitZ(); ///< normalised when parsed (if nonzero)
+      bool clump_rotation_locked = false;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM.
+    struct Dem
+    {
+      Index steps = 1000;
+      int threads = 0;
+      std::uint64_t seed = 1;
+      Domain domain;
+      Material material;
+      Bond bond;
+      Sample sample;
+      Integration integration;
+      Walls walls;
+      BoundaryParticles boundary;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace parameters
+
+  /// Everything a scene file says, plus where it came from.
+  struct SceneParameters
+  {
+    // --- provenance
+    std::string file;                  ///< as given on the command line
+    std::string file_sha256;           ///< of the file's bytes
+    std::string canonical_parameters;  ///< every entry, sorted, as ParameterHandler prints it
+    std::string parameters_sha256;     ///< of canonical_parameters
+    /// Hash of the parameters that define the model, i.e. all but the Output subsection and
+    /// DEM/Steps, DEM/Threads: a run may be resumed with more steps, other threads or outputs.
+    std::string resume_key_sha256;
+
+    // --- content
+    std::vector<std::string> components;
+    parameters::Output output;
+    parameters::Dem dem;
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// Reads, parses and validates a scene file; throws InputError with a complete message.
+  SceneParameters read_scene(const std::string &file);
+
+  enum class ParameterFormat
+  {
+    prm,
+    description,
+    json
+  };
+  /// Prints every declared entry with its default, pattern and documentation.
+  void print_parameter_documentation(std::ostream &out, ParameterFormat format);
+
+  /// Numbers and vectors for messages: 6 significant digits, "a, b, c".
+  std::string format_number(double x);
+  std::string format_vector(const Vec3 &v);
+} // namespace anticrack::app
