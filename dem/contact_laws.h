@@ -57,10 +57,24 @@ namespace anticrack::dem
     ks = 8 * g_star * a;
   }
 
+  /// Books the dashpots' dissipation and stores the new dashpot force. The leapfrog applies the
+  /// force of step n over the half steps on both sides of it, so the work over the half step just
+  /// completed pairs the relative velocity v(n-1/2) with the mean of the previous and the current
+  /// dashpot force (trapezoidal, as the kinetic energy 1/2 m v(n-1/2).v(n+1/2) sees it); booking
+  /// F(n).v(n-1/2) instead leaves an O(dt) error. A contact that opens books its last half step
+  /// with a zero current force.
+  inline void book_dashpot_work(Vec3 &stored_force, const Vec3 &current_force, const Vec3 &relative_velocity,
+                                double dt, ContactDissipation &dissipation)
+  {
+    dissipation.viscous -= 0.5 * (stored_force + current_force).dot(relative_velocity) * dt;
+    stored_force = current_force;
+  }
+
   /// One step of a contact with overlap delta > 0. `shear_force` is the stored tangential force on j,
-  /// already carried into the current contact plane. Returns the force on j.
+  /// already carried into the current contact plane; `dashpot_force` the dashpot force on j of the
+  /// previous step (updated). Returns the force on j.
   inline Vec3 contact_force(const ContactParameters &p, double ri, double rj, double m_eff, double delta,
-                            const PairKinematics &k, double dt, Vec3 &shear_force,
+                            const PairKinematics &k, double dt, Vec3 &shear_force, Vec3 &dashpot_force,
                             ContactDissipation &dissipation)
   {
     double kn, ks, fn_elastic;
@@ -101,19 +115,21 @@ namespace anticrack::dem
 
     double fn = fn_elastic;
     Vec3 fs = shear_force;
+    Vec3 dashpot = Vec3::Zero();
     if (p.damping_ratio > 0)
     {
       const double cn = 2 * p.damping_ratio * std::sqrt(m_eff * kn);
       const double fn_total = std::max(fn_elastic - cn * vn, 0.0); // no attraction from the dashpot
-      dissipation.viscous += (fn_elastic - fn_total) * vn * dt;
+      dashpot = (fn_total - fn_elastic) * k.normal;
       fn = fn_total;
       if (!sliding)
       {
         const double cs = 2 * p.damping_ratio * std::sqrt(m_eff * ks);
+        dashpot -= cs * vs;
         fs -= cs * vs;
-        dissipation.viscous += cs * vs.squaredNorm() * dt;
       }
     }
+    book_dashpot_work(dashpot_force, dashpot, k.relative_velocity, dt, dissipation);
     // Repulsion pushes j along +n.
     return fn * k.normal + fs;
   }

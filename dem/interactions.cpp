@@ -14,6 +14,7 @@ namespace anticrack::dem
     normal.clear();
     active.clear();
     overlap.clear();
+    dashpot_force.clear();
     load.clear();
   }
 
@@ -26,6 +27,7 @@ namespace anticrack::dem
     normal.push_back(Vec3::Zero());
     active.push_back(0);
     overlap.push_back(0);
+    dashpot_force.push_back(Vec3::Zero());
     load.emplace_back();
   }
 

@@ -38,6 +38,7 @@ namespace anticrack::dem
     std::vector<Vec3> normal;       ///< contact normal of the previous step (i -> j)
     std::vector<char> active;       ///< overlapping during the previous step
     std::vector<double> overlap;    ///< overlap at the last force evaluation (<= 0: apart) [m]
+    std::vector<Vec3> dashpot_force;///< dashpot force on j at the last evaluation [N]
     std::vector<PairLoad> load;
 
     [[nodiscard]] Index size() const { return static_cast<Index>(i.size()); }

@@ -533,6 +533,7 @@ namespace anticrack::dem::io
       visit("normal", c.normal, "-");
       visit("active", c.active, "-");
       visit("overlap", c.overlap, "m");
+      visit("dashpot_force", c.dashpot_force, "N");
     }
 
     /// Bond arrays of the snapshot (state and geometry).
@@ -871,6 +872,7 @@ namespace anticrack::dem::io
       write_table(root, "clumps", system.clumps, [](auto &&visit) { clump_fields(visit); });
       write_table(root, "walls", system.walls, [](auto &&visit) { wall_fields(visit); });
       write_array(root, "wall_shear", system.wall_shear, "N");
+      write_array(root, "wall_dashpot", system.wall_dashpot, "N");
       write_domain(root, system.domain);
 
       const Node settings = root.create_group("settings");
@@ -917,6 +919,8 @@ namespace anticrack::dem::io
     read_table(root, "walls", staged.walls, [](auto &&visit) { wall_fields(visit); });
     read_array(root, "wall_shear", staged.wall_shear, any_rows);
     check_empty_or_rows(root, "wall_shear", staged.wall_shear, static_cast<Index>(staged.walls.size()) * n);
+    read_array(root, "wall_dashpot", staged.wall_dashpot, any_rows);
+    check_empty_or_rows(root, "wall_dashpot", staged.wall_dashpot, static_cast<Index>(staged.walls.size()) * n);
     staged.domain = read_domain(root);
 
     const Node settings = root.open_group("settings");
@@ -961,6 +965,7 @@ namespace anticrack::dem::io
     system.clumps = std::move(staged.clumps);
     system.walls = std::move(staged.walls);
     system.wall_shear = std::move(staged.wall_shear);
+    system.wall_dashpot = std::move(staged.wall_dashpot);
     system.domain = staged.domain;
     system.settings = staged.settings;
     system.ledger = staged.ledger;

@@ -152,6 +152,7 @@ namespace anticrack::dem
           fresh.shear_force[k] = contacts.shear_force[old];
           fresh.normal[k] = contacts.normal[old];
           fresh.active[k] = contacts.active[old];
+          fresh.dashpot_force[k] = contacts.dashpot_force[old];
         }
         const double distance = (particles.position[c.j] + c.shift - particles.position[i]).norm();
         fresh.overlap[k] = particles.radius[i] + particles.radius[c.j] - distance;

@@ -26,17 +26,17 @@ namespace anticrack::dem
     return 0.5 * (load + increment).dot(load) / stiffness;
   }
 
-  /// Advances bond b by one step and writes its load on the pair into `load`. Returns the elastic
-  /// energy released if the bond broke during this step (0 otherwise).
-  inline double update_parallel_bond(BondList &bonds, Index b, const PairKinematics &k, double dt,
-                                     PairLoad &load)
+  /// Advances bond b by one step and writes its load on the pair into `load`. `rotation` carries the
+  /// bond's plane from its previous normal to k.normal. Returns the elastic energy released if the
+  /// bond broke during this step (0 otherwise).
+  inline double update_parallel_bond(BondList &bonds, Index b, const PairKinematics &k,
+                                     const ContactPlaneRotation &rotation, double dt, PairLoad &load)
   {
     if (bonds.state[b] != BondState::intact)
     {
       load = PairLoad{};
       return 0;
     }
-    const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
     rotation.apply(bonds.shear_force[b]);
     rotation.apply(bonds.bending_moment[b]);
     bonds.normal[b] = k.normal;

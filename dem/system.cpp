@@ -182,6 +182,7 @@ namespace anticrack::dem
     previous_velocity = particles.velocity;
     previous_angular_velocity = particles.angular_velocity;
     wall_shear.assign(walls.size() * particles.size(), Vec3::Zero());
+    wall_dashpot.assign(walls.size() * particles.size(), Vec3::Zero());
     rebuild_neighbors();
     update_wall_overlaps();
     initial_balance = energy().balance();
@@ -205,7 +206,8 @@ namespace anticrack::dem
         std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
       skin_ = settings.verlet_skin > 0 ? settings.verlet_skin : 0.1 * mean_radius;
     }
-    if (wall_shear.size() != walls.size() * particles.size())
+    if (wall_shear.size() != walls.size() * particles.size() ||
+        wall_dashpot.size() != walls.size() * particles.size())
       throw SetupError("checkpoint: sphere-wall state does not match the walls and particles");
     const double saved_dt = dt;
     rebuild_neighbors();
@@ -469,12 +471,20 @@ namespace anticrack::dem
       const ContactParameters &p = materials.contact(particles.material_id[i], particles.material_id[j]);
       if (!touching && contacts.active[c])
       {
-        // Separation: the tangential spring's energy is released, the contact stops acting.
+        // Separation: the tangential spring's energy is released, the contact stops acting, its
+        // dashpot books its last half step.
         if (p.law == ContactLaw::linear)
         {
           double kn, ks;
           linear_stiffness(p, r[i], r[j], kn, ks);
           friction += 0.5 * contacts.shear_force[c].squaredNorm() / ks;
+        }
+        if (p.damping_ratio > 0)
+        {
+          ContactDissipation dissipation;
+          const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
+          book_dashpot_work(contacts.dashpot_force[c], Vec3::Zero(), k.relative_velocity, dt, dissipation);
+          viscous += dissipation.viscous;
         }
         contacts.active[c] = 0;
         contacts.overlap[c] = reach - std::sqrt(distance2);
@@ -491,14 +501,24 @@ namespace anticrack::dem
       const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
       load = PairLoad{};
       if (bonded)
-        released += update_parallel_bond(bonds, b, k, dt, load);
+      {
+        // A bond and a contact that were both acting last step share the plane and its rotation.
+        const bool shared_plane = touching && contacts.active[c] && contacts.normal[c] == bonds.normal[b];
+        const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
+        released += update_parallel_bond(bonds, b, k, rotation, dt, load);
+        if (shared_plane)
+        {
+          rotation.apply(contacts.shear_force[c]);
+          contacts.active[c] = 2; // rotated already
+        }
+      }
       if (!touching)
         continue;
 
       const double delta = reach - k.distance;
-      if (contacts.active[c])
+      if (contacts.active[c] == 1)
         rotate_with_contact_plane(contacts.shear_force[c], contacts.normal[c], k.normal, k.mean_spin, dt);
-      else
+      else if (contacts.active[c] == 0)
         contacts.shear_force[c].setZero();
       contacts.normal[c] = k.normal;
       contacts.active[c] = 1;
@@ -508,7 +528,8 @@ namespace anticrack::dem
       const double inv_mj = (particles.blocked[j] & block_translation) ? 0 : 1 / particles.mass[j];
       const double m_eff = inv_mi + inv_mj > 0 ? 1 / (inv_mi + inv_mj) : particles.mass[i];
       ContactDissipation dissipation;
-      const Vec3 f = contact_force(p, r[i], r[j], m_eff, delta, k, dt, contacts.shear_force[c], dissipation);
+      const Vec3 f = contact_force(p, r[i], r[j], m_eff, delta, k, dt, contacts.shear_force[c],
+                                   contacts.dashpot_force[c], dissipation);
       load.force_on_j += f;
       load.torque_on_j += k.arm_j.cross(f);
       load.torque_on_i -= k.arm_i.cross(f);
@@ -536,7 +557,8 @@ namespace anticrack::dem
         continue; // its load was cleared when it broke
       const Index i = bonds.i[b], j = bonds.j[b];
       const PairKinematics k = pair_kinematics(x[i], x[j] + bonds.shift[b], r[i], r[j], v[i], v[j], w[i], w[j]);
-      released += update_parallel_bond(bonds, b, k, dt, bond_load_[b]);
+      const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
+      released += update_parallel_bond(bonds, b, k, rotation, dt, bond_load_[b]);
     }
     ledger.bond_breakage += released;
   }
@@ -583,12 +605,6 @@ namespace anticrack::dem
         const double delta = radius - distance;
         wall_overlap_[slot] = delta;
         Vec3 &shear = wall_shear[slot];
-        if (delta <= 0)
-        {
-          shear.setZero();
-          wall_load_[slot].setZero();
-          continue;
-        }
         PairKinematics k;
         k.normal = -wall.normal;
         k.distance = distance;
@@ -597,10 +613,22 @@ namespace anticrack::dem
         k.relative_velocity = wall.velocity - (particles.velocity[p] + particles.angular_velocity[p].cross(k.arm_i));
         k.relative_spin = -particles.angular_velocity[p];
         k.mean_spin = 0.5 * particles.angular_velocity[p];
-        rotate_with_contact_plane(shear, k.normal, k.normal, k.mean_spin, dt);
         ContactDissipation dissipation;
+        if (delta <= 0)
+        {
+          if (wall_dashpot[slot].squaredNorm() > 0)
+          {
+            book_dashpot_work(wall_dashpot[slot], Vec3::Zero(), k.relative_velocity, dt, dissipation);
+            wall_viscous += dissipation.viscous;
+          }
+          shear.setZero();
+          wall_load_[slot].setZero();
+          continue;
+        }
+        rotate_with_contact_plane(shear, k.normal, k.normal, k.mean_spin, dt);
         const double m_eff = particles.mass[p];
-        const Vec3 on_wall = contact_force(wall.contact, radius, 0, m_eff, delta, k, dt, shear, dissipation);
+        const Vec3 on_wall =
+          contact_force(wall.contact, radius, 0, m_eff, delta, k, dt, shear, wall_dashpot[slot], dissipation);
         wall_load_[slot] = -on_wall;
         force -= on_wall;
         torque -= k.arm_i.cross(on_wall);

@@ -68,6 +68,7 @@ namespace anticrack::dem
     std::vector<Vec3> previous_velocity;          ///< v(n-1/2), for the kinetic energy
     std::vector<Vec3> previous_angular_velocity;
     std::vector<Vec3> wall_shear;      ///< tangential force of sphere-wall contacts, [wall * N + p]
+    std::vector<Vec3> wall_dashpot;    ///< dashpot force of sphere-wall contacts (energy booking)
 
     /// Bonds every pair of particles whose materials allow bonding and whose gap is within the
     /// rule's tolerance; parameters from the material with the smaller id. Returns the count.
