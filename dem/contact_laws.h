@@ -128,8 +128,8 @@ namespace anticrack::dem
         dashpot -= cs * vs;
         fs -= cs * vs;
       }
+      book_dashpot_work(dashpot_force, dashpot, k.relative_velocity, dt, dissipation);
     }
-    book_dashpot_work(dashpot_force, dashpot, k.relative_velocity, dt, dissipation);
     // Repulsion pushes j along +n.
     return fn * k.normal + fs;
   }

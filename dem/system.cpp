@@ -523,10 +523,14 @@ namespace anticrack::dem
       contacts.normal[c] = k.normal;
       contacts.active[c] = 1;
       contacts.overlap[c] = delta;
-      // Dashpot mass: a blocked particle behaves as infinitely heavy.
-      const double inv_mi = (particles.blocked[i] & block_translation) ? 0 : 1 / particles.mass[i];
-      const double inv_mj = (particles.blocked[j] & block_translation) ? 0 : 1 / particles.mass[j];
-      const double m_eff = inv_mi + inv_mj > 0 ? 1 / (inv_mi + inv_mj) : particles.mass[i];
+      // Dashpot mass (only the dashpots need it): a blocked particle behaves as infinitely heavy.
+      double m_eff = 0;
+      if (p.damping_ratio > 0)
+      {
+        const double inv_mi = (particles.blocked[i] & block_translation) ? 0 : 1 / particles.mass[i];
+        const double inv_mj = (particles.blocked[j] & block_translation) ? 0 : 1 / particles.mass[j];
+        m_eff = inv_mi + inv_mj > 0 ? 1 / (inv_mi + inv_mj) : particles.mass[i];
+      }
       ContactDissipation dissipation;
       const Vec3 f = contact_force(p, r[i], r[j], m_eff, delta, k, dt, contacts.shear_force[c],
                                    contacts.dashpot_force[c], dissipation);
