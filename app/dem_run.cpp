@@ -91,13 +91,6 @@ namespace anticrack::app
       return c;
     }
 
-    /// The energy scale the engine's stability check uses, for a relative balance error.
-    double energy_scale(const dem::EnergyLedger &e, double initial_balance)
-    {
-      return std::max({std::abs(initial_balance), e.kinetic + e.elastic_contacts + e.elastic_bonds,
-                       std::abs(e.external_work), e.dissipated(), std::abs(e.gravity_potential)});
-    }
-
     void print_framed(std::ostream &out, const std::string &title, const std::string &body)
     {
       const std::string rule(78, '-');
@@ -149,7 +142,6 @@ namespace anticrack::app
 
     // --- time series
     History history_;
-    std::optional<Vec3> unwrapped_clump_centre_; ///< follows the clump across periodic faces
 
     // --- console and ParaView
     std::optional<ProgressReporter> progress_;
@@ -202,8 +194,8 @@ namespace anticrack::app
     if (model_->clump >= 0)
     {
       for (const char *a : {"x", "y", "z"})
-        h.add_column(std::string("clump_centre_") + a, "m",
-                     "clump centre of mass, followed across periodic faces (not wrapped)");
+        h.add_column(std::string("clump_displacement_") + a, "m",
+                     "displacement of the clump's centre of mass since the start (not wrapped)");
       for (const char *a : {"x", "y", "z"})
         h.add_column(std::string("clump_velocity_") + a, "m/s", "clump velocity (half step)");
       for (const char *a : {"x", "y", "z"})
@@ -252,16 +244,9 @@ namespace anticrack::app
     if (model_->clump >= 0)
     {
       const dem::Clump &clump = system_.clumps[model_->clump];
-      // The engine wraps the centre into the box at rebuilds: undo the jumps by minimum image.
-      Vec3 centre = clump.centre;
-      if (unwrapped_clump_centre_)
-        centre = *unwrapped_clump_centre_ +
-                 (clump.centre - *unwrapped_clump_centre_ +
-                  system_.domain.minimum_image_shift(*unwrapped_clump_centre_, clump.centre));
-      unwrapped_clump_centre_ = centre;
       const Vec3 force = clump.applied_force(system_.time);
       for (int a = 0; a < 3; ++a)
-        row.push_back(centre[a]);
+        row.push_back(clump.displacement[a]);
       for (int a = 0; a < 3; ++a)
         row.push_back(clump.velocity[a]);
       for (int a = 0; a < 3; ++a)
@@ -308,9 +293,6 @@ namespace anticrack::app
     // History first: if the run dies before the checkpoint is renamed into place, the older
     // checkpoint is still valid and resuming drops the extra history rows.
     write_history();
-    // Positions are wrapped into the periodic box only at rebuilds; rebuilding here makes the
-    // saved state the one a resumed run starts from, so that it continues bit for bit.
-    system_.rebuild_neighbors();
     dem::io::write_checkpoint(files_.checkpoint().string(), system_);
     Json info;
     info["format"] = "anticrack-checkpoint-info";
@@ -424,10 +406,6 @@ namespace anticrack::app
       {
         const auto *step = history_.find("step");
         last_history_step_ = static_cast<Index>(step->values.back());
-        if (model_->clump >= 0)
-          unwrapped_clump_centre_ = Vec3(history_.find("clump_centre_x")->values.back(),
-                                         history_.find("clump_centre_y")->values.back(),
-                                         history_.find("clump_centre_z")->values.back());
       }
     }
   }
@@ -593,7 +571,7 @@ namespace anticrack::app
     energies["initial_balance"] = system_.initial_balance;
     d["energies_J"] = energies;
     d["energy_balance_error_J"] = balance_error;
-    const double scale = energy_scale(e, system_.initial_balance);
+    const double scale = system_.energy_scale(e);
     d["energy_balance_relative_error"] = scale > 0 ? std::abs(balance_error) / scale : 0.0;
 
     // Peak of every stress column of the history, e.g. the strength in a compression test.
@@ -647,6 +625,7 @@ namespace anticrack::app
       c["members"] = clump.members.size();
       c["mass_kg"] = clump.mass;
       c["centre_m"] = {clump.centre[0], clump.centre[1], clump.centre[2]};
+      c["displacement_m"] = {clump.displacement[0], clump.displacement[1], clump.displacement[2]};
       c["velocity_m_per_s"] = {clump.velocity[0], clump.velocity[1], clump.velocity[2]};
       c["applied_force_N"] = {force[0], force[1], force[2]};
       d["clump"] = c;
@@ -694,7 +673,7 @@ namespace anticrack::app
   {
     const BondCounts bonds = count_bonds(system_.bonds);
     const dem::EnergyLedger e = system_.energy();
-    const double scale = energy_scale(e, system_.initial_balance);
+    const double scale = system_.energy_scale(e);
     const Index steps_done = system_.step_count - first_step_;
     std::ostringstream s;
     s << std::setprecision(4);

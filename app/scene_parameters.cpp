@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <type_traits>
 
 namespace anticrack::app
 {
@@ -21,23 +22,36 @@ namespace anticrack::app
 
   namespace
   {
-    const std::string vector_pattern_help = " Three comma-separated numbers x, y, z.";
-
-    std::unique_ptr<Patterns::PatternBase> vector3()
+    /// A vector entry: three comma-separated numbers x, y, z (read with get_triple<Vec3>).
+    void declare_vector(ParameterHandler &prm, const std::string &name, const std::string &default_value,
+                        const std::string &documentation)
     {
-      return std::make_unique<Patterns::List>(Patterns::Double(), 3, 3);
+      prm.declare_entry(name, default_value, Patterns::List(Patterns::Double(), 3, 3),
+                        documentation + " Three comma-separated numbers x, y, z.");
     }
 
-    Vec3 get_vector(const ParameterHandler &prm, const std::string &name)
+    /// The three comma-separated components of a vector (Vec3) or lattice-size (integer) entry.
+    template <class Triple>
+    Triple get_triple(const ParameterHandler &prm, const std::string &name)
     {
       const auto parts = dealii::Utilities::split_string_list(prm.get(name), ',');
-      Vec3 v;
+      Triple t;
       for (int a = 0; a < 3; ++a)
-        v[a] = dealii::Utilities::string_to_double(parts.at(a));
-      return v;
+      {
+        if constexpr (std::is_integral_v<std::decay_t<decltype(t[a])>>)
+          t[a] = dealii::Utilities::string_to_int(parts.at(a));
+        else
+          t[a] = dealii::Utilities::string_to_double(parts.at(a));
+      }
+      return t;
     }
 
-    /// Entries that may be left empty: Patterns::List of zero or one double.
+    /// An entry that may be left empty: Patterns::List of zero or one double, empty by default.
+    void declare_optional_double(ParameterHandler &prm, const std::string &name, const std::string &documentation)
+    {
+      prm.declare_entry(name, "", Patterns::List(Patterns::Double(), 0, 1), documentation);
+    }
+
     std::optional<double> get_optional_double(const ParameterHandler &prm, const std::string &name)
     {
       const std::string value = dealii::Utilities::trim(prm.get(name));
@@ -105,12 +119,11 @@ namespace anticrack::app
     void Domain::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Domain");
-      prm.declare_entry("Lower corner [m]", "0, 0, 0", *vector3(),
-                        "x_min: lower corner of the axis-aligned simulation box. Units: m." +
-                          vector_pattern_help);
-      prm.declare_entry("Upper corner [m]", "0.02, 0.02, 0.02", *vector3(),
-                        "x_max: upper corner of the simulation box, above the lower corner along "
-                        "every axis. Units: m." + vector_pattern_help);
+      declare_vector(prm, "Lower corner [m]", "0, 0, 0",
+                     "x_min: lower corner of the axis-aligned simulation box. Units: m.");
+      declare_vector(prm, "Upper corner [m]", "0.02, 0.02, 0.02",
+                     "x_max: upper corner of the simulation box, above the lower corner along "
+                     "every axis. Units: m.");
       prm.declare_entry("Periodic axes", "", Patterns::MultipleSelection("x|y|z"),
                         "Axes along which the box is periodic (a comma-separated subset of x, y, "
                         "z; empty for none). Contacts and bonds across a periodic face use the "
@@ -121,8 +134,8 @@ namespace anticrack::app
     void Domain::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Domain");
-      lower = get_vector(prm, "Lower corner [m]");
-      upper = get_vector(prm, "Upper corner [m]");
+      lower = get_triple<Vec3>(prm, "Lower corner [m]");
+      upper = get_triple<Vec3>(prm, "Upper corner [m]");
       periodic = {false, false, false};
       for (const auto &axis : dealii::Utilities::split_string_list(prm.get("Periodic axes"), ','))
         periodic[axis == "x" ? 0 : axis == "y" ? 1 : 2] = true;
@@ -245,10 +258,9 @@ namespace anticrack::app
       prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
                         "s: distance between neighbouring centres; s = 2R makes touching spheres "
                         "(lattice only). Units: m.");
-      prm.declare_entry("Origin [m]", "0, 0, 0", *vector3(),
-                        "Lower corner of the lattice's bounding box; the lattice occupies "
-                        "[origin, origin + n s] and must lie inside the domain. Units: m." +
-                          vector_pattern_help);
+      declare_vector(prm, "Origin [m]", "0, 0, 0",
+                     "Lower corner of the lattice's bounding box; the lattice occupies "
+                     "[origin, origin + n s] and must lie inside the domain. Units: m.");
       prm.declare_entry("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
                         "a: every velocity component starts uniformly random in [-a, a] (seeded "
                         "by DEM/Random seed; fixed and clumped spheres start at rest). Units: m/s.");
@@ -263,12 +275,10 @@ namespace anticrack::app
     {
       prm.enter_subsection("Sample");
       type = prm.get("Type") == "snapshot" ? Type::snapshot : Type::simple_cubic_lattice;
-      const auto sizes = dealii::Utilities::split_string_list(prm.get("Lattice size"), ',');
-      for (int a = 0; a < 3; ++a)
-        lattice_size[a] = dealii::Utilities::string_to_int(sizes.at(a));
+      lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
       radius = prm.get_double("Radius [m]");
       spacing = prm.get_double("Spacing [m]");
-      origin = get_vector(prm, "Origin [m]");
+      origin = get_triple<Vec3>(prm, "Origin [m]");
       velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
       snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
       prm.leave_subsection();
@@ -278,8 +288,7 @@ namespace anticrack::app
     void Integration::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Integration");
-      prm.declare_entry("Gravity [m/s^2]", "0, 0, 0", *vector3(),
-                        "g: gravitational acceleration. Units: m/s^2." + vector_pattern_help);
+      declare_vector(prm, "Gravity [m/s^2]", "0, 0, 0", "g: gravitational acceleration. Units: m/s^2.");
       prm.declare_entry("Local damping", "0.7", Patterns::Double(0, 1),
                         "alpha: Cundall's local damping, F_w <- F_w - alpha |F_w| sign(v_w) for "
                         "every force and moment component (PFC default 0.7; 0 is undamped). "
@@ -311,7 +320,7 @@ namespace anticrack::app
     void Integration::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Integration");
-      settings.gravity = get_vector(prm, "Gravity [m/s^2]");
+      settings.gravity = get_triple<Vec3>(prm, "Gravity [m/s^2]");
       settings.local_damping = prm.get_double("Local damping");
       settings.time_step = prm.get_double("Time step [s]");
       settings.time_step_safety = prm.get_double("Time step safety factor");
@@ -357,48 +366,51 @@ namespace anticrack::app
       max_speed = prm.get_double("Max speed [m/s]");
     }
 
-    void Walls::declare_parameters(ParameterHandler &prm)
+    namespace
     {
-      prm.enter_subsection("Walls");
-      for (const char *name : face_names)
+      /// Calls body(f) inside subsection Walls/<face_names[f]> for every face f, in that order.
+      template <class Body>
+      void for_each_wall_face(ParameterHandler &prm, Body &&body)
       {
-        prm.enter_subsection(name);
-        WallFace::declare_parameters(prm);
+        prm.enter_subsection("Walls");
+        for (int f = 0; f < 6; ++f)
+        {
+          prm.enter_subsection(Walls::face_names[f]);
+          body(f);
+          prm.leave_subsection();
+        }
         prm.leave_subsection();
       }
-      prm.leave_subsection();
+    } // namespace
+
+    void Walls::declare_parameters(ParameterHandler &prm)
+    {
+      for_each_wall_face(prm, [&](int) { WallFace::declare_parameters(prm); });
     }
 
     void Walls::parse_parameters(ParameterHandler &prm)
     {
-      prm.enter_subsection("Walls");
-      for (int f = 0; f < 6; ++f)
-      {
-        prm.enter_subsection(face_names[f]);
-        face[f].parse_parameters(prm);
-        prm.leave_subsection();
-      }
-      prm.leave_subsection();
+      for_each_wall_face(prm, [&](int f) { face[f].parse_parameters(prm); });
     }
 
     // ------------------------------------------------------------------- Boundary particles
     void BoundaryParticles::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Boundary particles");
-      prm.declare_entry("Fix below [m]", "", Patterns::List(Patterns::Double(), 0, 1),
-                        "Spheres whose centre has z below this are fixed (no translation, no "
-                        "rotation) and form the base; their reactions give the base stresses in "
-                        "history.h5. Empty for none. Units: m.");
-      prm.declare_entry("Clump above [m]", "", Patterns::List(Patterns::Double(), 0, 1),
-                        "Spheres whose centre has z above this form one rigid clump (the loading "
-                        "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
+      declare_optional_double(prm, "Fix below [m]",
+                              "Spheres whose centre has z below this are fixed (no translation, no "
+                              "rotation) and form the base; their reactions give the base stresses in "
+                              "history.h5. Empty for none. Units: m.");
+      declare_optional_double(prm, "Clump above [m]",
+                              "Spheres whose centre has z above this form one rigid clump (the loading "
+                              "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
       prm.declare_entry("Clump force rate [N/s]", "0", Patterns::Double(),
                         "Fdot: the clump is loaded by F(t) = Fdot t d at its centre of mass. "
                         "Units: N/s.");
-      prm.declare_entry("Clump force direction", "0, 0, -1", *vector3(),
-                        "d: direction of the clump force, normalised to unit length; the "
-                        "mixed-mode test at angle psi uses d = (sin psi, 0, -cos psi). Units: "
-                        "none." + vector_pattern_help);
+      declare_vector(prm, "Clump force direction", "0, 0, -1",
+                     "d: direction of the clump force, normalised to unit length; the "
+                     "mixed-mode test at angle psi uses d = (sin psi, 0, -cos psi). Units: "
+                     "none.");
       prm.declare_entry("Clump rotation locked", "false", Patterns::Bool(),
                         "Keep the clump from rotating (a guided platen).");
       prm.leave_subsection();
@@ -410,7 +422,7 @@ namespace anticrack::app
       fix_below = get_optional_double(prm, "Fix below [m]");
       clump_above = get_optional_double(prm, "Clump above [m]");
       clump_force_rate = prm.get_double("Clump force rate [N/s]");
-      clump_force_direction = get_vector(prm, "Clump force direction");
+      clump_force_direction = get_triple<Vec3>(prm, "Clump force direction");
       if (clump_force_direction.norm() > 0)
         clump_force_direction.normalize();
       clump_rotation_locked = prm.get_bool("Clump rotation locked");

@@ -16,7 +16,8 @@ namespace anticrack::dem
   {
     std::vector<Index> members;
     double mass = 0;
-    Vec3 centre = Vec3::Zero();          ///< centre of mass
+    Vec3 centre = Vec3::Zero();          ///< centre of mass (wrapped into a periodic box at rebuilds)
+    Vec3 displacement = Vec3::Zero();    ///< of the centre since the clump was made, never wrapped
     Vec3 velocity = Vec3::Zero();        ///< at half step
     Vec3 angular_momentum = Vec3::Zero();///< at half step
     Vec3 angular_velocity = Vec3::Zero();

@@ -595,6 +595,7 @@ namespace anticrack::dem::io
       visit("member_offset", [](auto &c) -> auto & { return c.member_offset; }, "m");
       visit("mass", [](auto &c) -> auto & { return c.mass; }, "kg");
       visit("centre", [](auto &c) -> auto & { return c.centre; }, "m");
+      visit("displacement", [](auto &c) -> auto & { return c.displacement; }, "m");
       visit("velocity", [](auto &c) -> auto & { return c.velocity; }, "m/s");
       visit("angular_momentum", [](auto &c) -> auto & { return c.angular_momentum; }, "kg m^2/s");
       visit("angular_velocity", [](auto &c) -> auto & { return c.angular_velocity; }, "rad/s");
@@ -861,6 +862,8 @@ namespace anticrack::dem::io
       particle_arrays(system.particles, array_writer(particles));
       write_array(particles, "previous_velocity", system.previous_velocity, "m/s");
       write_array(particles, "previous_angular_velocity", system.previous_angular_velocity, "rad/s");
+      write_array(particles, "neighbor_reference_position", system.neighbor_reference_positions(), "m");
+      write_attribute(root, "critical_time_step", system.critical_time_step_estimate());
 
       const Node contacts = create_array_group(root, "contacts", system.contacts.size());
       contact_arrays(system.contacts, array_writer(contacts));
@@ -903,6 +906,11 @@ namespace anticrack::dem::io
     read_array(particles, "previous_angular_velocity", staged.previous_angular_velocity, any_rows);
     check_empty_or_rows(particles, "previous_velocity", staged.previous_velocity, n);
     check_empty_or_rows(particles, "previous_angular_velocity", staged.previous_angular_velocity, n);
+    std::vector<Vec3> neighbor_reference;
+    read_array(particles, "neighbor_reference_position", neighbor_reference, any_rows);
+    check_empty_or_rows(particles, "neighbor_reference_position", neighbor_reference, n);
+    double critical_time_step = 0;
+    read_attribute(root, "critical_time_step", critical_time_step);
 
     const Node contacts = root.open_group("contacts");
     const Index contact_count = read_count(contacts);
@@ -973,5 +981,7 @@ namespace anticrack::dem::io
     system.step_count = staged.step_count;
     system.dt = staged.dt;
     system.initial_balance = staged.initial_balance;
+    system.restore_neighbor_reference_positions(std::move(neighbor_reference));
+    system.restore_critical_time_step_estimate(critical_time_step);
   }
 } // namespace anticrack::dem::io

@@ -25,10 +25,9 @@
 // of /settings), time, step_count, dt, the EnergyLedger (attributes of /energy) and
 // initial_balance. State added to those structs must be added to the field lists in io_hdf5.cpp.
 //
-// Bit-for-bit restarts: resume() rebuilds the neighbour list (the list's reference positions are
-// not part of the public state), so the writing run must rebuild at the same step: call
-// system.rebuild_neighbors() right before write_checkpoint. Without it the restarted run diverges
-// (different rebuild steps, hence different contact lists and time steps).
+// Bit-for-bit restarts: the checkpoint also holds the neighbour list's reference positions and the
+// last critical-step estimate, and resume() does not rebuild the list, so a checkpoint can be
+// written at any step without changing the run, and a resumed run continues bit for bit.
 //
 // The MaterialTable is NOT stored: materials come from the scene, so the system passed to
 // read_checkpoint must already hold the same materials as the one that wrote the checkpoint

@@ -66,7 +66,22 @@ namespace anticrack::dem
                            std::to_string(2 * cell_size) + " m");
         all_pairs = all_pairs || cells[a] < 3;
       }
-      cells[a] = std::min<Index>(cells[a], 1024);
+    }
+    // A sparse system spread over a large region would get far more cells than particles: coarsen
+    // the grid along the non-periodic axes (where the extent comes from the particles) so that the
+    // cell count stays O(N); coarser cells only add candidates to test.
+    const double cell_budget = 2.0 * static_cast<double>(n) + 1000.0;
+    double periodic_cells = 1, open_cells = 1;
+    for (int a = 0; a < 3; ++a)
+      (domain.periodic[a] ? periodic_cells : open_cells) *= static_cast<double>(cells[a]);
+    if (periodic_cells * open_cells > cell_budget && open_cells > 1)
+    {
+      const int open_axes = 3 - static_cast<int>(domain.periodic[0] + domain.periodic[1] + domain.periodic[2]);
+      const double coarsen =
+        std::pow(periodic_cells * open_cells / cell_budget, 1.0 / open_axes);
+      for (int a = 0; a < 3; ++a)
+        if (!domain.periodic[a])
+          cells[a] = std::max<Index>(1, static_cast<Index>(cells[a] / coarsen));
     }
 
     std::vector<std::vector<Candidate>> candidates(n);

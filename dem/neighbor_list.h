@@ -25,6 +25,10 @@ namespace anticrack::dem
 
     [[nodiscard]] Index builds() const { return builds_; }
 
+    /// Positions at the last build (the rebuild criterion's reference), for checkpoints.
+    [[nodiscard]] const std::vector<Vec3> &reference_positions() const { return reference_position_; }
+    void restore_reference_positions(std::vector<Vec3> positions) { reference_position_ = std::move(positions); }
+
   private:
     std::vector<Vec3> reference_position_;
     Index builds_ = 0;

@@ -2,6 +2,7 @@
 
 #include "dem/contact_laws.h"
 #include "dem/parallel_bond.h"
+#include "dem/parallel_sum.h"
 
 #include <omp.h>
 
@@ -206,15 +207,19 @@ namespace anticrack::dem
         std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
       skin_ = settings.verlet_skin > 0 ? settings.verlet_skin : 0.1 * mean_radius;
     }
-    if (wall_shear.size() != walls.size() * particles.size() ||
-        wall_dashpot.size() != walls.size() * particles.size())
+    const std::size_t wall_slots = walls.size() * particles.size();
+    if (wall_shear.size() != wall_slots || wall_dashpot.size() != wall_slots)
       throw SetupError("checkpoint: sphere-wall state does not match the walls and particles");
-    const double saved_dt = dt;
-    rebuild_neighbors();
+    if (static_cast<Index>(neighbor_list_.reference_positions().size()) != particles.size())
+      throw SetupError("checkpoint: the neighbour-list reference positions do not match the particles");
+    // Derived data only; the contact list, positions and dt stay exactly as loaded.
+    match_bonds_to_contacts();
+    build_incidence();
+    wall_load_.assign(wall_slots, Vec3::Zero());
+    wall_overlap_.assign(wall_slots, 0.0);
     update_wall_overlaps();
-    // The checkpoint was written right after a rebuild, which re-evaluated dt already.
-    if (saved_dt > 0)
-      dt = saved_dt;
+    if (!(dt_critical_ > 0))
+      dt_critical_ = critical_time_step(&dt_limiting_particle_);
   }
 
   void DemSystem::rebuild_neighbors()
@@ -456,93 +461,100 @@ namespace anticrack::dem
     const auto &v = particles.velocity;
     const auto &w = particles.angular_velocity;
     const auto &r = particles.radius;
-    double friction = 0, viscous = 0, released = 0;
-#pragma omp parallel for schedule(static) reduction(+ : friction, viscous, released)
-    for (Index c = 0; c < contacts.size(); ++c)
+    const FixedBlocks blocks(contacts.size());
+    std::vector<std::array<double, 3>> partial(blocks.count());
+#pragma omp parallel for schedule(static)
+    for (Index block = 0; block < blocks.count(); ++block)
     {
-      const Index i = contacts.i[c], j = contacts.j[c];
-      const Vec3 xj = x[j] + contacts.shift[c];
-      const double reach = r[i] + r[j];
-      const double distance2 = (xj - x[i]).squaredNorm();
-      const Index b = bond_of_contact_[c];
-      const bool bonded = b >= 0 && bonds.state[b] == BondState::intact;
-      const bool touching = distance2 < reach * reach;
-      PairLoad &load = contacts.load[c];
-      const ContactParameters &p = materials.contact(particles.material_id[i], particles.material_id[j]);
-      if (!touching && contacts.active[c])
+      double friction = 0, viscous = 0, released = 0;
+      for (Index c = blocks.begin(block); c < blocks.end(block); ++c)
       {
-        // Separation: the tangential spring's energy is released, the contact stops acting, its
-        // dashpot books its last half step.
-        if (p.law == ContactLaw::linear)
+        const Index i = contacts.i[c], j = contacts.j[c];
+        const Vec3 xj = x[j] + contacts.shift[c];
+        const double reach = r[i] + r[j];
+        const double distance2 = (xj - x[i]).squaredNorm();
+        const Index b = bond_of_contact_[c];
+        const bool bonded = b >= 0 && bonds.state[b] == BondState::intact;
+        const bool touching = distance2 < reach * reach;
+        PairLoad &load = contacts.load[c];
+        const ContactParameters &p = materials.contact(particles.material_id[i], particles.material_id[j]);
+        if (!touching && contacts.active[c])
         {
-          double kn, ks;
-          linear_stiffness(p, r[i], r[j], kn, ks);
-          friction += 0.5 * contacts.shear_force[c].squaredNorm() / ks;
+          // Separation: the tangential spring's energy is released, the contact stops acting, its
+          // dashpot books its last half step.
+          if (p.law == ContactLaw::linear)
+          {
+            double kn, ks;
+            linear_stiffness(p, r[i], r[j], kn, ks);
+            friction += 0.5 * contacts.shear_force[c].squaredNorm() / ks;
+          }
+          if (p.damping_ratio > 0)
+          {
+            ContactDissipation dissipation;
+            const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
+            book_dashpot_work(contacts.dashpot_force[c], Vec3::Zero(), k.relative_velocity, dt, dissipation);
+            viscous += dissipation.viscous;
+          }
+          contacts.active[c] = 0;
+          contacts.overlap[c] = reach - std::sqrt(distance2);
+          contacts.shear_force[c].setZero();
+          load = PairLoad{};
         }
+        if (!touching && !bonded)
+        {
+          if (b >= 0)
+            load = PairLoad{}; // a bond that broke earlier leaves nothing behind
+          continue;
+        }
+
+        const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
+        load = PairLoad{};
+        if (bonded)
+        {
+          // A bond and a contact that were both acting last step share the plane and its rotation.
+          const bool shared_plane = touching && contacts.active[c] && contacts.normal[c] == bonds.normal[b];
+          const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
+          released += update_parallel_bond(bonds, b, k, rotation, dt, load);
+          if (shared_plane)
+          {
+            rotation.apply(contacts.shear_force[c]);
+            contacts.active[c] = 2; // rotated already
+          }
+        }
+        if (!touching)
+          continue;
+
+        const double delta = reach - k.distance;
+        if (contacts.active[c] == 1)
+          rotate_with_contact_plane(contacts.shear_force[c], contacts.normal[c], k.normal, k.mean_spin, dt);
+        else if (contacts.active[c] == 0)
+          contacts.shear_force[c].setZero();
+        contacts.normal[c] = k.normal;
+        contacts.active[c] = 1;
+        contacts.overlap[c] = delta;
+        // Dashpot mass (only the dashpots need it): a blocked particle behaves as infinitely heavy.
+        double m_eff = 0;
         if (p.damping_ratio > 0)
         {
-          ContactDissipation dissipation;
-          const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
-          book_dashpot_work(contacts.dashpot_force[c], Vec3::Zero(), k.relative_velocity, dt, dissipation);
-          viscous += dissipation.viscous;
+          const double inv_mi = (particles.blocked[i] & block_translation) ? 0 : 1 / particles.mass[i];
+          const double inv_mj = (particles.blocked[j] & block_translation) ? 0 : 1 / particles.mass[j];
+          m_eff = inv_mi + inv_mj > 0 ? 1 / (inv_mi + inv_mj) : particles.mass[i];
         }
-        contacts.active[c] = 0;
-        contacts.overlap[c] = reach - std::sqrt(distance2);
-        contacts.shear_force[c].setZero();
-        load = PairLoad{};
+        ContactDissipation dissipation;
+        const Vec3 f = contact_force(p, r[i], r[j], m_eff, delta, k, dt, contacts.shear_force[c],
+                                     contacts.dashpot_force[c], dissipation);
+        load.force_on_j += f;
+        load.torque_on_j += k.arm_j.cross(f);
+        load.torque_on_i -= k.arm_i.cross(f);
+        friction += dissipation.friction;
+        viscous += dissipation.viscous;
       }
-      if (!touching && !bonded)
-      {
-        if (b >= 0)
-          load = PairLoad{}; // a bond that broke earlier leaves nothing behind
-        continue;
-      }
-
-      const PairKinematics k = pair_kinematics(x[i], xj, r[i], r[j], v[i], v[j], w[i], w[j]);
-      load = PairLoad{};
-      if (bonded)
-      {
-        // A bond and a contact that were both acting last step share the plane and its rotation.
-        const bool shared_plane = touching && contacts.active[c] && contacts.normal[c] == bonds.normal[b];
-        const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
-        released += update_parallel_bond(bonds, b, k, rotation, dt, load);
-        if (shared_plane)
-        {
-          rotation.apply(contacts.shear_force[c]);
-          contacts.active[c] = 2; // rotated already
-        }
-      }
-      if (!touching)
-        continue;
-
-      const double delta = reach - k.distance;
-      if (contacts.active[c] == 1)
-        rotate_with_contact_plane(contacts.shear_force[c], contacts.normal[c], k.normal, k.mean_spin, dt);
-      else if (contacts.active[c] == 0)
-        contacts.shear_force[c].setZero();
-      contacts.normal[c] = k.normal;
-      contacts.active[c] = 1;
-      contacts.overlap[c] = delta;
-      // Dashpot mass (only the dashpots need it): a blocked particle behaves as infinitely heavy.
-      double m_eff = 0;
-      if (p.damping_ratio > 0)
-      {
-        const double inv_mi = (particles.blocked[i] & block_translation) ? 0 : 1 / particles.mass[i];
-        const double inv_mj = (particles.blocked[j] & block_translation) ? 0 : 1 / particles.mass[j];
-        m_eff = inv_mi + inv_mj > 0 ? 1 / (inv_mi + inv_mj) : particles.mass[i];
-      }
-      ContactDissipation dissipation;
-      const Vec3 f = contact_force(p, r[i], r[j], m_eff, delta, k, dt, contacts.shear_force[c],
-                                   contacts.dashpot_force[c], dissipation);
-      load.force_on_j += f;
-      load.torque_on_j += k.arm_j.cross(f);
-      load.torque_on_i -= k.arm_i.cross(f);
-      friction += dissipation.friction;
-      viscous += dissipation.viscous;
+      partial[block] = {friction, viscous, released};
     }
-    ledger.friction += friction;
-    ledger.viscous += viscous;
-    ledger.bond_breakage += released;
+    const auto sums = add_in_order(partial);
+    ledger.friction += sums[0];
+    ledger.viscous += sums[1];
+    ledger.bond_breakage += sums[2];
   }
 
   void DemSystem::compute_unlisted_bond_loads()
@@ -551,20 +563,26 @@ namespace anticrack::dem
     const auto &v = particles.velocity;
     const auto &w = particles.angular_velocity;
     const auto &r = particles.radius;
-    double released = 0;
-    const Index count = static_cast<Index>(unlisted_bonds_.size());
-#pragma omp parallel for schedule(static) reduction(+ : released)
-    for (Index u = 0; u < count; ++u)
+    const FixedBlocks blocks(static_cast<Index>(unlisted_bonds_.size()));
+    std::vector<std::array<double, 1>> partial(blocks.count());
+#pragma omp parallel for schedule(static)
+    for (Index block = 0; block < blocks.count(); ++block)
     {
-      const Index b = unlisted_bonds_[u];
-      if (bonds.state[b] != BondState::intact)
-        continue; // its load was cleared when it broke
-      const Index i = bonds.i[b], j = bonds.j[b];
-      const PairKinematics k = pair_kinematics(x[i], x[j] + bonds.shift[b], r[i], r[j], v[i], v[j], w[i], w[j]);
-      const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
-      released += update_parallel_bond(bonds, b, k, rotation, dt, bond_load_[b]);
+      double released = 0;
+      for (Index u = blocks.begin(block); u < blocks.end(block); ++u)
+      {
+        const Index b = unlisted_bonds_[u];
+        if (bonds.state[b] != BondState::intact)
+          continue; // its load was cleared when it broke
+        const Index i = bonds.i[b], j = bonds.j[b];
+        const PairKinematics k = pair_kinematics(x[i], x[j] + bonds.shift[b], r[i], r[j], v[i], v[j], w[i], w[j]);
+        const ContactPlaneRotation rotation(bonds.normal[b], k.normal, k.mean_spin, dt);
+        released += update_parallel_bond(bonds, b, k, rotation, dt, bond_load_[b]);
+      }
+      partial[block] = {released};
     }
-    ledger.bond_breakage += released;
+    const auto sums = add_in_order(partial);
+    ledger.bond_breakage += sums[0];
   }
 
   void DemSystem::gather_and_integrate()
@@ -578,102 +596,113 @@ namespace anticrack::dem
       previous_velocity = particles.velocity;
       previous_angular_velocity = particles.angular_velocity;
     }
-    double damping_work = 0, external_work = 0, gravity_work = 0, wall_friction = 0, wall_viscous = 0;
-    Index first_bad = std::numeric_limits<Index>::max();
-#pragma omp parallel for schedule(static) reduction(+ : damping_work, external_work, gravity_work, wall_friction, wall_viscous) reduction(min : first_bad)
-    for (Index p = 0; p < n; ++p)
+    const FixedBlocks blocks(n);
+    std::vector<std::array<double, 6>> partial(blocks.count());
+#pragma omp parallel for schedule(static)
+    for (Index block = 0; block < blocks.count(); ++block)
     {
-      Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-      for (Index e = incidence_offset_[p]; e < incidence_offset_[p + 1]; ++e)
+      double damping_work = 0, external_work = 0, gravity_work = 0, wall_friction = 0, wall_viscous = 0, non_finite = 0;
+      for (Index p = blocks.begin(block); p < blocks.end(block); ++p)
       {
-        const Index entry = incidence_[e];
-        const PairLoad &load = (entry & incidence_bond) ? bond_load_[entry >> 2] : contacts.load[entry >> 2];
-        if (entry & incidence_side_j)
+        Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+        for (Index e = incidence_offset_[p]; e < incidence_offset_[p + 1]; ++e)
         {
-          force += load.force_on_j;
-          torque += load.torque_on_j;
-        }
-        else
-        {
-          force -= load.force_on_j;
-          torque += load.torque_on_i;
-        }
-      }
-      // Sphere-wall contacts: the wall plays particle j, at rest in its own frame of rotation.
-      const double radius = particles.radius[p];
-      for (Index wi = 0; wi < wall_count; ++wi)
-      {
-        const Wall &wall = walls[wi];
-        const Index slot = wi * n + p;
-        const double distance = (particles.position[p] - wall.point).dot(wall.normal);
-        const double delta = radius - distance;
-        wall_overlap_[slot] = delta;
-        Vec3 &shear = wall_shear[slot];
-        PairKinematics k;
-        k.normal = -wall.normal;
-        k.distance = distance;
-        k.arm_i = 0.5 * (radius + distance) * k.normal;
-        k.arm_j = Vec3::Zero();
-        k.relative_velocity = wall.velocity - (particles.velocity[p] + particles.angular_velocity[p].cross(k.arm_i));
-        k.relative_spin = -particles.angular_velocity[p];
-        k.mean_spin = 0.5 * particles.angular_velocity[p];
-        ContactDissipation dissipation;
-        if (delta <= 0)
-        {
-          if (wall_dashpot[slot].squaredNorm() > 0)
+          const Index entry = incidence_[e];
+          const PairLoad &load = (entry & incidence_bond) ? bond_load_[entry >> 2] : contacts.load[entry >> 2];
+          if (entry & incidence_side_j)
           {
-            book_dashpot_work(wall_dashpot[slot], Vec3::Zero(), k.relative_velocity, dt, dissipation);
-            wall_viscous += dissipation.viscous;
+            force += load.force_on_j;
+            torque += load.torque_on_j;
           }
-          shear.setZero();
-          wall_load_[slot].setZero();
-          continue;
+          else
+          {
+            force -= load.force_on_j;
+            torque += load.torque_on_i;
+          }
         }
-        rotate_with_contact_plane(shear, k.normal, k.normal, k.mean_spin, dt);
-        const double m_eff = particles.mass[p];
-        const Vec3 on_wall =
-          contact_force(wall.contact, radius, 0, m_eff, delta, k, dt, shear, wall_dashpot[slot], dissipation);
-        wall_load_[slot] = -on_wall;
-        force -= on_wall;
-        torque -= k.arm_i.cross(on_wall);
-        wall_friction += dissipation.friction;
-        wall_viscous += dissipation.viscous;
-      }
-      particles.force[p] = force;
-      particles.torque[p] = torque;
-      if (particles.clump_id[p] >= 0)
-        continue; // moved with its clump
+        // Sphere-wall contacts: the wall plays particle j, at rest in its own frame of rotation.
+        const double radius = particles.radius[p];
+        for (Index wi = 0; wi < wall_count; ++wi)
+        {
+          const Wall &wall = walls[wi];
+          const Index slot = wi * n + p;
+          const double distance = (particles.position[p] - wall.point).dot(wall.normal);
+          const double delta = radius - distance;
+          wall_overlap_[slot] = delta;
+          Vec3 &shear = wall_shear[slot];
+          PairKinematics k;
+          k.normal = -wall.normal;
+          k.distance = distance;
+          k.arm_i = 0.5 * (radius + distance) * k.normal;
+          k.arm_j = Vec3::Zero();
+          k.relative_velocity = wall.velocity - (particles.velocity[p] + particles.angular_velocity[p].cross(k.arm_i));
+          k.relative_spin = -particles.angular_velocity[p];
+          k.mean_spin = 0.5 * particles.angular_velocity[p];
+          ContactDissipation dissipation;
+          if (delta <= 0)
+          {
+            if (wall_dashpot[slot].squaredNorm() > 0)
+            {
+              book_dashpot_work(wall_dashpot[slot], Vec3::Zero(), k.relative_velocity, dt, dissipation);
+              wall_viscous += dissipation.viscous;
+            }
+            shear.setZero();
+            wall_load_[slot].setZero();
+            continue;
+          }
+          rotate_with_contact_plane(shear, k.normal, k.normal, k.mean_spin, dt);
+          const double m_eff = particles.mass[p];
+          const Vec3 on_wall =
+            contact_force(wall.contact, radius, 0, m_eff, delta, k, dt, shear, wall_dashpot[slot], dissipation);
+          wall_load_[slot] = -on_wall;
+          force -= on_wall;
+          torque -= k.arm_i.cross(on_wall);
+          wall_friction += dissipation.friction;
+          wall_viscous += dissipation.viscous;
+        }
+        particles.force[p] = force;
+        particles.torque[p] = torque;
+        if (particles.clump_id[p] >= 0)
+          continue; // moved with its clump
 
-      const double mass = particles.mass[p];
-      const Vec3 total_force = force + mass * gravity;
-      const Vec3 old_velocity = particles.velocity[p];
-      const Vec3 old_spin = particles.angular_velocity[p];
-      const bool translation_blocked = particles.blocked[p] & block_translation;
-      const bool rotation_blocked = particles.blocked[p] & block_rotation;
-      Vec3 v_minus, w_minus;
-      const Vec3 v_plus = leapfrog_update(translation_blocked, alpha, total_force, mass, dt, old_velocity,
-                                          previous_velocity[p], v_minus, damping_work, external_work);
-      const Vec3 w_plus = leapfrog_update(rotation_blocked, alpha, torque, particles.inertia[p], dt, old_spin,
-                                          previous_angular_velocity[p], w_minus, damping_work, external_work);
-      // Gravity's work up to the state the ledger reports (forces of this step, i.e. positions
-      // x(n)): m g.(x(n) - x(n-1)) = m g.v(n-1/2) dt. See initialise() for the first step.
-      gravity_work += mass * gravity.dot(v_minus) * dt;
-      // Blocked DOFs keep the prescribed velocity as their "previous" one (see leapfrog_update).
-      previous_velocity[p] = translation_blocked ? v_plus : v_minus;
-      previous_angular_velocity[p] = rotation_blocked ? w_plus : w_minus;
-      particles.velocity[p] = v_plus;
-      particles.angular_velocity[p] = w_plus;
-      particles.position[p] += dt * v_plus;
-      if (!std::isfinite(particles.position[p].squaredNorm() + v_plus.squaredNorm() + w_plus.squaredNorm()))
-        first_bad = std::min(first_bad, p);
+        const double mass = particles.mass[p];
+        const Vec3 total_force = force + mass * gravity;
+        const Vec3 old_velocity = particles.velocity[p];
+        const Vec3 old_spin = particles.angular_velocity[p];
+        const bool translation_blocked = particles.blocked[p] & block_translation;
+        const bool rotation_blocked = particles.blocked[p] & block_rotation;
+        Vec3 v_minus, w_minus;
+        const Vec3 v_plus = leapfrog_update(translation_blocked, alpha, total_force, mass, dt, old_velocity,
+                                            previous_velocity[p], v_minus, damping_work, external_work);
+        const Vec3 w_plus = leapfrog_update(rotation_blocked, alpha, torque, particles.inertia[p], dt, old_spin,
+                                            previous_angular_velocity[p], w_minus, damping_work, external_work);
+        // Gravity's work up to the state the ledger reports (forces of this step, i.e. positions
+        // x(n)): m g.(x(n) - x(n-1)) = m g.v(n-1/2) dt. See initialise() for the first step.
+        gravity_work += mass * gravity.dot(v_minus) * dt;
+        // Blocked DOFs keep the prescribed velocity as their "previous" one (see leapfrog_update).
+        previous_velocity[p] = translation_blocked ? v_plus : v_minus;
+        previous_angular_velocity[p] = rotation_blocked ? w_plus : w_minus;
+        particles.velocity[p] = v_plus;
+        particles.angular_velocity[p] = w_plus;
+        particles.position[p] += dt * v_plus;
+        if (!std::isfinite(particles.position[p].squaredNorm() + v_plus.squaredNorm() + w_plus.squaredNorm()))
+          non_finite += 1;
+      }
+      partial[block] = {damping_work, external_work, gravity_work, wall_friction, wall_viscous, non_finite};
     }
-    ledger.local_damping += damping_work;
-    ledger.external_work += external_work;
-    ledger.gravity_potential -= gravity_work;
-    ledger.friction += wall_friction;
-    ledger.viscous += wall_viscous;
-    if (first_bad != std::numeric_limits<Index>::max())
+    const auto sums = add_in_order(partial);
+    ledger.local_damping += sums[0];
+    ledger.external_work += sums[1];
+    ledger.gravity_potential -= sums[2];
+    ledger.friction += sums[3];
+    ledger.viscous += sums[4];
+    if (sums[5] > 0)
     {
+      Index first_bad = 0;
+      while (first_bad < n && std::isfinite(particles.position[first_bad].squaredNorm() +
+                                            particles.velocity[first_bad].squaredNorm() +
+                                            particles.angular_velocity[first_bad].squaredNorm()))
+        ++first_bad;
       std::ostringstream message;
       message << "non-finite state of particle " << first_bad << " at step " << step_count << " (t = " << time
               << " s): position " << format_vector(particles.position[first_bad]) << ", velocity "
@@ -737,6 +766,7 @@ namespace anticrack::dem
 
       clump.velocity = v_plus;
       clump.centre += dt * v_plus;
+      clump.displacement += dt * v_plus;
       const Mat3 new_rotation = clump.orientation.toRotationMatrix();
       for (std::size_t m = 0; m < clump.members.size(); ++m)
       {
@@ -785,60 +815,64 @@ namespace anticrack::dem
   {
     EnergyLedger e = ledger;
     const Index n = particles.size();
-    double kinetic = 0, elastic_contacts = 0, elastic_bonds = 0;
     const bool have_previous = static_cast<Index>(previous_velocity.size()) == n;
-#pragma omp parallel for schedule(static) reduction(+ : kinetic)
-    for (Index p = 0; p < n; ++p)
-      if (particles.clump_id[p] < 0)
-      {
-        // 1/2 m v(n-1/2).v(n+1/2): the kinetic energy the leapfrog conserves with linear springs.
-        const Vec3 &v_minus = have_previous ? previous_velocity[p] : particles.velocity[p];
-        const Vec3 &w_minus = have_previous ? previous_angular_velocity[p] : particles.angular_velocity[p];
-        kinetic += 0.5 * particles.mass[p] * v_minus.dot(particles.velocity[p]) +
-                   0.5 * particles.inertia[p] * w_minus.dot(particles.angular_velocity[p]);
-      }
+    const auto kinetic = thread_independent_sum<1>(n, [&](Index p, std::array<double, 1> &sum) {
+      if (particles.clump_id[p] >= 0)
+        return;
+      // 1/2 m v(n-1/2).v(n+1/2): the kinetic energy the leapfrog conserves with linear springs.
+      const Vec3 &v_minus = have_previous ? previous_velocity[p] : particles.velocity[p];
+      const Vec3 &w_minus = have_previous ? previous_angular_velocity[p] : particles.angular_velocity[p];
+      sum[0] += 0.5 * particles.mass[p] * v_minus.dot(particles.velocity[p]) +
+                0.5 * particles.inertia[p] * w_minus.dot(particles.angular_velocity[p]);
+    })[0];
+    double clump_kinetic = 0;
     for (const Clump &clump : clumps)
-      kinetic += 0.5 * clump.mass * clump.velocity.squaredNorm() +
-                 0.5 * clump.angular_velocity.dot(clump.angular_momentum);
-#pragma omp parallel for schedule(static) reduction(+ : elastic_contacts)
-    for (Index c = 0; c < contacts.size(); ++c)
-      if (contacts.overlap[c] > 0) // touching at the last evaluation (or at the build)
-      {
+      clump_kinetic += 0.5 * clump.mass * clump.velocity.squaredNorm() +
+                       0.5 * clump.angular_velocity.dot(clump.angular_momentum);
+    double elastic_contacts =
+      thread_independent_sum<1>(contacts.size(), [&](Index c, std::array<double, 1> &sum) {
+        if (contacts.overlap[c] <= 0) // apart at the last evaluation (or at the build)
+          return;
         const Index i = contacts.i[c], j = contacts.j[c];
-        elastic_contacts +=
-          contact_elastic_energy(materials.contact(particles.material_id[i], particles.material_id[j]),
-                                 particles.radius[i], particles.radius[j], contacts.overlap[c],
-                                 contacts.shear_force[c]);
-      }
+        sum[0] += contact_elastic_energy(materials.contact(particles.material_id[i], particles.material_id[j]),
+                                         particles.radius[i], particles.radius[j], contacts.overlap[c],
+                                         contacts.shear_force[c]);
+      })[0];
     for (std::size_t w = 0; w < walls.size(); ++w)
       for (Index p = 0; p < n && wall_overlap_.size() == walls.size() * n; ++p)
         elastic_contacts += contact_elastic_energy(walls[w].contact, particles.radius[p], 0,
                                                    wall_overlap_[w * n + p], wall_shear[w * n + p]);
-#pragma omp parallel for schedule(static) reduction(+ : elastic_bonds)
-    for (Index b = 0; b < bonds.size(); ++b)
+    const double elastic_bonds = thread_independent_sum<1>(bonds.size(), [&](Index b, std::array<double, 1> &sum) {
       if (bonds.state[b] == BondState::intact)
-        elastic_bonds += bonds.elastic_energy(b);
-    e.kinetic = kinetic;
+        sum[0] += bonds.elastic_energy(b);
+    })[0];
+    e.kinetic = kinetic + clump_kinetic;
     e.elastic_contacts = elastic_contacts;
     e.elastic_bonds = elastic_bonds;
     return e;
+  }
+
+  double DemSystem::energy_scale(const EnergyLedger &e) const
+  {
+    // Absolute floor: 1/2 m (1e-6 R / dt_c)^2 per particle, i.e. a 1e-6 R deflection of its
+    // stiffest springs. Below it the balance is round-off (a sample at rest); above it an unstable
+    // step grows exponentially.
+    double floor = 0;
+    if (dt_critical_ > 0)
+      for (Index p = 0; p < particles.size(); ++p)
+      {
+        const double v = 1e-6 * particles.radius[p] / dt_critical_;
+        floor += 0.5 * particles.mass[p] * v * v;
+      }
+    return std::max({std::abs(initial_balance), e.kinetic + e.elastic_contacts + e.elastic_bonds,
+                     std::abs(e.external_work), e.dissipated(), std::abs(e.gravity_potential), floor});
   }
 
   void DemSystem::check_stability()
   {
     const EnergyLedger e = energy();
     const double drift = std::abs(e.balance() - initial_balance);
-    // Absolute floor: the energy of every particle moving by 1e-6 of its radius per critical time
-    // step, 1/2 m (1e-6 R / dt_c)^2, i.e. of a 1e-6 R deflection of its stiffest springs. Below it
-    // the balance is round-off (a sample at rest), above it an unstable step grows exponentially.
-    double floor = 0;
-    for (Index p = 0; p < particles.size(); ++p)
-    {
-      const double v = 1e-6 * particles.radius[p] / dt_critical_;
-      floor += 0.5 * particles.mass[p] * v * v;
-    }
-    const double scale = std::max({std::abs(initial_balance), e.kinetic + e.elastic_contacts + e.elastic_bonds,
-                                   std::abs(e.external_work), e.dissipated(), std::abs(e.gravity_potential), floor});
+    const double scale = energy_scale(e);
     if (!std::isfinite(e.balance()) || (drift > 0 && drift > settings.energy_drift_tolerance * scale))
     {
       std::ostringstream message;

@@ -81,8 +81,29 @@ namespace anticrack::dem
     /// stepping (and again after changing particles, bonds or clumps by hand).
     void initialise();
 
-    /// Re-establishes derived data after a checkpoint has been loaded (no change of state).
+    /// Re-establishes derived data after a checkpoint has been loaded (no change of state): the
+    /// pair-to-bond map and the incidence lists are rebuilt from the loaded lists, the neighbour
+    /// list is not (its reference positions come with the checkpoint), so the run continues bit for
+    /// bit as if it had never stopped.
     void resume();
+
+    /// Positions at the last neighbour-list build and the critical step of the last evaluation:
+    /// run state that checkpoints carry (see resume()).
+    [[nodiscard]] const std::vector<Vec3> &neighbor_reference_positions() const
+    {
+      return neighbor_list_.reference_positions();
+    }
+    void restore_neighbor_reference_positions(std::vector<Vec3> positions)
+    {
+      neighbor_list_.restore_reference_positions(std::move(positions));
+    }
+    [[nodiscard]] double critical_time_step_estimate() const { return dt_critical_; }
+    void restore_critical_time_step_estimate(double dt_c) { dt_critical_ = dt_c; }
+
+    /// The energy scale the stability check compares the balance drift with: the largest of the
+    /// stored, exchanged and dissipated energies, floored by the energy of every particle moving by
+    /// 1e-6 of its radius per critical step (below that the balance is round-off).
+    [[nodiscard]] double energy_scale(const EnergyLedger &e) const;
 
     void step();
     /// Runs n steps; `observer(step_count)` is called after every step when given.

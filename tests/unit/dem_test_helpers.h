@@ -1,5 +1,5 @@
 // Shared set-up for the DEM physics tests: materials, two-particle systems with prescribed motion,
-// closed-form bond constants (PHYSICS.md §1.2) and small comparison helpers. Everything a test checks
+// bonded lattices, walls, closed-form bond constants (PHYSICS.md §1.2) and small comparison helpers. Everything a test checks
 // against is computed here from the formulas, never read back from the engine's own constants.
 #pragma once
 
@@ -71,6 +71,9 @@ namespace anticrack::dem::test
     [[nodiscard]] double bending_stiffness() const { return kn * inertia; } // N m/rad
   };
 
+  /// Energy 1/2 F^2 / k stored by a linear spring of stiffness k under the load F (force or moment).
+  inline double spring_energy(double load, double stiffness) { return 0.5 * load * load / stiffness; }
+
   inline BondClosedForm bond_closed_form(const BondParameters &p, double ri, double rj)
   {
     BondClosedForm c;
@@ -139,9 +142,16 @@ namespace anticrack::dem::test
     s.settings.energy_drift_tolerance = inf;
   }
 
+  /// A bonded pair and the closed-form constants of its bond.
+  struct BondedPair
+  {
+    Pair pair;
+    BondClosedForm closed_form;
+  };
+
   /// A touching bonded pair in an open box, both particles prescribed at rest, initialised.
-  /// Returns the pair; the bond is s.bonds[0] with i < j.
-  inline Pair make_bonded_pair(DemSystem &s, const PairSpec &spec, const BondSpec &bond, double dt)
+  /// Returns the pair (the bond is s.bonds[0] with i < j) and the bond's closed-form constants.
+  inline BondedPair make_bonded_pair(DemSystem &s, const PairSpec &spec, const BondSpec &bond, double dt)
   {
     s.domain = open_box();
     s.materials.add(bonded_material(bond, spec.density));
@@ -158,7 +168,72 @@ namespace anticrack::dem::test
     prescribe(s, p.j, Vec3::Zero());
     kinematic_settings(s, dt);
     s.initialise();
-    return p;
+    return {p, bond_closed_form(s.materials[0].bond, p.ri, p.rj)};
+  }
+
+  /// Bonds of tensile strength sigma_c and cohesion c [Pa], friction angle phi [rad], and the
+  /// default stiffness of BondSpec.
+  inline BondSpec bond_strengths(double tensile_strength, double cohesion, double friction_angle = 0.0)
+  {
+    BondSpec b;
+    b.tensile_strength = tensile_strength;
+    b.cohesion = cohesion;
+    b.friction_angle = friction_angle;
+    return b;
+  }
+
+  /// An n x n x n simple-cubic lattice of touching spheres (R = 1 mm, spacing 2 mm) of material
+  /// `mat` in an open box, centred on the z axis and standing on z = 0, with random initial
+  /// velocities up to `velocity_amplitude` per component (from `seed`); touching pairs are bonded
+  /// (gap tolerance 1e-6). Returns the number of bonds made, 3 n^2 (n - 1).
+  inline Index add_bonded_block(DemSystem &s, const Material &mat, Index n, double velocity_amplitude = 0,
+                                std::uint64_t seed = 1)
+  {
+    s.domain = open_box();
+    s.materials.add(mat);
+    LatticeSpec lat;
+    lat.cells = {n, n, n};
+    lat.radius = 1e-3;
+    lat.spacing = 2e-3;
+    lat.origin = Vec3(-0.5 * n * lat.spacing, -0.5 * n * lat.spacing, 0.0);
+    lat.velocity_amplitude = velocity_amplitude;
+    lat.seed = seed;
+    add_simple_cubic_lattice(s, lat);
+    return s.bond_touching_pairs(BondingRule{1e-6});
+  }
+
+  /// A planar wall through `point` with unit `normal` pointing to the particle side, the sphere-wall
+  /// `contact` law, and its `control` starting at `velocity`.
+  inline Wall make_wall(const std::string &name, const Vec3 &normal, const Vec3 &point = Vec3::Zero(),
+                        const ContactParameters &contact = {}, WallControl control = WallControl::fixed,
+                        const Vec3 &velocity = Vec3::Zero())
+  {
+    Wall w;
+    w.name = name;
+    w.normal = normal;
+    w.point = point;
+    w.contact = contact;
+    w.control = control;
+    w.velocity = velocity;
+    return w;
+  }
+
+  /// The fixed wall z = 0 facing up, named "floor".
+  inline Wall floor_wall(const ContactParameters &contact = {})
+  {
+    return make_wall("floor", Vec3::UnitZ(), Vec3::Zero(), contact);
+  }
+
+  /// Linear sphere-wall contact law of the wall tests: E_c = 1e8 Pa, kappa = 2, no dashpots.
+  inline ContactParameters wall_contact(double friction)
+  {
+    ContactParameters c;
+    c.law = ContactLaw::linear;
+    c.contact_modulus = 1e8;
+    c.stiffness_ratio = 2.0;
+    c.friction = friction;
+    c.damping_ratio = 0.0;
+    return c;
   }
 
   /// |a - b| / scale, for readable EXPECT_LE with a stated tolerance.

@@ -111,36 +111,18 @@ TEST(Clumps, OffCentreContactRotatesFreeClumpButNotLockedOne)
 TEST(Walls, ServoWallReachesTargetStress)
 {
   DemSystem s;
-  s.domain = open_box();
   BondSpec bond;
   bond.modulus = 1e9;
   bond.stiffness_ratio = 3.0;
-  Material mat = bonded_material(bond);
-  s.materials.add(mat);
-  LatticeSpec lat;
-  lat.cells = {3, 3, 3};
-  lat.radius = 1e-3;
-  lat.spacing = 2e-3;
-  lat.origin = Vec3(-3e-3, -3e-3, 0.0);
-  add_simple_cubic_lattice(s, lat);
-  ASSERT_EQ(s.bond_touching_pairs(BondingRule{1e-6}), 54);
+  const Material mat = bonded_material(bond);
+  ASSERT_EQ(add_bonded_block(s, mat, 3), 54);
 
   const double r = 1e-3, area = 36e-6, target = 1e5;
-  Wall floor;
-  floor.name = "floor";
-  floor.normal = Vec3::UnitZ();
-  floor.contact = mat.contact;
-  Wall top;
-  top.name = "top";
-  top.normal = -Vec3::UnitZ();
-  top.point = Vec3(0, 0, 6e-3);
-  top.control = WallControl::servo;
-  top.contact = mat.contact;
+  Wall top = make_wall("top", -Vec3::UnitZ(), Vec3(0, 0, 6e-3), mat.contact, WallControl::servo);
   top.target_stress = target;
   top.area = area;
   top.max_speed = 0.05;
-  s.walls.push_back(floor);
-  s.walls.push_back(top);
+  s.walls = {floor_wall(mat.contact), top};
   s.settings.local_damping = 0.7;
   s.initialise();
 

@@ -10,28 +10,6 @@ using namespace anticrack::dem::test;
 
 namespace
 {
-  Wall floor_wall(const ContactParameters &c)
-  {
-    Wall w;
-    w.name = "floor";
-    w.normal = Vec3::UnitZ();
-    w.point = Vec3::Zero();
-    w.control = WallControl::fixed;
-    w.contact = c;
-    return w;
-  }
-
-  ContactParameters wall_contact(double friction)
-  {
-    ContactParameters c;
-    c.law = ContactLaw::linear;
-    c.contact_modulus = 1e8;
-    c.stiffness_ratio = 2.0;
-    c.friction = friction;
-    c.damping_ratio = 0.0;
-    return c;
-  }
-
   Material plain_material(double density = 1e4)
   {
     Material m;

@@ -188,12 +188,10 @@ TEST(EnergyBalance, InitialOverlapsAreCounted)
     DemSystem s;
     s.domain = open_box();
     s.materials.add(Material{});
-    Wall floor;
-    floor.name = "floor";
-    floor.normal = Vec3::UnitZ();
-    floor.contact.contact_modulus = 1e8;
-    s.walls.push_back(floor);
-    const double kn = floor.contact.contact_modulus * M_PI * r;
+    ContactParameters contact;
+    contact.contact_modulus = 1e8;
+    s.walls.push_back(floor_wall(contact));
+    const double kn = contact.contact_modulus * M_PI * r;
     const double m = sphere_mass(r, density);
     const double delta = m * g / kn;
     s.particles.add_sphere(Vec3(0, 0, r - delta), r, density, 0);
@@ -241,15 +239,14 @@ TEST(EnergyBalance, InitialOverlapsAreCounted)
 TEST(EnergyBalance, PrescribedVelocityWorkIsBooked)
 {
   DemSystem s;
-  const Pair p = make_bonded_pair(s, PairSpec{}, BondSpec{}, 1e-7);
+  const auto [p, cf] = make_bonded_pair(s, PairSpec{}, BondSpec{}, 1e-7);
   s.settings.energy_drift_tolerance = 0.25; // restore the default check for this test
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
   const Index k = 1000;
   prescribe(s, p.j, 0.01 * p.normal);
   s.initialise();
   EXPECT_NO_THROW(s.run(k));
   const double f = cf.normal_stiffness() * k * 0.01 * 1e-7;
-  const double stored = 0.5 * f * f / cf.normal_stiffness();
+  const double stored = spring_energy(f, cf.normal_stiffness());
   const EnergyLedger e = s.energy();
   EXPECT_LE(rel(e.elastic_bonds, stored, stored), 1e-9);
   EXPECT_LE(rel(e.external_work, stored, stored), 2.0 / k);
@@ -269,12 +266,7 @@ TEST(EnergyBalance, FrictionBookedWhenTheCoulombCapShrinks)
   s.domain = open_box();
   s.materials.add(Material{});
   const double r = 1e-3, delta0 = 2e-6, delta1 = 1e-6, dt = 1e-7;
-  Wall floor;
-  floor.name = "floor";
-  floor.normal = Vec3::UnitZ();
-  floor.contact.contact_modulus = 1e8;
-  floor.contact.stiffness_ratio = 2.0;
-  floor.contact.friction = 0.4;
+  const Wall floor = floor_wall(wall_contact(0.4));
   s.walls.push_back(floor);
   const Index p = s.particles.add_sphere(Vec3(0, 0, r - delta0), r, 1e4, 0);
   prescribe(s, p, Vec3(0.02, 0, 0)); // 2e-9 m per step
@@ -374,23 +366,9 @@ TEST(EnergyBalance, DashpotDissipationConvergesAtSecondOrder)
 TEST(EnergyBalance, DampingAndBreakageAreBooked)
 {
   DemSystem s;
-  s.domain = open_box();
-  BondSpec bond;
-  bond.tensile_strength = 2e5;
-  bond.cohesion = 2e5;
-  bond.friction_angle = 0.3;
-  Material mat = bonded_material(bond);
+  Material mat = bonded_material(bond_strengths(2e5, 2e5, 0.3));
   mat.contact.damping_ratio = 0.5;
-  s.materials.add(mat);
-  LatticeSpec lat;
-  lat.cells = {4, 4, 4};
-  lat.radius = 1e-3;
-  lat.spacing = 2e-3;
-  lat.origin = Vec3(-4e-3, -4e-3, 0.0);
-  lat.velocity_amplitude = 0.01;
-  lat.seed = 3;
-  add_simple_cubic_lattice(s, lat);
-  ASSERT_EQ(s.bond_touching_pairs(BondingRule{1e-6}), 3 * 4 * 4 * 3);
+  ASSERT_EQ(add_bonded_block(s, mat, 4, 0.01, 3), 3 * 4 * 4 * 3); // velocities up to 0.01 m/s, seed 3
   for (Index p = 0; p < s.particles.size(); ++p)
   {
     const double z = s.particles.position[p].z();

@@ -24,10 +24,7 @@ namespace
   double make_free_bonded_pair(DemSystem &s)
   {
     s.domain = open_box();
-    BondSpec bond;
-    bond.tensile_strength = 1e300;
-    bond.cohesion = 1e300;
-    s.materials.add(bonded_material(bond));
+    s.materials.add(bonded_material(bond_strengths(1e300, 1e300)));
     const Pair p = add_pair(s, PairSpec{});
     EXPECT_EQ(s.bond_touching_pairs(BondingRule{1e-6}), 1);
     s.particles.velocity[p.i] = Vec3(-0.01, 0.004, 0);

@@ -65,6 +65,15 @@ namespace
     }
   }
 
+  /// The polydisperse pair of these tests: R_i = 1 mm, R_j = 0.6 mm.
+  PairSpec polydisperse_pair()
+  {
+    PairSpec spec;
+    spec.ri = 1e-3;
+    spec.rj = 0.6e-3;
+    return spec;
+  }
+
   Vec3 rotate_about(const Vec3 &v, const Vec3 &axis, double angle)
   {
     return Eigen::AngleAxisd(angle, axis.normalized()) * v;
@@ -82,10 +91,8 @@ namespace
 TEST(ParallelBondElastic, PureTensionMatchesClosedForm)
 {
   DemSystem s;
-  PairSpec spec;
-  const Pair p = make_bonded_pair(s, spec, BondSpec{}, dt);
+  const auto [p, cf] = make_bonded_pair(s, PairSpec{}, BondSpec{}, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   // Constants stored with the bond follow R = lambda min R, kn = E/(Ri+Rj), ks = kn/kappa.
   EXPECT_LE(rel(s.bonds.radius[0], cf.radius, cf.radius), 1e-14);
@@ -121,7 +128,7 @@ TEST(ParallelBondElastic, PureTensionMatchesClosedForm)
   const auto [sigma, tau] = s.bonds.rim_stresses(0);
   EXPECT_LE(rel(sigma, -fn / cf.area, scale / cf.area), 1e-12);
   EXPECT_LE(std::abs(tau), 1e-12 * scale / cf.area);
-  const double energy = 0.5 * fn * fn / cf.normal_stiffness();
+  const double energy = spring_energy(fn, cf.normal_stiffness());
   EXPECT_LE(rel(s.bonds.elastic_energy(0), energy, energy), 1e-11);
 }
 
@@ -134,14 +141,10 @@ TEST(ParallelBondElastic, PureTensionMatchesClosedForm)
 TEST(ParallelBondElastic, PureShearPolydisperseMatchesClosedForm)
 {
   DemSystem s;
-  PairSpec spec;
-  spec.ri = 1e-3;
-  spec.rj = 0.6e-3;
   BondSpec bond;
   bond.radius_multiplier = 0.8;
-  const Pair p = make_bonded_pair(s, spec, bond, dt);
+  const auto [p, cf] = make_bonded_pair(s, polydisperse_pair(), bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
   EXPECT_LE(rel(s.bonds.radius[0], 0.8 * 0.6e-3, 0.6e-3), 1e-14);
 
   const Vec3 dir = Vec3::UnitY();
@@ -182,12 +185,8 @@ TEST(ParallelBondElastic, PureShearPolydisperseMatchesClosedForm)
 TEST(ParallelBondElastic, PureTwistPolydisperseMatchesClosedForm)
 {
   DemSystem s;
-  PairSpec spec;
-  spec.ri = 1e-3;
-  spec.rj = 0.6e-3;
-  const Pair p = make_bonded_pair(s, spec, BondSpec{}, dt);
+  const auto [p, cf] = make_bonded_pair(s, polydisperse_pair(), BondSpec{}, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   const double w = 1.0; // rad/s -> 1e-7 rad per step
   const Index k = 200;
@@ -210,7 +209,7 @@ TEST(ParallelBondElastic, PureTwistPolydisperseMatchesClosedForm)
   const double tau_expected = scale * cf.radius / cf.polar; // beta = 1
   EXPECT_LE(rel(tau, tau_expected, tau_expected), 1e-12);
   EXPECT_LE(std::abs(sigma), 1e-12 * tau_expected);
-  const double energy = 0.5 * mt * mt / cf.twist_stiffness();
+  const double energy = spring_energy(mt, cf.twist_stiffness());
   EXPECT_LE(rel(s.bonds.elastic_energy(0), energy, energy), 1e-11);
 }
 
@@ -221,14 +220,10 @@ TEST(ParallelBondElastic, PureTwistPolydisperseMatchesClosedForm)
 TEST(ParallelBondElastic, PureBendingPolydisperseMatchesClosedForm)
 {
   DemSystem s;
-  PairSpec spec;
-  spec.ri = 1e-3;
-  spec.rj = 0.6e-3;
   BondSpec bond;
   bond.moment_factor = 0.7;
-  const Pair p = make_bonded_pair(s, spec, bond, dt);
+  const auto [p, cf] = make_bonded_pair(s, polydisperse_pair(), bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   const double w = 1.0;
   const Index k = 200;
@@ -257,8 +252,8 @@ TEST(ParallelBondElastic, PureBendingPolydisperseMatchesClosedForm)
   const double sigma_expected = 0.7 * mscale * cf.radius / cf.inertia;
   EXPECT_LE(rel(sigma, sigma_expected, sigma_expected), 1e-12);
   EXPECT_LE(rel(tau, fscale / cf.area, fscale / cf.area), 1e-12);
-  const double energy = 0.5 * mscale * mscale / cf.bending_stiffness() +
-                        0.5 * fscale * fscale / cf.shear_stiffness();
+  const double energy = spring_energy(mscale, cf.bending_stiffness()) +
+                        spring_energy(fscale, cf.shear_stiffness());
   EXPECT_LE(rel(s.bonds.elastic_energy(0), energy, energy), 1e-11);
 }
 
@@ -272,12 +267,9 @@ TEST(ParallelBondElastic, PureBendingPolydisperseMatchesClosedForm)
 TEST(ParallelBondBreakage, TensileBreakAtTensileStrength)
 {
   DemSystem s;
-  BondSpec bond;
-  bond.tensile_strength = 1e6;
-  bond.cohesion = 1e7;
-  const Pair p = make_bonded_pair(s, PairSpec{}, bond, dt);
+  const BondSpec bond = bond_strengths(1e6, 1e7);
+  const auto [p, cf] = make_bonded_pair(s, PairSpec{}, bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   const double f_strength = bond.tensile_strength * cf.area;
   const double df = f_strength / 2000; // load increment per step
@@ -297,7 +289,7 @@ TEST(ParallelBondBreakage, TensileBreakAtTensileStrength)
   // The released energy is the stored energy 1/2 F^2/(kn A) at the break, with F (or the pair of
   // loads the step goes between) within one increment of the strength: within F_c dF / (kn A).
   const double released = s.energy().bond_breakage;
-  const double e_strength = 0.5 * f_strength * f_strength / cf.normal_stiffness();
+  const double e_strength = spring_energy(f_strength, cf.normal_stiffness());
   EXPECT_LE(std::abs(released - e_strength), 1.01 * f_strength * df / cf.normal_stiffness());
 }
 
@@ -307,15 +299,9 @@ TEST(ParallelBondBreakage, TensileBreakAtTensileStrength)
 TEST(ParallelBondBreakage, ShearBreakAtCohesion)
 {
   DemSystem s;
-  PairSpec spec;
-  spec.ri = 1e-3;
-  spec.rj = 0.6e-3;
-  BondSpec bond;
-  bond.tensile_strength = 1e9;
-  bond.cohesion = 1e6;
-  const Pair p = make_bonded_pair(s, spec, bond, dt);
+  const BondSpec bond = bond_strengths(1e9, 1e6);
+  const auto [p, cf] = make_bonded_pair(s, polydisperse_pair(), bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   const double f_strength = bond.cohesion * cf.area;
   const double df = f_strength / 2000;
@@ -338,13 +324,9 @@ TEST(ParallelBondBreakage, ShearBreakAtCohesion)
 TEST(ParallelBondBreakage, CompressionRaisesShearStrengthWithFrictionAngle)
 {
   DemSystem s;
-  BondSpec bond;
-  bond.tensile_strength = 1e6;
-  bond.cohesion = 1e6;
-  bond.friction_angle = M_PI / 6;
-  const Pair p = make_bonded_pair(s, PairSpec{}, bond, dt);
+  const BondSpec bond = bond_strengths(1e6, 1e6, M_PI / 6);
+  const auto [p, cf] = make_bonded_pair(s, PairSpec{}, bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
   const double tanphi = std::tan(bond.friction_angle);
 
   // Phase 1: compression to sigma0 in 1000 steps.
@@ -392,13 +374,10 @@ TEST(ParallelBondBreakage, BendingBreakDependsOnMomentFactor)
   {
     SCOPED_TRACE(testing::Message() << "beta = " << betas[c]);
     DemSystem s;
-    BondSpec bond;
-    bond.tensile_strength = 1e6;
-    bond.cohesion = 1e20;
+    BondSpec bond = bond_strengths(1e6, 1e20);
     bond.moment_factor = betas[c];
-    const Pair p = make_bonded_pair(s, PairSpec{}, bond, dt);
+    const auto [p, cf] = make_bonded_pair(s, PairSpec{}, bond, dt);
     ASSERT_EQ(s.bonds.size(), 1);
-    const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
     const double m_strength = bond.tensile_strength * cf.inertia / (betas[c] * cf.radius);
     const double m_strength_beta1 = bond.tensile_strength * cf.inertia / cf.radius;
@@ -427,12 +406,9 @@ TEST(ParallelBondBreakage, BendingBreakDependsOnMomentFactor)
 TEST(ParallelBondBreakage, BrokenBondNeverReformsAndContactStillActs)
 {
   DemSystem s;
-  BondSpec bond;
-  bond.tensile_strength = 1e6;
-  bond.cohesion = 1e7;
-  const Pair p = make_bonded_pair(s, PairSpec{}, bond, dt);
+  const BondSpec bond = bond_strengths(1e6, 1e7);
+  const auto [p, cf] = make_bonded_pair(s, PairSpec{}, bond, dt);
   ASSERT_EQ(s.bonds.size(), 1);
-  const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
   // Bonding an already bonded pair adds nothing.
   EXPECT_EQ(s.bond_touching_pairs(BondingRule{1e-3}), 0);
@@ -484,6 +460,23 @@ namespace
 {
   constexpr Index rotation_steps = 2000;
   constexpr double rotation_omega = (M_PI / 2) / (rotation_steps * dt); // 90 deg in 2000 steps
+
+  const char *rotation_case_name(int axis_case)
+  {
+    return axis_case == 0 ? "rotation about z (perpendicular)" : "rotation about the bond axis";
+  }
+
+  /// Turns the pair rigidly by 90 degrees in `rotation_steps` steps: about z through its midpoint
+  /// (axis_case 0, perpendicular to the bond) or about `bond_axis` through x_i (axis_case 1).
+  /// Returns the rotation axis.
+  Vec3 turn_pair_by_90_degrees(DemSystem &s, const Pair &p, int axis_case, const Vec3 &bond_axis)
+  {
+    const Vec3 xi0 = s.particles.position[p.i], xj0 = s.particles.position[p.j];
+    const Vec3 axis = axis_case == 0 ? Vec3::UnitZ() : bond_axis;
+    const Vec3 centre = axis_case == 0 ? Vec3(0.5 * (xi0 + xj0)) : xi0;
+    rotate_rigidly(s, {p.i, p.j}, rotation_omega * axis, centre, rotation_steps);
+    return axis;
+  }
 }
 
 // Unloaded pair rotated about an axis perpendicular to it, and about its own axis: all loads stay
@@ -493,20 +486,15 @@ TEST(ParallelBondObjectivity, RigidRotationLeavesUnloadedBondUnloaded)
 {
   for (int axis_case = 0; axis_case < 2; ++axis_case)
   {
-    SCOPED_TRACE(axis_case == 0 ? "rotation about z (perpendicular)" : "rotation about the bond axis");
+    SCOPED_TRACE(rotation_case_name(axis_case));
     DemSystem s;
-    PairSpec spec;
-    spec.ri = 1e-3;
-    spec.rj = 0.6e-3;
+    PairSpec spec = polydisperse_pair();
     spec.centre_i = Vec3(-0.8e-3, 0.1e-3, 0.2e-3);
-    const Pair p = make_bonded_pair(s, spec, BondSpec{}, dt);
+    const auto [p, cf] = make_bonded_pair(s, spec, BondSpec{}, dt);
     ASSERT_EQ(s.bonds.size(), 1);
-    const BondClosedForm cf = bond_closed_form(s.materials[0].bond, p.ri, p.rj);
 
     const Vec3 xi0 = s.particles.position[p.i], xj0 = s.particles.position[p.j];
-    const Vec3 axis = axis_case == 0 ? Vec3::UnitZ() : p.normal;
-    const Vec3 centre = axis_case == 0 ? Vec3(0.5 * (xi0 + xj0)) : xi0;
-    rotate_rigidly(s, {p.i, p.j}, rotation_omega * axis, centre, rotation_steps);
+    turn_pair_by_90_degrees(s, p, axis_case, p.normal);
 
     if (axis_case == 0)
     {
@@ -537,12 +525,9 @@ TEST(ParallelBondObjectivity, RigidRotationCarriesPreloadWithThePair)
 {
   for (int axis_case = 0; axis_case < 2; ++axis_case)
   {
-    SCOPED_TRACE(axis_case == 0 ? "rotation about z (perpendicular)" : "rotation about the bond axis");
+    SCOPED_TRACE(rotation_case_name(axis_case));
     DemSystem s;
-    PairSpec spec;
-    spec.ri = 1e-3;
-    spec.rj = 0.6e-3;
-    const Pair p = make_bonded_pair(s, spec, BondSpec{}, dt);
+    const Pair p = make_bonded_pair(s, polydisperse_pair(), BondSpec{}, dt).pair;
     ASSERT_EQ(s.bonds.size(), 1);
 
     // Pre-load in 200 steps: opening 2e-7 m, slides 1e-7 (y) and -0.6e-7 (z), spins.
@@ -555,12 +540,9 @@ TEST(ParallelBondObjectivity, RigidRotationCarriesPreloadWithThePair)
     ASSERT_GT(mb0.norm(), 0.0);
     ASSERT_NE(mt0, 0.0);
 
-    const Vec3 xi0 = s.particles.position[p.i], xj0 = s.particles.position[p.j];
-    const Vec3 b0 = xj0 - xi0;
+    const Vec3 b0 = s.particles.position[p.j] - s.particles.position[p.i];
     const Vec3 n0 = s.bonds.normal[0]; // normal of the last evaluation, which the loads belong to
-    const Vec3 axis = axis_case == 0 ? Vec3::UnitZ() : Vec3(b0.normalized());
-    const Vec3 centre = axis_case == 0 ? Vec3(0.5 * (xi0 + xj0)) : xi0;
-    rotate_rigidly(s, {p.i, p.j}, rotation_omega * axis, centre, rotation_steps);
+    const Vec3 axis = turn_pair_by_90_degrees(s, p, axis_case, b0.normalized());
 
     double angle = M_PI / 2;
     if (axis_case == 0)

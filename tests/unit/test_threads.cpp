@@ -27,37 +27,12 @@ namespace
     DemSystem::set_threads(threads);
     EXPECT_EQ(DemSystem::threads(), threads);
     DemSystem s;
-    s.domain = open_box();
-    BondSpec bond;
-    bond.tensile_strength = 3e5;
-    bond.cohesion = 3e5;
-    bond.friction_angle = 0.4;
-    Material mat = bonded_material(bond);
+    Material mat = bonded_material(bond_strengths(3e5, 3e5, 0.4));
     mat.contact.damping_ratio = 0.1;
-    s.materials.add(mat);
-    LatticeSpec lat;
-    lat.cells = {6, 6, 6};
-    lat.radius = 1e-3;
-    lat.spacing = 2e-3;
-    lat.origin = Vec3(-6e-3, -6e-3, 0.0);
-    lat.velocity_amplitude = 0.2;
-    lat.seed = 11;
-    add_simple_cubic_lattice(s, lat);
-    EXPECT_EQ(s.bond_touching_pairs(BondingRule{1e-6}), 3 * 6 * 6 * 5);
+    EXPECT_EQ(add_bonded_block(s, mat, 6, 0.2, 11), 3 * 6 * 6 * 5); // velocities up to 0.2 m/s, seed 11
 
-    Wall floor;
-    floor.name = "floor";
-    floor.normal = Vec3::UnitZ();
-    floor.contact = mat.contact;
-    Wall top;
-    top.name = "top";
-    top.normal = -Vec3::UnitZ();
-    top.point = Vec3(0, 0, 12e-3);
-    top.control = WallControl::velocity;
-    top.velocity = Vec3(0, 0, -0.3);
-    top.contact = mat.contact;
-    s.walls.push_back(floor);
-    s.walls.push_back(top);
+    s.walls = {floor_wall(mat.contact), make_wall("top", -Vec3::UnitZ(), Vec3(0, 0, 12e-3), mat.contact,
+                                                  WallControl::velocity, Vec3(0, 0, -0.3))};
     s.settings.gravity = Vec3(0, 0, -9.81);
     s.settings.local_damping = 0.1;
     s.initialise();

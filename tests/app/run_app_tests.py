@@ -1,0 +1,497 @@
+#!/usr/bin/python3
+"""End-to-end tests of the `anticrack` executable (registered with ctest by tests/app/CMakeLists.txt).
+
+Usage: run_app_tests.py --anticrack PATH --source-dir DIR --work-dir DIR CASE [CASE ...]
+       run_app_tests.py --list
+
+Every case writes tiny scenes derived from scenes/*.prm (small lattices, few steps) into
+WORK-DIR/<case>/, runs the executable there and checks its exit code, console and files. The
+case directory is removed when the case passes and kept for inspection when it fails.
+Exit code: 0 when every case passed, 1 otherwise.
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import traceback
+import xml.etree.ElementTree as ElementTree
+
+import h5py
+import numpy as np
+
+ANTICRACK = SOURCE = None  # set by main()
+CASES = {}
+
+# The tiny lattice of most cases: 4 x 3 x 5 spheres of R = 1 mm at spacing 2 mm, periodic in x
+# and y (distinct sizes, so that a mix-up of axes shows). Bonds: 3 nx ny nz - nx ny.
+LATTICE = (4, 3, 5)
+N_PARTICLES = LATTICE[0] * LATTICE[1] * LATTICE[2]
+N_BONDS = 3 * N_PARTICLES - LATTICE[0] * LATTICE[1]
+
+
+def case(function):
+    CASES[function.__name__] = function
+    return function
+
+
+class Failure(AssertionError):
+    pass
+
+
+def check(condition, message):
+    if not condition:
+        raise Failure(message)
+
+
+# --------------------------------------------------------------------------------------- scenes
+def edit_scene(text, changes, insert=None):
+    """Sets `changes` {"DEM/Sample/Lattice size": "4, 3, 5", ...} in a .prm text; every entry must
+    exist. `insert` {"DEM/Material": ["set X = 1"]} adds lines right after a subsection opens."""
+    lines, path, done = [], [], set()
+    for line in text.splitlines():
+        stripped = line.strip()
+        opening = re.match(r"subsection\s+(.*\S)\s*$", stripped)
+        if opening:
+            path.append(opening.group(1))
+        elif stripped == "end":
+            path.pop()
+        entry = re.match(r"(\s*)set\s+(.*?)\s*=\s*(.*)$", line)
+        if entry and "/".join(path + [entry.group(2)]) in changes:
+            key = "/".join(path + [entry.group(2)])
+            line = f"{entry.group(1)}set {entry.group(2)} = {changes[key]}"
+            done.add(key)
+        lines.append(line)
+        if opening and insert and "/".join(path) in insert:
+            lines += ["  " * len(path) + extra for extra in insert["/".join(path)]]
+            done.add("/".join(path))
+    missing = (set(changes) | set(insert or {})) - done
+    check(not missing, f"the example scene no longer has {sorted(missing)}; update run_app_tests.py")
+    return "\n".join(lines) + "\n"
+
+
+def walls_scene(steps, checkpoint=0, snapshot=None, history=50, velocity="10", insert=None, **changes):
+    """scenes/uniaxial_compression.prm on the tiny lattice. At 10 m/s the top wall breaks every bond
+    between steps ~500 and ~600 (a symmetric lattice fails layer by layer)."""
+    text = open(os.path.join(SOURCE, "scenes", "uniaxial_compression.prm")).read()
+    return edit_scene(text, {
+        "Output/History interval [steps]": str(history), "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": str(snapshot if snapshot is not None else steps),
+        "Output/Checkpoint interval [steps]": str(checkpoint),
+        "DEM/Steps": str(steps),
+        "DEM/Domain/Upper corner [m]": "0.008, 0.006, 0.010", "DEM/Sample/Lattice size": "4, 3, 5",
+        "DEM/Walls/z+/Velocity [m/s]": velocity, **changes}, insert)
+
+
+def clump_scene(steps, checkpoint=0, snapshot=None, history=50):
+    """scenes/mixed_mode_clump.prm on a 4 x 3 x 6 lattice: bottom layer fixed, top layer the clump,
+    loaded so fast (3e5 N/s on 48 mm^2) that bonds break progressively from step ~200 on and the
+    clump crosses the periodic face x = 8 mm near step 1150."""
+    text = open(os.path.join(SOURCE, "scenes", "mixed_mode_clump.prm")).read()
+    return edit_scene(text, {
+        "Output/History interval [steps]": str(history), "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": str(snapshot if snapshot is not None else steps),
+        "Output/Checkpoint interval [steps]": str(checkpoint), "DEM/Steps": str(steps),
+        "DEM/Domain/Upper corner [m]": "0.008, 0.006, 0.012", "DEM/Sample/Lattice size": "4, 3, 6",
+        "DEM/Boundary particles/Fix below [m]": "2e-3", "DEM/Boundary particles/Clump above [m]": "10e-3",
+        "DEM/Boundary particles/Clump force rate [N/s]": "3e5"})
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+# ------------------------------------------------------------------------------------- running
+def anticrack(*args, expect=0, cwd=None):
+    """Runs anticrack; checks the exit code; returns (stdout, stderr)."""
+    command = [ANTICRACK, *map(str, args)]
+    result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=300)
+    check(result.returncode == expect,
+          f"`{' '.join(command)}` exited with {result.returncode}, expected {expect}\n"
+          f"--- stdout\n{result.stdout}--- stderr\n{result.stderr}")
+    return result.stdout, result.stderr
+
+
+def read_history(directory):
+    with h5py.File(os.path.join(directory, "history.h5"), "r") as f:
+        return {name: (f[name][()], f[name].attrs.get("units")) for name in f}
+
+
+def read_snapshot(path):
+    data = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda name, item: data.__setitem__(name, item[()]) if isinstance(item, h5py.Dataset) else None)
+    return data
+
+
+def snapshot_path(directory, step):
+    return os.path.join(directory, "snapshots", f"snapshot_{step:06d}.h5")
+
+
+def compare_exactly(a, b, what, names=None):
+    """Bitwise equality (NaN equal to NaN) of two {name: array} maps."""
+    for name in names if names is not None else sorted(set(a) | set(b)):
+        check(name in a and name in b, f"{what}: {name} missing in one of the two")
+        x, y = np.asarray(a[name]), np.asarray(b[name])
+        same = x.shape == y.shape and (np.array_equal(x, y, equal_nan=True) if x.dtype.kind == "f"
+                                       else np.array_equal(x, y))
+        if not same and x.shape == y.shape and x.dtype.kind == "f":
+            raise Failure(f"{what}: {name} differs, max |difference| = {np.nanmax(np.abs(x - y)):.6g} "
+                          f"in {np.count_nonzero(x != y)} of {x.size} values")
+        check(same, f"{what}: {name} differs (shapes {x.shape} and {y.shape})")
+
+
+def files_of(directory):
+    """{relative path: sha256} of every file below `directory`."""
+    listing = {}
+    for root, _, names in os.walk(directory):
+        for name in names:
+            path = os.path.join(root, name)
+            with open(path, "rb") as f:
+                listing[os.path.relpath(path, directory)] = hashlib.sha256(f.read()).hexdigest()
+    return listing
+
+
+# ----------------------------------------------------------------------------------------- a
+@case
+def run_outputs(work):
+    """A tiny run: exit 0, summary.json, history.h5, snapshots and ParaView files are consistent."""
+    steps, snapshot, history = 300, 100, 50
+    scene = write(os.path.join(work, "tiny.prm"), walls_scene(steps, checkpoint=150, snapshot=snapshot,
+                                                              history=history, velocity="0.25"))
+    out = os.path.join(work, "run")
+    stdout, _ = anticrack("run", scene, "-o", out, "--threads", 1)
+    check("done: 300 steps" in stdout, f"no 'done: 300 steps' in the console output:\n{stdout}")
+
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    check(summary["status"] == "completed", f"summary.json status is {summary['status']!r}")
+    with open(scene, "rb") as f:
+        scene_sha256 = hashlib.sha256(f.read()).hexdigest()
+    hashes = summary["scene"]
+    check(hashes["file_sha256"] == scene_sha256,
+          f"summary.json scene.file_sha256 {hashes['file_sha256']} != sha256 of the scene {scene_sha256}")
+    for key in ("parameters_sha256", "resume_key_sha256"):
+        check(re.fullmatch(r"[0-9a-f]{64}", hashes.get(key, "")), f"summary.json scene.{key} = {hashes.get(key)!r}")
+    dem = summary["dem"]
+    check(dem["particles"] == N_PARTICLES, f"summary: {dem['particles']} particles, lattice has {N_PARTICLES}")
+    check(dem["bonds"] == N_BONDS, f"summary: {dem['bonds']} bonds, the periodic lattice has {N_BONDS}")
+    check(dem["intact_bonds"] + dem["broken_bonds_tension"] + dem["broken_bonds_shear"] == N_BONDS,
+          "summary: intact + broken bonds != bonds")
+    check(dem["steps"] == steps and dem["steps_requested"] == steps, f"summary: steps {dem['steps']}")
+    check(abs(dem["energy_balance_relative_error"]) < 0.01,
+          f"energy balance error {dem['energy_balance_relative_error']} of the energy scale")
+
+    # history.h5: every column, with units, one row per history interval plus the first.
+    h = read_history(out)
+    with h5py.File(os.path.join(out, "history.h5"), "r") as f:
+        check(f.attrs.get("parameters_sha256") == hashes["parameters_sha256"],
+              "history.h5 parameters_sha256 attribute differs from summary.json")
+    expected = {"time": "s", "step": "-", "dt": "s", "kinetic_energy": "J", "elastic_energy_contacts": "J",
+                "elastic_energy_bonds": "J", "gravity_potential_energy": "J", "dissipated_friction": "J",
+                "dissipated_viscous": "J", "dissipated_local_damping": "J", "dissipated_bond_breakage": "J",
+                "dissipated_energy": "J", "external_work": "J", "energy_balance_error": "J", "intact_bonds": "-",
+                "broken_bonds_tension": "-", "broken_bonds_shear": "-", "wall_z-_position": "m",
+                "wall_z-_normal_stress": "Pa", "wall_z+_position": "m", "wall_z+_normal_stress": "Pa"}
+    for name, unit in expected.items():
+        check(name in h, f"history.h5 has no column {name}; it has {sorted(h)}")
+        check(h[name][1] == unit, f"history.h5 {name}: units {h[name][1]!r}, expected {unit!r}")
+    check(all(u for _, u in h.values()), "a history.h5 column has no units attribute")
+    check(list(h["step"][0]) == list(range(0, steps + 1, history)), f"history.h5 steps {list(h['step'][0])}")
+    check(all(len(v) == len(h["step"][0]) for v, _ in h.values()), "history.h5 columns of different lengths")
+    check(np.all(np.diff(h["time"][0]) > 0), "history.h5 time does not increase")
+    check(h["intact_bonds"][0][0] == N_BONDS, "history.h5: not every bond intact at step 0")
+    stress = h["wall_z+_normal_stress"][0]
+    top = next(w for w in dem["walls"] if w["name"] == "z+")
+    check(stress[-1] > 0 and np.isclose(stress[-1], top["normal_stress_Pa"], rtol=1e-12),
+          "history.h5 wall_z+_normal_stress at the end disagrees with summary.json or is not compressive")
+
+    # Snapshots: every snapshot step, readable, with the lattice's particles and bonds.
+    snapshot_steps = list(range(0, steps + 1, snapshot))
+    found = sorted(os.listdir(os.path.join(out, "snapshots")))
+    check(found == [f"snapshot_{s:06d}.h5" for s in snapshot_steps], f"snapshots/ holds {found}")
+    for s in snapshot_steps:
+        data = read_snapshot(snapshot_path(out, s))
+        check(data["particles/position"].shape == (N_PARTICLES, 3),
+              f"snapshot {s}: particles/position has shape {data['particles/position'].shape}")
+        check(data["particles/radius"].shape == (N_PARTICLES,) and np.all(data["particles/radius"] == 1e-3),
+              f"snapshot {s}: radii")
+        check(data["bonds/state"].shape == (N_BONDS,), f"snapshot {s}: {data['bonds/state'].shape} bonds")
+        check(np.all(np.isfinite(data["particles/position"])), f"snapshot {s}: non-finite positions")
+    check(summary["outputs"]["snapshots_written"] == len(snapshot_steps), "summary: snapshots_written")
+
+    # ParaView: each .pvd lists exactly the .vtp files that exist, at increasing times.
+    paraview = os.path.join(out, "paraview")
+    for kind in ("particles", "bonds"):
+        root = ElementTree.parse(os.path.join(paraview, f"{kind}.pvd")).getroot()
+        sets = root.findall("./Collection/DataSet")
+        listed = [d.get("file") for d in sets]
+        on_disk = sorted(n for n in os.listdir(paraview) if n.startswith(kind + "_") and n.endswith(".vtp"))
+        check(sorted(listed) == on_disk == [f"{kind}_{s:06d}.vtp" for s in snapshot_steps],
+              f"{kind}.pvd lists {listed}, paraview/ has {on_disk}")
+        times = [float(d.get("timestep")) for d in sets]
+        check(times == sorted(times) and len(set(times)) == len(times), f"{kind}.pvd times {times}")
+        for name in listed:
+            piece = ElementTree.parse(os.path.join(paraview, name)).getroot().find("./PolyData/Piece")
+            count = int(piece.get("NumberOfPoints" if kind == "particles" else "NumberOfLines"))
+            check(count == (N_PARTICLES if kind == "particles" else N_BONDS), f"{name}: {count} points/lines")
+
+    with open(os.path.join(out, "checkpoint.json")) as f:
+        check(json.load(f)["step"] == steps, "checkpoint.json is not at the last step")
+
+
+# ----------------------------------------------------------------------------------------- b
+def expect_bad_input(work, scene, *needles):
+    """Exit 2, the message names the file and every needle, and -o DIR (and its parent) stays absent."""
+    out = os.path.join(work, "not_created", "run")
+    _, stderr = anticrack("run", scene, "-o", out, expect=2)
+    for needle in (scene, *needles):
+        check(needle in stderr, f"the error message does not name {needle!r}:\n{stderr}")
+    check(not os.path.exists(os.path.dirname(out)), f"{os.path.dirname(out)} was created for bad input")
+
+
+@case
+def bad_input_unknown_key(work):
+    """An entry that is not declared (a typo of `Poisson ratio`)."""
+    text = walls_scene(20, insert={"DEM/Material": ["set Poisson's ratio = 0.2"]})
+    expect_bad_input(work, write(os.path.join(work, "unknown.prm"), text), "Poisson's ratio")
+
+
+@case
+def bad_input_out_of_range(work):
+    """Values outside a pattern's range, and outside a range that only the validation knows."""
+    for name, changes, needles in [
+            ("damping", {"DEM/Integration/Local damping": "1.5"}, ["Local damping", "1.5"]),
+            ("steps", {"DEM/Steps": "0"}, ["Steps"]),
+            ("radius", {"DEM/Sample/Radius [m]": "1.2e-3"}, ["DEM/Sample/Radius [m]", "0.0012"]),
+            ("active", {"DEM/Walls/z+/Active": "maybe"}, ["Active", "maybe"])]:
+        expect_bad_input(work, write(os.path.join(work, f"{name}.prm"), walls_scene(20, **changes)), *needles)
+    # ... and on the command line.
+    out = os.path.join(work, "not_created", "run")
+    _, stderr = anticrack("run", write(os.path.join(work, "ok.prm"), walls_scene(20)), "-o", out,
+                          "--threads", -1, expect=2)
+    check("--threads" in stderr, f"the error message does not name --threads:\n{stderr}")
+    check(not os.path.exists(os.path.dirname(out)), "output created for --threads -1")
+
+
+@case
+def bad_input_missing_file(work):
+    """A scene file that does not exist, and a scene whose snapshot file does not exist."""
+    missing = os.path.join(work, "no_such_scene.prm")
+    out = os.path.join(work, "not_created", "run")
+    _, stderr = anticrack("run", missing, "-o", out, expect=2)
+    check(missing in stderr, f"the error message does not name {missing}:\n{stderr}")
+    check(not os.path.exists(os.path.dirname(out)), "output created for a missing scene file")
+    _, stderr = anticrack("check", missing, expect=2)
+    check(missing in stderr, f"`check`: the error message does not name {missing}:\n{stderr}")
+
+    snapshot = os.path.join(work, "no_such_snapshot.h5")
+    text = walls_scene(20, **{"DEM/Sample/Type": "snapshot"},
+                       insert={"DEM/Sample": [f"set Snapshot file = {snapshot}"]})
+    expect_bad_input(work, write(os.path.join(work, "snapshot.prm"), text), "DEM/Sample/Snapshot file", snapshot)
+    write(snapshot, "not HDF5\n")
+    expect_bad_input(work, write(os.path.join(work, "snapshot.prm"), text), "DEM/Sample/Snapshot file", snapshot)
+
+
+@case
+def bad_input_existing_run(work):
+    """An earlier run is neither overwritten without --overwrite nor resumed with another model."""
+    scene = write(os.path.join(work, "a.prm"), walls_scene(40, checkpoint=20, velocity="0.25"))
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out, "--threads", 1)
+    before = files_of(out)
+    _, stderr = anticrack("run", scene, "-o", out, expect=2)
+    check("--overwrite" in stderr and out in stderr, f"refusal of an existing run does not explain:\n{stderr}")
+    other = write(os.path.join(work, "b.prm"), walls_scene(80, checkpoint=20, velocity="0.25",
+                                                           **{"DEM/Material/Density [kg/m^3]": "2e4"}))
+    _, stderr = anticrack("run", other, "-o", out, "--resume", expect=2)
+    check("different scene" in stderr and other in stderr, f"resume with another model:\n{stderr}")
+    check(files_of(out) == before, "a refused run changed the files of the earlier run")
+    empty = os.path.join(work, "no_run_here")
+    anticrack("run", scene, "-o", empty, "--resume", expect=2)
+    check(not os.path.exists(empty), "--resume without a checkpoint created the output directory")
+
+
+# ----------------------------------------------------------------------------------------- c
+def resume_case(work, make_scene, steps):
+    """Straight to `steps` vs half-way then --resume: final snapshot, history, summary identical."""
+    half = steps // 2
+    full = write(os.path.join(work, "full.prm"), make_scene(steps, checkpoint=half, snapshot=half))
+    first = write(os.path.join(work, "first_half.prm"), make_scene(half, checkpoint=half, snapshot=half))
+    straight, split = os.path.join(work, "straight"), os.path.join(work, "split")
+    anticrack("run", full, "-o", straight, "--threads", 1)
+    anticrack("run", first, "-o", split, "--threads", 1)
+    stdout, _ = anticrack("run", full, "-o", split, "--resume", "--threads", 1)
+    check(f"resuming at step {half}" in stdout, f"the resumed run does not say where it resumes:\n{stdout}")
+
+    a, b = read_snapshot(snapshot_path(straight, steps)), read_snapshot(snapshot_path(split, steps))
+    compare_exactly(a, b, "final snapshot, straight vs resumed", ["particles/position"])
+    compare_exactly(a, b, "final snapshot, straight vs resumed")
+    ha, hb = read_history(straight), read_history(split)
+    compare_exactly({k: v for k, (v, _) in ha.items()}, {k: v for k, (v, _) in hb.items()},
+                    "history.h5, straight vs resumed")
+    sa, sb = (json.load(open(os.path.join(d, "summary.json"))) for d in (straight, split))
+    for key in ("particles", "bonds", "intact_bonds", "broken_bonds_tension", "broken_bonds_shear", "steps",
+                "final_time_s", "energies_J", "energy_balance_error_J"):
+        check(sa["dem"][key] == sb["dem"][key], f"summary.json dem.{key}: {sa['dem'][key]} vs {sb['dem'][key]}")
+    check(sb["resumed_from_step"] == half, f"summary.json resumed_from_step = {sb['resumed_from_step']}")
+    check(sa["scene"]["resume_key_sha256"] == sb["scene"]["resume_key_sha256"], "resume keys differ")
+    checkpoint_info = json.load(open(os.path.join(split, "checkpoint.json")))
+    check(checkpoint_info["step"] == steps, "checkpoint.json after the resumed run is not at the last step")
+    for kind in ("particles", "bonds"):
+        listed = [d.get("file") for d in
+                  ElementTree.parse(os.path.join(split, "paraview", f"{kind}.pvd")).getroot().iter("DataSet")]
+        check(listed == [f"{kind}_{s:06d}.vtp" for s in (0, half, steps)], f"resumed {kind}.pvd lists {listed}")
+    bonds = a["bonds/state"]
+    return np.count_nonzero(bonds == 0), bonds.size
+
+
+@case
+def resume_walls(work):
+    """Walls scene, 1100 steps; bonds break from step ~500 on, across the resume at step 550."""
+    intact, total = resume_case(work, walls_scene, 1100)
+    check(intact < total, "no bond broke: the case no longer exercises breakage across the resume")
+
+
+@case
+def resume_clump(work):
+    """Clump scene, 1600 steps; breakage spans the resume at 800, the clump crosses x = 8 mm later."""
+    intact, total = resume_case(work, clump_scene, 1600)
+    check(0 < intact < total, "the clump case no longer breaks part of its bonds")
+
+
+@case
+def checkpoint_invariance(work):
+    """Writing checkpoints is output: a run with checkpoints every 150 steps ends exactly where one
+    without checkpoints does (an interrupted run resumes from a checkpoint at any step)."""
+    for label, make_scene, steps in (("walls", walls_scene, 600), ("clump", clump_scene, 600)):
+        runs = {}
+        for checkpoint in (0, 150):
+            runs[checkpoint] = os.path.join(work, f"{label}_{checkpoint}")
+            scene = write(runs[checkpoint] + ".prm", make_scene(steps, checkpoint=checkpoint))
+            anticrack("run", scene, "-o", runs[checkpoint], "--threads", 1)
+        compare_exactly(read_snapshot(snapshot_path(runs[0], steps)), read_snapshot(snapshot_path(runs[150], steps)),
+                        f"{label}: final snapshot without vs with checkpoints", ["particles/position"])
+
+
+# ----------------------------------------------------------------------------------------- d
+@case
+def threads(work):
+    """--threads 1 and --threads 2 give the same final state (energies up to summation order)."""
+    for label, text, steps in (("walls", walls_scene(800, **{"DEM/Sample/Lattice size": "8, 6, 5",
+                                                                "DEM/Domain/Upper corner [m]": "0.016, 0.012, 0.010"}),
+                                 800),
+                                ("clump", clump_scene(1000), 1000)):
+        scene = write(os.path.join(work, f"{label}.prm"), text)
+        runs = [os.path.join(work, f"{label}_{t}") for t in (1, 2)]
+        for t, out in zip((1, 2), runs):
+            stdout, _ = anticrack("run", scene, "-o", out, "--threads", t)
+            check(f"; {t} threads" in stdout, f"--threads {t} not in effect:\n{stdout}")
+        a, b = (read_snapshot(snapshot_path(out, steps)) for out in runs)
+        compare_exactly(a, b, f"{label}: final snapshot, 1 vs 2 threads", ["particles/position"])
+        compare_exactly(a, b, f"{label}: final snapshot, 1 vs 2 threads",
+                        [k for k in a if k.startswith(("particles/", "bonds/"))])
+        ha, hb = read_history(runs[0]), read_history(runs[1])
+        for name, (x, unit) in ha.items():
+            y = hb[name][0]
+            if unit == "J":  # OpenMP reductions sum in another order
+                scale = max(np.abs(x).max(), np.abs(y).max(), 1e-300)
+                check(np.abs(x - y).max() <= 1e-9 * scale, f"{label}: history {name} differs beyond round-off")
+            else:
+                compare_exactly({name: x}, {name: y}, f"{label}: history, 1 vs 2 threads")
+
+
+# ----------------------------------------------------------------------------------------- e
+@case
+def check_and_params(work):
+    """`check` accepts every scenes/*.prm and writes nothing; `params --format prm` is a valid scene."""
+    names = sorted(n for n in os.listdir(os.path.join(SOURCE, "scenes")) if n.endswith(".prm"))
+    check({"uniaxial_compression.prm", "mixed_mode_clump.prm"} <= set(names), f"scenes/ holds {names}")
+    scenes = [os.path.join(SOURCE, "scenes", n) for n in names]
+    cwd = os.path.join(work, "cwd")
+    os.makedirs(cwd)
+    scenes_before = files_of(os.path.join(SOURCE, "scenes"))
+    for scene in scenes:
+        for extra in ((), ("--threads", "2")):
+            stdout, _ = anticrack("check", scene, *extra, cwd=cwd)
+            check("The scene is valid." in stdout, f"`check {scene}` does not say the scene is valid:\n{stdout}")
+    check(os.listdir(cwd) == [], f"`check` wrote into the working directory: {os.listdir(cwd)}")
+    check(files_of(os.path.join(SOURCE, "scenes")) == scenes_before, "`check` changed scenes/")
+
+    stdout, _ = anticrack("params", "--format", "prm")
+    listing = write(os.path.join(work, "params.prm"), stdout)
+    entries = len(re.findall(r"^\s*set ", stdout, re.M))
+    check(entries > 50, f"`params --format prm` lists only {entries} entries")
+    stdout, _ = anticrack("check", listing, cwd=cwd)
+    check("The scene is valid." in stdout, f"`params --format prm` is not a valid scene:\n{stdout}")
+    check(os.listdir(cwd) == [], "`check` of the parameter listing wrote files")
+    stdout, _ = anticrack("params")
+    check(stdout == open(listing).read(), "`params` without --format differs from --format prm")
+    json.loads(anticrack("params", "--format", "json")[0])
+
+
+# ----------------------------------------------------------------------------------------- f
+@case
+def bench(work):
+    """`bench dem` prints exactly one JSON line with the counts of a 4^3 periodic lattice."""
+    stdout, _ = anticrack("bench", "dem", "--lattice", 4, "--steps", 20, "--threads", 1, cwd=work)
+    lines = stdout.splitlines()
+    check(len(lines) == 1, f"`bench dem` printed {len(lines)} lines on stdout:\n{stdout}")
+    line = json.loads(lines[0])
+    expected = {"particles": 64, "bonds": 192, "steps": 20, "threads": 1}
+    for key, value in expected.items():
+        check(line.get(key) == value, f"bench: {key} = {line.get(key)!r}, expected {value}")
+    wall = line.get("wall_s")
+    check(isinstance(wall, float) and wall > 0, f"bench: wall_s = {wall!r}")
+    for key, count in (("particle_steps_per_s", 64), ("bond_steps_per_s", 192)):
+        check(isinstance(line.get(key), float) and np.isclose(line[key], count * 20 / wall, rtol=1e-9),
+              f"bench: {key} = {line.get(key)!r}, expected {count} x 20 / wall_s")
+    check(os.listdir(work) == [], f"`bench dem` wrote files: {os.listdir(work)}")
+    stdout, _ = anticrack("bench", "dem", "--lattice", 0, "--steps", 20, expect=2)
+    check(stdout == "", f"`bench dem --lattice 0` printed on stdout: {stdout!r}")
+
+
+# -------------------------------------------------------------------------------------- driver
+def main():
+    global ANTICRACK, SOURCE
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--anticrack", help="the built anticrack executable")
+    parser.add_argument("--source-dir", help="the source tree (for scenes/)")
+    parser.add_argument("--work-dir", help="where the cases write their files")
+    parser.add_argument("--list", action="store_true", help="list the cases")
+    parser.add_argument("cases", nargs="*", metavar="CASE", help="one of --list")
+    args = parser.parse_args()
+    if args.list:
+        for name, function in CASES.items():
+            print(f"{name:24s} {function.__doc__.splitlines()[0]}")
+        return 0
+    if not (args.anticrack and args.source_dir and args.work_dir and args.cases):
+        parser.error("--anticrack, --source-dir, --work-dir and at least one CASE are needed")
+    unknown = [c for c in args.cases if c not in CASES]
+    if unknown:
+        parser.error(f"unknown cases {unknown}; --list shows them")
+    ANTICRACK, SOURCE = os.path.abspath(args.anticrack), os.path.abspath(args.source_dir)
+    failed = 0
+    for name in args.cases:
+        work = os.path.join(os.path.abspath(args.work_dir), name)
+        shutil.rmtree(work, ignore_errors=True)
+        os.makedirs(work)
+        try:
+            CASES[name](work)
+        except Exception as e:  # noqa: BLE001 (report every kind of failure of the case)
+            failed += 1
+            detail = str(e) if isinstance(e, Failure) else traceback.format_exc()
+            print(f"FAIL {name}: {detail}\n(files kept in {work})")
+            continue
+        shutil.rmtree(work)
+        print(f"ok   {name}")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
