@@ -1,7 +1,7 @@
 // ParaView output: particles and bonds as VTK XML PolyData (ASCII) and a .pvd time series
 // (formats in io_vtp.h). Numbers are written with std::to_chars, the shortest decimal form that
 // reads back as the same double, independent of the locale. One generic DataArray writer serves
-// every array; element types map to VTK types through VtkType.
+// every array and derives the VTK type from the element type.
 #include "dem/io_vtp.h"
 
 #include <charconv>
@@ -14,45 +14,13 @@
 #include <string_view>
 #include <system_error>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 namespace anticrack::dem::io
 {
   namespace
   {
-    template <class T>
-    struct VtkType;
-    template <>
-    struct VtkType<double>
-    {
-      static constexpr const char *name = "Float64";
-      static constexpr int components = 1;
-    };
-    template <>
-    struct VtkType<int>
-    {
-      static constexpr const char *name = "Int32";
-      static constexpr int components = 1;
-    };
-    template <>
-    struct VtkType<Index>
-    {
-      static constexpr const char *name = "Int64";
-      static constexpr int components = 1;
-    };
-    template <>
-    struct VtkType<std::uint8_t>
-    {
-      static constexpr const char *name = "UInt8";
-      static constexpr int components = 1;
-    };
-    template <>
-    struct VtkType<Vec3>
-    {
-      static constexpr const char *name = "Float64";
-      static constexpr int components = 3;
-    };
-
     /// Writes one number in its shortest round-trip decimal form.
     template <class Number>
     void put_number(std::ostream &out, Number value)
@@ -62,30 +30,33 @@ namespace anticrack::dem::io
       out.write(text, end - text);
     }
 
-    void put_value(std::ostream &out, double value) { put_number(out, value); }
-    void put_value(std::ostream &out, int value) { put_number(out, value); }
-    void put_value(std::ostream &out, Index value) { put_number(out, value); }
-    void put_value(std::ostream &out, std::uint8_t value) { put_number(out, static_cast<int>(value)); }
-    void put_value(std::ostream &out, const Vec3 &value)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        put_number(out, value[a]);
-        out.put(a < 2 ? ' ' : '\n');
-      }
-    }
-
-    /// <DataArray> with one element (scalar or Vec3) per line.
+    /// <DataArray> with one element (scalar or Vec3) per line. The VTK type follows from the scalar
+    /// type: Float64 (double, Vec3), Int32 (int), Int64 (Index), UInt8 (std::uint8_t).
     template <class T>
     void put_data_array(std::ostream &out, std::string_view name, const std::vector<T> &values)
     {
-      out << "<DataArray type=\"" << VtkType<T>::name << "\" Name=\"" << name << "\" NumberOfComponents=\""
-          << VtkType<T>::components << "\" format=\"ascii\">\n";
+      constexpr bool is_vec3 = std::is_same_v<T, Vec3>;
+      using Scalar = std::conditional_t<is_vec3, double, T>;
+      static_assert(std::is_arithmetic_v<Scalar>, "no VTK type for this element type");
+      out << "<DataArray type=\""
+          << (std::is_floating_point_v<Scalar> ? "Float" : std::is_signed_v<Scalar> ? "Int" : "UInt")
+          << 8 * sizeof(Scalar) << "\" Name=\"" << name << "\" NumberOfComponents=\"" << (is_vec3 ? 3 : 1)
+          << "\" format=\"ascii\">\n";
       for (const T &value : values)
       {
-        put_value(out, value);
-        if constexpr (VtkType<T>::components == 1)
+        if constexpr (is_vec3)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            put_number(out, value[a]);
+            out.put(a < 2 ? ' ' : '\n');
+          }
+        }
+        else
+        {
+          put_number(out, +value); // + writes a UInt8 as a number, not a character
           out.put('\n');
+        }
       }
       out << "</DataArray>\n";
     }

@@ -1,6 +1,7 @@
 // Shared set-up for the DEM physics tests: materials, two-particle systems with prescribed motion,
-// bonded lattices, walls, closed-form bond constants (PHYSICS.md §1.2) and small comparison helpers. Everything a test checks
-// against is computed here from the formulas, never read back from the engine's own constants.
+// bonded lattices, walls, closed-form bond constants (PHYSICS.md §1.2) and small comparison
+// helpers. Everything a test checks against is computed here from the formulas, never read back
+// from the engine's own constants.
 #pragma once
 
 #include "dem/lattice.h"
