@@ -18,7 +18,7 @@ namespace anticrack::dem
   /// [0, n) cut into blocks of a fixed size.
   struct FixedBlocks
   {
-    static constexpr Index size = 512;
+    static constexpr Index size = 128; // small enough to balance two threads on ~1000 items
     Index n;
     explicit FixedBlocks(Index range) : n(range) {}
     [[nodiscard]] Index count() const { return (n + size - 1) / size; }
