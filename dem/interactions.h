@@ -94,9 +94,9 @@ namespace anticrack::dem
     /// and tau_bar. With A = pi R^2, R/I = 4/(pi R^3) and R/J = 2/(pi R^3).
     [[nodiscard]] std::pair<double, double> rim_stresses(Index b) const
     {
-      const double r = radius[b];
-      const double inverse_area = 1.0 / (M_PI * r * r);
-      const double rim_over_inertia = 4.0 * inverse_area / r; // R / I
+      const double inverse_radius = 1.0 / radius[b];
+      const double inverse_area = M_1_PI * inverse_radius * inverse_radius;
+      const double rim_over_inertia = 4.0 * inverse_area * inverse_radius; // R / I
       const double sigma = -normal_force[b] * inverse_area +
                            moment_factor[b] * bending_moment[b].norm() * rim_over_inertia;
       const double tau = shear_force[b].norm() * inverse_area +
@@ -108,9 +108,9 @@ namespace anticrack::dem
     /// criterion with -tan(phi) <= 0. Returns false only when neither criterion can be met.
     [[nodiscard]] bool may_fail(Index b) const
     {
-      const double r = radius[b];
-      const double inverse_area = 1.0 / (M_PI * r * r);
-      const double rim_over_inertia = 4.0 * inverse_area / r;
+      const double inverse_radius = 1.0 / radius[b];
+      const double inverse_area = M_1_PI * inverse_radius * inverse_radius;
+      const double rim_over_inertia = 4.0 * inverse_area * inverse_radius;
       const double sigma_bound = -normal_force[b] * inverse_area +
                                  moment_factor[b] * bending_moment[b].lpNorm<1>() * rim_over_inertia;
       const double tau_bound = shear_force[b].lpNorm<1>() * inverse_area +

@@ -28,7 +28,7 @@ namespace anticrack::dem
     PairKinematics k;
     const Vec3 branch = xj_shifted - xi;
     k.distance = branch.norm();
-    k.normal = branch / k.distance;
+    k.normal = branch * (1.0 / k.distance);
     const double to_point = ri + 0.5 * (k.distance - ri - rj);
     k.arm_i = to_point * k.normal;
     k.arm_j = k.arm_i - branch;
