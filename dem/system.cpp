@@ -630,6 +630,12 @@ namespace anticrack::dem
           const double delta = radius - distance;
           wall_overlap_[slot] = delta;
           Vec3 &shear = wall_shear[slot];
+          if (delta <= 0 && wall_dashpot[slot].squaredNorm() == 0)
+          {
+            shear.setZero();
+            wall_load_[slot].setZero();
+            continue;
+          }
           PairKinematics k;
           k.normal = -wall.normal;
           k.distance = distance;
@@ -641,11 +647,9 @@ namespace anticrack::dem
           ContactDissipation dissipation;
           if (delta <= 0)
           {
-            if (wall_dashpot[slot].squaredNorm() > 0)
-            {
-              book_dashpot_work(wall_dashpot[slot], Vec3::Zero(), k.relative_velocity, dt, dissipation);
-              wall_viscous += dissipation.viscous;
-            }
+            // Just separated with its dashpot acting: book the dashpot's last half step.
+            book_dashpot_work(wall_dashpot[slot], Vec3::Zero(), k.relative_velocity, dt, dissipation);
+            wall_viscous += dissipation.viscous;
             shear.setZero();
             wall_load_[slot].setZero();
             continue;
