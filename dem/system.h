@@ -121,6 +121,11 @@ namespace anticrack::dem
     void rebuild_neighbors();
 
     [[nodiscard]] Index neighbor_builds() const { return neighbor_list_.builds(); }
+
+    /// Bonds whose pair is not in the Verlet list, and the load of such a bond at the last step
+    /// (the loads of listed pairs, bond and contact together, are in contacts.load).
+    [[nodiscard]] const std::vector<Index> &unlisted_bonds() const { return unlisted_bonds_; }
+    [[nodiscard]] const PairLoad &unlisted_bond_load(Index bond) const { return bond_load_[bond]; }
     [[nodiscard]] double skin() const { return skin_; }
 
     /// Number of OpenMP threads used by the force and update loops.
