@@ -7,6 +7,7 @@
 #include "app/summary.h"
 #include "dem/io_hdf5.h"
 #include "dem/io_vtp.h"
+#include "dem/measurements.h"
 
 #include <algorithm>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -116,6 +118,7 @@ namespace anticrack::app
   private:
     void declare_history_columns();
     void record_history();
+    [[nodiscard]] double inertial_number(double mean_pressure) const;
     void write_history();
     void write_snapshot();
     void write_checkpoint();
@@ -203,6 +206,45 @@ namespace anticrack::app
       h.add_column("clump_normal_stress", "Pa", "-F_z(t) / A with A the x-y area of the domain");
       h.add_column("clump_shear_stress", "Pa", "F_x(t) / A with A the x-y area of the domain");
     }
+    // Micro-to-macro measures (PHYSICS.md 1.5), over the sample volume (dem/measurements.h).
+    for (const char *c : {"xx", "yy", "zz", "xy", "xz", "yz"})
+      h.add_column(std::string("love_stress_") + c, "Pa",
+                   "Love-Weber stress sigma_" + std::string(c) + " (tension positive) over the sample volume");
+    h.add_column("mean_pressure", "Pa", "p = -tr(sigma)/3 of the Love-Weber stress (compression positive)");
+    h.add_column("von_mises_stress", "Pa", "q = sqrt(3/2 s:s) of the Love-Weber stress");
+    h.add_column("sample_volume", "m^3", "box length along periodic axes times the spheres' extent along open ones");
+    h.add_column("coordination_number", "-", "2 N_c / N over touching contacts and intact bonds (a pair once)");
+    for (const char *c : {"xx", "yy", "zz"})
+      h.add_column(std::string("fabric_") + c, "-", "fabric tensor C_" + std::string(c) + " = <n n> over contacts and bonds");
+    h.add_column("broken_bond_fraction", "-", "broken bonds / all bonds");
+    h.add_column("inertial_number", "-",
+                 "I = strain rate x mean diameter x sqrt(rho / |p|), strain rate = actuator speed / sample height");
+  }
+
+  double DemRun::inertial_number(double mean_pressure) const
+  {
+    // I = gamma_dot d sqrt(rho / |p|) (seed 002), with the strain rate taken as the actuator's speed
+    // (clump or fastest wall) over the sample height.
+    const auto &particles = system_.particles;
+    if (particles.size() == 0)
+      return 0;
+    double speed = model_->clump >= 0 ? system_.clumps[model_->clump].velocity.norm() : 0.0;
+    for (const auto &wall : system_.walls)
+      speed = std::max(speed, wall.velocity.norm());
+    double low = particles.position[0].z(), high = low, radius_sum = 0;
+    for (Index q = 0; q < particles.size(); ++q)
+    {
+      low = std::min(low, particles.position[q].z() - particles.radius[q]);
+      high = std::max(high, particles.position[q].z() + particles.radius[q]);
+      radius_sum += particles.radius[q];
+    }
+    if (speed == 0 || high <= low)
+      return 0;
+    if (mean_pressure == 0)
+      return std::numeric_limits<double>::infinity();
+    const double diameter = 2 * radius_sum / particles.size();
+    const double density = system_.materials[particles.material_id[0]].density;
+    return speed / (high - low) * diameter * std::sqrt(density / std::abs(mean_pressure));
   }
 
   void DemRun::record_history()
@@ -254,6 +296,20 @@ namespace anticrack::app
       row.push_back(-force[2] / model_->base_area);
       row.push_back(force[0] / model_->base_area);
     }
+    const double volume = dem::sample_volume(system_);
+    const dem::Mat3 stress = volume > 0 ? dem::love_weber_stress(system_, volume) : dem::Mat3::Zero();
+    for (const auto &[r, c] : {std::pair{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}})
+      row.push_back(stress(r, c));
+    const double p = dem::mean_pressure(stress);
+    row.push_back(p);
+    row.push_back(dem::von_mises_stress(stress));
+    row.push_back(volume);
+    const dem::Fabric fabric = dem::contact_and_bond_fabric(system_);
+    row.push_back(fabric.coordination);
+    for (int a = 0; a < 3; ++a)
+      row.push_back(fabric.tensor(a, a));
+    row.push_back(dem::broken_bond_fraction(system_.bonds));
+    row.push_back(inertial_number(p));
     history_.append(row);
     last_history_step_ = system_.step_count;
   }
@@ -630,6 +686,43 @@ namespace anticrack::app
       c["applied_force_N"] = {force[0], force[1], force[2]};
       d["clump"] = c;
     }
+    // The sample generator's report (DEM/Sample/Type = sticky hard spheres or ballistic deposition).
+    Json sample;
+    if (model_->sticky_hard_spheres)
+    {
+      const auto &r = *model_->sticky_hard_spheres;
+      sample["type"] = "sticky hard spheres";
+      sample["volume_fraction"] = r.volume_fraction;
+      sample["stickiness"] = r.stickiness;
+      sample["coordination"] = r.coordination;
+      sample["percus_yevick_coordination"] = r.percus_yevick_coordination;
+      sample["contacts"] = r.contacts;
+      sample["acceptance"] = r.acceptance;
+      sample["largest_cluster_fraction"] = r.largest_cluster_fraction;
+      sample["percolating"] = r.percolating;
+      sample["box_length_m"] = r.box_length;
+      sample["coordination_history"] = r.coordination_history;
+    }
+    else if (model_->ballistic_deposition)
+    {
+      const auto &r = *model_->ballistic_deposition;
+      sample["type"] = "ballistic deposition";
+      sample["rule"] = scene_.dem.sample.rolling ? "rolling" : "sticky";
+      sample["particles"] = r.particles;
+      sample["fallbacks"] = r.fallbacks;
+      sample["on_base"] = r.on_base;
+      sample["solid_fraction_bulk"] = r.solid_fraction_bulk;
+      sample["mean_contacts"] = r.mean_contacts;
+      sample["mean_contacts_all"] = r.mean_contacts_all;
+      sample["height_m"] = r.height;
+      sample["bulk_lower_m"] = r.bulk_lower;
+      sample["bulk_upper_m"] = r.bulk_upper;
+    }
+    else
+      sample["type"] = scene_.dem.sample.type == parameters::Sample::Type::snapshot ? "snapshot" :
+                                                                                     "simple cubic lattice";
+    sample["initial_bonds"] = model_->initial_bonds;
+    d["sample"] = sample;
     s["dem"] = d;
 
     Json outputs;

@@ -2,6 +2,8 @@
 
 #include "dem/parallel_sum.h"
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 namespace anticrack::dem
@@ -80,6 +82,38 @@ namespace anticrack::dem
     if (system.particles.size() > 0)
       fabric.coordination = 2.0 * fabric.pairs / system.particles.size();
     return fabric;
+  }
+
+  double sample_volume(const DemSystem &system)
+  {
+    const auto &particles = system.particles;
+    if (particles.size() == 0)
+      return 0;
+    double volume = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (system.domain.periodic[a])
+      {
+        volume *= system.domain.length()[a];
+        continue;
+      }
+      double lo = particles.position[0][a] - particles.radius[0], hi = particles.position[0][a] + particles.radius[0];
+      for (Index p = 1; p < particles.size(); ++p)
+      {
+        lo = std::min(lo, particles.position[p][a] - particles.radius[p]);
+        hi = std::max(hi, particles.position[p][a] + particles.radius[p]);
+      }
+      volume *= hi - lo;
+    }
+    return volume;
+  }
+
+  double mean_pressure(const Mat3 &stress) { return -stress.trace() / 3; }
+
+  double von_mises_stress(const Mat3 &stress)
+  {
+    const Mat3 deviator = stress + mean_pressure(stress) * Mat3::Identity();
+    return std::sqrt(1.5 * deviator.cwiseProduct(deviator).sum());
   }
 
   double broken_bond_fraction(const BondList &bonds)
