@@ -108,14 +108,6 @@ namespace anticrack::dem
     return volume;
   }
 
-  double mean_pressure(const Mat3 &stress) { return -stress.trace() / 3; }
-
-  double von_mises_stress(const Mat3 &stress)
-  {
-    const Mat3 deviator = stress + mean_pressure(stress) * Mat3::Identity();
-    return std::sqrt(1.5 * deviator.cwiseProduct(deviator).sum());
-  }
-
   double broken_bond_fraction(const BondList &bonds)
   {
     return bonds.size() == 0 ? 0.0 : 1.0 - static_cast<double>(bonds.count_intact()) / bonds.size();

@@ -3,6 +3,7 @@
 // DemSystem::step().
 #pragma once
 
+#include "dem/stress_invariants.h"
 #include "dem/system.h"
 
 namespace anticrack::dem
@@ -29,11 +30,6 @@ namespace anticrack::dem
   /// Volume the sample occupies: along periodic axes the box length, along open axes the extent of
   /// the spheres (lowest surface to highest surface). The volume for the Love-Weber stress.
   double sample_volume(const DemSystem &system);
-
-  /// Mean pressure p = -tr(sigma)/3 (compression positive) and von Mises stress
-  /// q = sqrt(3/2 s:s), s = sigma + p I (PHYSICS.md §0).
-  double mean_pressure(const Mat3 &stress);
-  double von_mises_stress(const Mat3 &stress);
 
   /// Fraction of bonds that are broken (0 when there are none).
   double broken_bond_fraction(const BondList &bonds);

@@ -85,23 +85,6 @@ TEST(Fabric, SimpleCubicLatticeIsIsotropicWithSixNeighbours)
   EXPECT_NEAR(broken_bond_fraction(s.bonds), 1.0 / 81, 1e-15);
 }
 
-// Invariants of known tensors (PHYSICS.md §0): uniaxial compression sigma_zz = -s gives p = s/3 and
-// q = s; hydrostatic pressure gives q = 0; pure shear tau gives p = 0 and q = sqrt(3) tau.
-TEST(StressInvariants, MeanPressureAndVonMises)
-{
-  const double s = 2e5;
-  Mat3 uniaxial = Mat3::Zero();
-  uniaxial(2, 2) = -s;
-  EXPECT_NEAR(mean_pressure(uniaxial), s / 3, 1e-9);
-  EXPECT_NEAR(von_mises_stress(uniaxial), s, 1e-9);
-  EXPECT_NEAR(von_mises_stress(-s * Mat3::Identity()), 0.0, 1e-9);
-  EXPECT_NEAR(mean_pressure(-s * Mat3::Identity()), s, 1e-9);
-  Mat3 shear = Mat3::Zero();
-  shear(0, 2) = shear(2, 0) = s;
-  EXPECT_NEAR(mean_pressure(shear), 0.0, 1e-9);
-  EXPECT_NEAR(von_mises_stress(shear), std::sqrt(3.0) * s, 1e-9);
-}
-
 // The sample volume is the box along periodic axes and the spheres' extent along open ones.
 TEST(SampleVolume, PeriodicBoxAndOpenExtent)
 {
