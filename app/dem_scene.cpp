@@ -99,9 +99,55 @@ namespace anticrack::app
                                  "anticrack snapshot");
     }
 
-    void add_sample(const SceneParameters &scene, dem::DemSystem &system)
+    /// Initial velocity amplitude for the generated samples (the generators leave them at rest).
+    void add_random_velocities(const parameters::Dem &d, dem::DemSystem &system, const Index first)
     {
+      if (!(d.sample.velocity_amplitude > 0))
+        return;
+      std::mt19937_64 rng(d.seed ^ 0x9e3779b97f4a7c15ULL);
+      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+      for (Index p = first; p < system.particles.size(); ++p)
+        for (int a = 0; a < 3; ++a)
+          system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
+    }
+
+    void add_sample(const SceneParameters &scene, DemModel &model)
+    {
+      dem::DemSystem &system = model.system;
       const auto &d = scene.dem;
+      if (d.sample.type == parameters::Sample::Type::sticky_hard_spheres)
+      {
+        // The sampler replaces the domain by its periodic cube.
+        dem::shs::SamplerSpec spec;
+        spec.particle_count = d.sample.particle_count;
+        spec.volume_fraction = d.sample.volume_fraction;
+        spec.stickiness = d.sample.stickiness;
+        spec.target_coordination = d.sample.target_coordination;
+        spec.radius = d.sample.radius;
+        spec.well_width = d.sample.well_width;
+        spec.sweeps = d.sample.sweeps;
+        spec.material = 0;
+        spec.seed = d.seed;
+        model.sticky_hard_spheres = dem::shs::sample_sticky_hard_spheres(system, spec);
+        add_random_velocities(d, system, 0);
+        return;
+      }
+      if (d.sample.type == parameters::Sample::Type::ballistic_deposition)
+      {
+        dem::BallisticDepositionSpec spec;
+        spec.rule = d.sample.rolling ? dem::DepositionRule::rolling : dem::DepositionRule::sticky;
+        spec.box_lower = d.domain.lower;
+        spec.box_upper = d.domain.upper;
+        spec.particle_count = d.sample.particle_count;
+        spec.radius.mean = d.sample.radius;
+        spec.radius.half_width = d.sample.radius_half_width;
+        spec.material = 0;
+        spec.seed = d.seed;
+        const Index first = system.particles.size();
+        model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
+        add_random_velocities(d, system, first);
+        return;
+      }
       if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
       {
         dem::LatticeSpec spec;
@@ -192,7 +238,9 @@ namespace anticrack::app
     void add_walls(const SceneParameters &scene, DemModel &model)
     {
       const auto &d = scene.dem;
-      const Vec3 length = d.domain.upper - d.domain.lower;
+      // The system's domain: ballistic deposition may have raised its upper z.
+      const dem::Domain &domain = model.system.domain;
+      const Vec3 length = domain.upper - domain.lower;
       for (int f = 0; f < 6; ++f)
       {
         const auto &face = d.walls.face[f];
@@ -203,7 +251,7 @@ namespace anticrack::app
         wall.name = Walls::face_names[f];
         wall.normal = Vec3::Zero();
         wall.normal[a] = -Walls::side(f); // inward
-        wall.point = Walls::side(f) < 0 ? d.domain.lower : d.domain.upper;
+        wall.point = Walls::side(f) < 0 ? domain.lower : domain.upper;
         wall.control = face.control;
         wall.velocity = face.control == dem::WallControl::velocity ? Vec3(face.velocity * wall.normal) :
                                                                      Vec3::Zero();
@@ -230,8 +278,6 @@ namespace anticrack::app
       system.domain.lower = d.domain.lower;
       system.domain.upper = d.domain.upper;
       system.domain.periodic = d.domain.periodic;
-      const Vec3 length = d.domain.upper - d.domain.lower;
-      model->base_area = length[0] * length[1];
 
       dem::Material material;
       material.density = d.material.density;
@@ -239,13 +285,21 @@ namespace anticrack::app
       material.bond = d.bond.bond;
       system.materials.add(material);
 
-      add_sample(scene, system);
+      add_sample(scene, *model);
       if (system.particles.size() == 0)
         throw InputError("DEM/Sample: the sample has no spheres.");
+      // After the sample: the sticky-hard-sphere sampler sets its own domain.
+      const Vec3 length = system.domain.upper - system.domain.lower;
+      model->base_area = length[0] * length[1];
       // Clump before bonds: bonds inside the rigid clump would carry no load but cost time.
       add_boundary_particles(scene, *model);
       if (d.bond.bond.enabled)
-        model->initial_bonds = system.bond_touching_pairs(dem::BondingRule{d.bond.gap_tolerance});
+      {
+        // Sticky hard spheres: every pair in the well (gap <= delta sigma = 2 delta R) is a bond.
+        const double tolerance = model->sticky_hard_spheres ? 2 * d.sample.well_width * (1 + 1e-9) :
+                                                              d.bond.gap_tolerance;
+        model->initial_bonds = system.bond_touching_pairs(dem::BondingRule{tolerance});
+      }
       add_walls(scene, *model);
       system.settings = d.integration.settings;
       system.initialise();
@@ -284,12 +338,13 @@ namespace anticrack::app
       << "Components: ";
     for (std::size_t k = 0; k < scene.components.size(); ++k)
       s << (k ? ", " : "") << scene.components[k];
+    const auto &domain = system.domain; // the generators may change the scene's domain
     s << "\n\nDEM\n"
-      << "  domain              [" << format_vector(d.domain.lower) << "] - [" << format_vector(d.domain.upper)
+      << "  domain              [" << format_vector(domain.lower) << "] - [" << format_vector(domain.upper)
       << "] m, periodic in";
     bool any_periodic = false;
     for (int a = 0; a < 3; ++a)
-      if (d.domain.periodic[a])
+      if (domain.periodic[a])
         s << " " << axis_name[a], any_periodic = true;
     if (!any_periodic)
       s << " none";
@@ -297,6 +352,32 @@ namespace anticrack::app
     if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
       s << "simple cubic lattice " << d.sample.lattice_size[0] << " x " << d.sample.lattice_size[1] << " x "
         << d.sample.lattice_size[2] << ", R = " << d.sample.radius << " m, spacing " << d.sample.spacing << " m";
+    else if (model.sticky_hard_spheres)
+    {
+      const auto &r = *model.sticky_hard_spheres;
+      s << "sticky hard spheres, N = " << d.sample.particle_count << ", R = " << d.sample.radius
+        << " m, well width delta/sigma = " << d.sample.well_width << ", " << d.sample.sweeps << " sweeps\n"
+        << "                      (DEM/Domain is replaced by the sampler's periodic cube, edge " << r.box_length
+        << " m)\n"
+        << "  generator report    phi = " << r.volume_fraction << ", tau = " << r.stickiness
+        << (d.sample.target_coordination > 0 ? " (from the target z)" : "") << ", z = " << r.coordination
+        << " (Percus-Yevick " << r.percus_yevick_coordination << "), contacts " << r.contacts
+        << ",\n                      largest cluster " << r.largest_cluster_fraction << " of the spheres, "
+        << (r.percolating ? "percolating" : "not percolating") << ", acceptance " << r.acceptance
+        << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
+    }
+    else if (model.ballistic_deposition)
+    {
+      const auto &r = *model.ballistic_deposition;
+      s << "ballistic deposition (" << (d.sample.rolling ? "rolling" : "sticky") << "), N = "
+        << d.sample.particle_count << ", R = " << d.sample.radius << " +- " << d.sample.radius_half_width
+        << " m\n"
+        << "  generator report    bulk solid fraction " << r.solid_fraction_bulk << " (z in [" << r.bulk_lower
+        << ", " << r.bulk_upper << "] m), mean contacts " << r.mean_contacts << " (bulk), "
+        << r.mean_contacts_all << " (all),\n                      height " << r.height << " m, "
+        << r.on_base << " on the base, " << r.fallbacks << " sticky fallbacks"
+        << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
+    }
     else
       s << "snapshot " << d.sample.snapshot_file;
     s << "\n  particles           " << system.particles.size() << " (" << model.fixed_particles.size()

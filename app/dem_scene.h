@@ -6,10 +6,13 @@
 #pragma once
 
 #include "app/scene_parameters.h"
+#include "dem/ballistic_deposition.h"
+#include "dem/sticky_hard_spheres.h"
 #include "dem/system.h"
 
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +28,10 @@ namespace anticrack::app
     Index initial_bonds = 0;              ///< bonds created when the sample was built
     double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
     double critical_time_step = 0;        ///< dt_crit at initialise() [s]
+    /// Statistics of the sample generator (DEM/Sample/Type = sticky hard spheres or ballistic
+    /// deposition); summary.json records them under dem.sample, `anticrack check` prints them.
+    std::optional<dem::shs::SamplerReport> sticky_hard_spheres;
+    std::optional<dem::DepositionReport> ballistic_deposition;
   };
 
   /// Builds and initialises the model; `threads` <= 0 means all available.

@@ -2,6 +2,7 @@
 
 #include "app/hashing.h"
 #include "app/input_error.h"
+#include "dem/sticky_hard_spheres.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
@@ -9,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -246,15 +248,29 @@ namespace anticrack::app
     {
       prm.enter_subsection("Sample");
       prm.declare_entry("Type", "simple cubic lattice",
-                        Patterns::Selection("simple cubic lattice|snapshot"),
+                        Patterns::Selection("simple cubic lattice|snapshot|sticky hard spheres|"
+                                            "ballistic deposition"),
                         "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
                         "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
                         "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
-                        "and the rest come from this scene).");
+                        "and the rest come from this scene). `sticky hard spheres`: N spheres of "
+                        "radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at "
+                        "volume fraction phi and stickiness tau (PHYSICS.md 1.4) in a periodic cube "
+                        "of edge L = (N 4/3 pi R^3 / phi)^(1/3) with its lower corner at the origin: "
+                        "DEM/Domain is ignored and replaced by this cube (periodic in x, y, z, so no "
+                        "walls), and every pair inside the well (gap <= 2 delta R) is bonded, "
+                        "whatever DEM/Bond/Gap tolerance says. `ballistic deposition`: N spheres "
+                        "dropped one by one along -z onto the base z = DEM/Domain lower z inside the "
+                        "DEM/Domain box, which must be periodic in x and y and not in z; the domain's "
+                        "upper z is raised to the deposit's top if needed; bonds use DEM/Bond/Gap "
+                        "tolerance. Both generators are seeded by DEM/Random seed and run again by "
+                        "`anticrack check`, which prints their statistics.");
       prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
                         "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
       prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
-                        "R: sphere radius, at most half the spacing (lattice only). Units: m.");
+                        "R: sphere radius, at most half the spacing (lattice); the radius of every "
+                        "sphere (sticky hard spheres); the mean radius (ballistic deposition). "
+                        "Units: m.");
       prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
                         "s: distance between neighbouring centres; s = 2R makes touching spheres "
                         "(lattice only). Units: m.");
@@ -268,19 +284,60 @@ namespace anticrack::app
                         "HDF5 snapshot (snapshots/snapshot_NNNNNN.h5 of an earlier run) to take "
                         "the spheres from when Type = snapshot. A relative path is relative to "
                         "the working directory.");
+      prm.declare_entry("Particle count", "512", Patterns::Integer(1),
+                        "N: number of spheres (sticky hard spheres: at least 8; ballistic "
+                        "deposition).");
+      prm.declare_entry("Volume fraction", "0.3", Patterns::Double(0, 0.55),
+                        "phi: solid volume fraction of the sticky-hard-sphere sample, in (0, 0.55] "
+                        "(sticky hard spheres only). Dimensionless.");
+      prm.declare_entry("Stickiness", "0.2", Patterns::Double(0),
+                        "tau: Baxter stickiness parameter (smaller = stickier), at least "
+                        "tau_min(phi) = (14 phi^2 - 4 phi - 1) / (12 (2 phi^2 - phi - 1)); 0 = take "
+                        "tau from the target coordination number (sticky hard spheres only). "
+                        "Dimensionless.");
+      prm.declare_entry("Target coordination number", "0", Patterns::Double(0),
+                        "z: mean number of bonded neighbours wanted; > 0 selects tau from the "
+                        "Percus-Yevick relation z = 2 phi lambda(phi, tau) and requires Stickiness = 0; "
+                        "0 = use Stickiness (sticky hard spheres only). Dimensionless.");
+      prm.declare_entry("Well width", "0.03", Patterns::Double(0, 0.1),
+                        "delta / sigma: width of the square well that represents Baxter's adhesion, "
+                        "relative to the diameter sigma = 2 R, in (0, 0.1]; pairs in the well "
+                        "(gap <= delta sigma) become bonds (sticky hard spheres only). "
+                        "Dimensionless.");
+      prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
+                        "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
+      prm.declare_entry("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
+                        "`sticky`: a falling sphere stops at its first contact (bulk solid fraction "
+                        "~0.15); `rolling`: it rolls to a three-point rest (~0.58) (ballistic "
+                        "deposition only).");
+      prm.declare_entry("Radius half width [m]", "0", Patterns::Double(0),
+                        "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
+                        "(ballistic deposition only). Units: m.");
       prm.leave_subsection();
     }
 
     void Sample::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Sample");
-      type = prm.get("Type") == "snapshot" ? Type::snapshot : Type::simple_cubic_lattice;
+      const std::string type_name = prm.get("Type");
+      type = type_name == "snapshot"             ? Type::snapshot :
+             type_name == "sticky hard spheres"  ? Type::sticky_hard_spheres :
+             type_name == "ballistic deposition" ? Type::ballistic_deposition :
+                                                   Type::simple_cubic_lattice;
       lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
       radius = prm.get_double("Radius [m]");
       spacing = prm.get_double("Spacing [m]");
       origin = get_triple<Vec3>(prm, "Origin [m]");
       velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
       snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
+      particle_count = prm.get_integer("Particle count");
+      volume_fraction = prm.get_double("Volume fraction");
+      stickiness = prm.get_double("Stickiness");
+      target_coordination = prm.get_double("Target coordination number");
+      well_width = prm.get_double("Well width");
+      sweeps = prm.get_integer("Sweeps");
+      rolling = prm.get("Deposition rule") == "rolling";
+      radius_half_width = prm.get_double("Radius half width [m]");
       prm.leave_subsection();
     }
 
@@ -619,6 +676,81 @@ namespace anticrack::app
                              format_number(needed) + " m for unique minimum images");
           }
         }
+      }
+      else if (s.type == Sample::Type::sticky_hard_spheres)
+      {
+        const std::string why_type = " for DEM/Sample/Type = sticky hard spheres";
+        if (s.particle_count < 8)
+          problems.add("DEM/Sample/Particle count", s.particle_count, "must be at least 8" + why_type);
+        if (!(s.volume_fraction > 0))
+          problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        if (!(s.well_width > 0))
+          problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
+        const bool use_z = s.target_coordination > 0;
+        if (use_z && s.stickiness > 0)
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be 0 when DEM/Sample/Target coordination number = " +
+                         format_number(s.target_coordination) +
+                         " > 0 selects tau; set one of the two to 0");
+        else if (!use_z && !(s.stickiness > 0))
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be positive (at least tau_min(phi)) unless DEM/Sample/Target "
+                       "coordination number > 0 selects it");
+        else if (s.volume_fraction > 0 && s.volume_fraction < 1)
+        {
+          const double tau_min = dem::shs::minimum_stickiness(s.volume_fraction);
+          if (!use_z && s.stickiness < tau_min)
+            problems.add("DEM/Sample/Stickiness", s.stickiness,
+                         "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
+                           " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
+                           " (allowed: tau >= tau_min(phi), PHYSICS.md 1.4); raise tau or lower phi");
+          if (use_z)
+            try
+            {
+              dem::shs::stickiness_for_coordination(s.volume_fraction, s.target_coordination);
+            }
+            catch (const dem::SetupError &e)
+            {
+              problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
+            }
+        }
+        for (int f = 0; f < 6; ++f)
+          if (d.walls.face[f].active)
+            problems.add(std::string("DEM/Walls/") + parameters::Walls::face_names[f] + "/Active", "true",
+                         "no walls" + why_type + ": its domain is a cube periodic in x, y and z");
+      }
+      else if (s.type == Sample::Type::ballistic_deposition)
+      {
+        const std::string why_type = " for DEM/Sample/Type = ballistic deposition";
+        if (!d.domain.periodic[0] || !d.domain.periodic[1] || d.domain.periodic[2])
+        {
+          std::string axes;
+          for (int a = 0; a < 3; ++a)
+            if (d.domain.periodic[a])
+              axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
+          problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
+                       "must be exactly x, y" + why_type +
+                         ": spheres are dropped into a laterally periodic box onto the base z = "
+                         "lower z");
+        }
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        else if (!(s.radius_half_width < s.radius))
+          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
+                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
+                         " (allowed: 0 <= w < R)");
+        const double r_max = s.radius + s.radius_half_width;
+        const double skin = d.integration.settings.verlet_skin > 0 ? d.integration.settings.verlet_skin :
+                                                                     0.1 * s.radius;
+        const double needed = std::max(8 * s.radius, 2 * (2 * r_max + skin));
+        for (int a = 0; a < 2; ++a)
+          if (s.radius > 0 && length[a] > 0 && !(length[a] >= needed))
+            problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
+                         "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                           " m) must be at least " + format_number(needed) +
+                           " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
       }
       else
       {

@@ -85,7 +85,9 @@ namespace anticrack::app
       enum class Type
       {
         simple_cubic_lattice,
-        snapshot
+        snapshot,
+        sticky_hard_spheres,  ///< dem/sticky_hard_spheres.h; the domain becomes the sampler's cube
+        ballistic_deposition  ///< dem/ballistic_deposition.h into the DEM/Domain box
       };
       Type type = Type::simple_cubic_lattice;
       std::array<Index, 3> lattice_size = {10, 10, 10};
@@ -94,6 +96,17 @@ namespace anticrack::app
       Vec3 origin = Vec3::Zero();
       double velocity_amplitude = 0;
       std::string snapshot_file;
+      // sticky hard spheres and ballistic deposition
+      Index particle_count = 512;
+      // sticky hard spheres
+      double volume_fraction = 0.3;     ///< phi
+      double stickiness = 0.2;          ///< tau, 0 = from the target coordination number
+      double target_coordination = 0;   ///< z, 0 = use tau
+      double well_width = 0.03;         ///< delta / sigma
+      Index sweeps = 5000;
+      // ballistic deposition (radius = mean radius)
+      bool rolling = false;             ///< deposition rule
+      double radius_half_width = 0;     ///< [m]
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);

@@ -492,6 +492,83 @@ def bench(work):
 
 
 # -------------------------------------------------------------------------------------- driver
+# ------------------------------------------------------------------------- sample generators
+def shs_scene(steps, **changes):
+    """scenes/shs_sample.prm (N = 1024, phi = 0.3, tau = 0.2) with few steps and quiet outputs."""
+    text = open(os.path.join(SOURCE, "scenes", "shs_sample.prm")).read()
+    return edit_scene(text, {
+        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+        "DEM/Steps": str(steps), **changes})
+
+
+def ballistic_scene(rule, count, steps=20, **changes):
+    """scenes/ballistic_weak_layer.prm shrunk to R = 1 mm in a 2 cm x 2 cm periodic box, no fixed
+    base and no clump: thick enough (sticky 1200, rolling 2000 spheres) for a nonempty bulk slab."""
+    text = open(os.path.join(SOURCE, "scenes", "ballistic_weak_layer.prm")).read()
+    return edit_scene(text, {
+        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+        "DEM/Steps": str(steps), "DEM/Domain/Upper corner [m]": "0.02, 0.02, 0.01",
+        "DEM/Sample/Deposition rule": rule, "DEM/Sample/Particle count": str(count),
+        "DEM/Sample/Radius [m]": "1e-3", "DEM/Boundary particles/Fix below [m]": "",
+        "DEM/Boundary particles/Clump above [m]": "", "DEM/Boundary particles/Clump force rate [N/s]": "0",
+        **changes})
+
+
+@case
+def generated_shs_sample(work):
+    """A sticky-hard-sphere sample runs; its report in summary.json has z within 15 % of Percus-
+    Yevick, and every contact of the sampler is a bond."""
+    scene = write(os.path.join(work, "shs.prm"), shs_scene(20))
+    stdout, _ = anticrack("check", scene, cwd=work)
+    for needle in ("sticky hard spheres", "Percus-Yevick", "percolating", "acceptance"):
+        check(needle in stdout, f"`check` does not print {needle!r}:\n{stdout}")
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    dem, sample = summary["dem"], summary["dem"]["sample"]
+    check(sample["type"] == "sticky hard spheres", f"dem.sample = {sample}")
+    check(dem["particles"] == 1024, f"{dem['particles']} particles, expected 1024")
+    z, z_py = sample["coordination"], sample["percus_yevick_coordination"]
+    check(abs(z - z_py) <= 0.15 * z_py, f"z = {z} is not within 15 % of the Percus-Yevick z = {z_py}")
+    check(abs(z - 2 * sample["contacts"] / dem["particles"]) < 1e-12, f"z = {z} is not 2 contacts / N")
+    check(dem["bonds"] == sample["contacts"] == sample["initial_bonds"],
+          f"bonds {dem['bonds']} != contacts {sample['contacts']} (initial bonds {sample['initial_bonds']})")
+    check(sample["stickiness"] == 0.2 and abs(sample["volume_fraction"] - 0.3) < 1e-12, f"dem.sample = {sample}")
+
+
+@case
+def generated_ballistic_fractions(work):
+    """Ballistic deposits: bulk solid fraction 0.13-0.22 with the sticky rule, 0.53-0.60 rolling."""
+    for rule, count, (low, high) in [("sticky", 1200, (0.13, 0.22)), ("rolling", 2000, (0.53, 0.60))]:
+        scene = write(os.path.join(work, f"{rule}.prm"), ballistic_scene(rule, count))
+        stdout, _ = anticrack("check", scene, cwd=work)
+        check("bulk solid fraction" in stdout, f"`check` does not print the deposit's statistics:\n{stdout}")
+        out = os.path.join(work, rule)
+        anticrack("run", scene, "-o", out)
+        dem = json.load(open(os.path.join(out, "summary.json")))["dem"]
+        sample = dem["sample"]
+        check(sample["type"] == "ballistic deposition" and sample["rule"] == rule, f"dem.sample = {sample}")
+        check(sample["particles"] == count == dem["particles"], f"{rule}: {dem['particles']} particles")
+        phi = sample["solid_fraction_bulk"]
+        check(low <= phi <= high, f"{rule}: bulk solid fraction {phi} outside [{low}, {high}]")
+        check(dem["bonds"] == sample["initial_bonds"] > 0, f"{rule}: {dem['bonds']} bonds")
+        # Every deposited contact is bonded: 2 bonds / N = mean contacts over the whole deposit.
+        check(abs(2 * dem["bonds"] / count - sample["mean_contacts_all"]) < 1e-9,
+              f"{rule}: {dem['bonds']} bonds for mean_contacts_all = {sample['mean_contacts_all']}")
+
+
+@case
+def bad_input_generators(work):
+    """Ballistic deposition without a periodic x axis; sticky hard spheres with tau < tau_min."""
+    scene = write(os.path.join(work, "not_periodic.prm"),
+                  ballistic_scene("sticky", 100, **{"DEM/Domain/Periodic axes": "y"}))
+    expect_bad_input(work, scene, "DEM/Domain/Periodic axes", "ballistic deposition")
+    scene = write(os.path.join(work, "tau.prm"), shs_scene(20, **{"DEM/Sample/Stickiness": "0.05"}))
+    expect_bad_input(work, scene, "DEM/Sample/Stickiness", "0.05", "tau_min(phi) = 0.0699")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
