@@ -5,6 +5,7 @@
 #include "app/input_error.h"
 #include "app/progress.h"
 #include "app/summary.h"
+#include "app/test_analysis.h"
 #include "dem/io_hdf5.h"
 #include "dem/io_vtp.h"
 #include "dem/measurements.h"
@@ -119,6 +120,7 @@ namespace anticrack::app
     void declare_history_columns();
     void record_history();
     [[nodiscard]] double inertial_number(double mean_pressure) const;
+    double initial_sample_height_ = 0; ///< z extent of the spheres at the start [m] (loading strain)
     void write_history();
     void write_snapshot();
     void write_checkpoint();
@@ -156,6 +158,17 @@ namespace anticrack::app
       files_{fs::path(options.output_directory)}, total_steps_(scene.dem.steps)
   {
     declare_history_columns();
+    const auto &particles = system_.particles;
+    if (particles.size() > 0)
+    {
+      double low = particles.position[0].z() - particles.radius[0], high = particles.position[0].z() + particles.radius[0];
+      for (Index q = 1; q < particles.size(); ++q)
+      {
+        low = std::min(low, particles.position[q].z() - particles.radius[q]);
+        high = std::max(high, particles.position[q].z() + particles.radius[q]);
+      }
+      initial_sample_height_ = high - low;
+    }
   }
 
   void DemRun::declare_history_columns()
@@ -685,6 +698,8 @@ namespace anticrack::app
       c["velocity_m_per_s"] = {clump.velocity[0], clump.velocity[1], clump.velocity[2]};
       c["applied_force_N"] = {force[0], force[1], force[2]};
       d["clump"] = c;
+      // The yield point of this test (seed 002's failure criterion) and its companions.
+      d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_);
     }
     // The sample generator's report (DEM/Sample/Type = sticky hard spheres or ballistic deposition).
     Json sample;

@@ -167,7 +167,10 @@ namespace anticrack::dem
   {
     validate(h);
     const std::vector<double> s = measure_series(h, measure);
-    const Index best = std::max_element(s.begin(), s.end()) - s.begin();
+    // The base normal stress peaks in compression (> 0) or, in a tension test, in tension (< 0).
+    const Index best = std::max_element(s.begin(), s.end(), [&](double a, double b) {
+                         return measure == Measure::base_normal ? std::abs(a) < std::abs(b) : a < b;
+                       }) - s.begin();
     return point_at(h, best, 0, static_cast<Index>(s.size()) - 1);
   }
 

@@ -74,7 +74,7 @@ namespace anticrack::dem
   {
     von_mises,   ///< q of the Love-Weber stress (seed 002)
     base_shear,  ///< |tau| at the base (seed 000, shear-dominated loading)
-    base_normal  ///< sigma at the base, compression positive (seed 000, compression)
+    base_normal  ///< sigma at the base, compression positive; its peak is the largest |sigma| (compression or tension)
   };
 
   /// Failure as the maximum of the measure over the whole history (seed 000: "the maximum stress

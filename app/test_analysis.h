@@ -1,0 +1,18 @@
+// Failure analysis of a finished run (the virtual lab's yield point, PHYSICS.md §1.5): the history's
+// Love-Weber stress, actuator motion and base stresses become a dem::TestHistory, and
+// dem::analyse_failure picks the failure point (seed 002's kinetic-energy window, then max q), the
+// peaks, the secant modulus, the softening ratio and the plastic flow angle. The result goes into
+// summary.json.
+#pragma once
+
+#include "app/history.h"
+
+#include <nlohmann/json.hpp>
+
+namespace anticrack::app
+{
+  /// Analysis of a clump-driven test (needs the clump and Love-Weber columns); `sample_height` [m]
+  /// turns the clump's vertical displacement into the loading strain. Returns a JSON object; if the
+  /// history does not allow the analysis (no clump, no run-away yet) it says why in "error".
+  nlohmann::json analyse_test_history(const History &history, double sample_height);
+} // namespace anticrack::app
