@@ -295,10 +295,17 @@ namespace anticrack::app
       add_boundary_particles(scene, *model);
       if (d.bond.bond.enabled)
       {
-        // Sticky hard spheres: every pair in the well (gap <= delta sigma = 2 delta R) is a bond.
-        const double tolerance = model->sticky_hard_spheres ? 2 * d.sample.well_width * (1 + 1e-9) :
-                                                              d.bond.gap_tolerance;
-        model->initial_bonds = system.bond_touching_pairs(dem::BondingRule{tolerance});
+        // Sticky hard spheres: the adhesive contacts the sampler drew among the pairs in its well
+        // (gap <= delta sigma = 2 delta R) become the bonds.
+        dem::BondingRule rule;
+        rule.gap_tolerance = d.bond.gap_tolerance;
+        if (model->sticky_hard_spheres)
+        {
+          rule.gap_tolerance = 2 * d.sample.well_width * (1 + 1e-9);
+          rule.only_pairs.insert(model->sticky_hard_spheres->bonded_pairs.begin(),
+                                 model->sticky_hard_spheres->bonded_pairs.end());
+        }
+        model->initial_bonds = system.bond_touching_pairs(rule);
       }
       add_walls(scene, *model);
       system.settings = d.integration.settings;

@@ -353,6 +353,7 @@ namespace anticrack::dem::shs
     }
     report.acceptance = tried > 0 ? static_cast<double>(accepted) / tried : 0;
 
+    const double bond_probability = 1 - 1 / contact_weight;
     // Contact graph with the image offset of each edge, clusters and percolation (a cluster that
     // reaches a particle through two different periodic images wraps around the box).
     std::vector<std::vector<std::pair<Index, std::array<int, 3>>>> adjacent(n);
@@ -364,11 +365,15 @@ namespace anticrack::dem::shs
         const Vec3 image = minimum_image(d, box);
         if (image.squaredNorm() < range * range)
         {
+          ++report.well_pairs;
+          if (unit(rng) >= bond_probability)
+            return; // a hard-sphere pair that happens to be close, not an adhesive contact
           std::array<int, 3> k{};
           for (int a = 0; a < 3; ++a)
             k[a] = static_cast<int>(std::nearbyint((image[a] - d[a]) / box)); // j + k box is next to i
           adjacent[i].push_back({j, k});
           adjacent[j].push_back({i, {-k[0], -k[1], -k[2]}});
+          report.bonded_pairs.emplace_back(i, j);
           ++report.contacts;
         }
       });
@@ -412,8 +417,14 @@ namespace anticrack::dem::shs
     system.domain.upper = Vec3::Constant(box);
     system.domain.periodic = {true, true, true};
     const double density = system.materials[spec.material].density;
+    const Index first = system.particles.size();
     for (const Vec3 &y : x)
       system.particles.add_sphere(y, spec.radius, density, spec.material);
+    for (auto &[i, j] : report.bonded_pairs)
+    {
+      i += first;
+      j += first;
+    }
     report.volume_fraction = n * 4.0 / 3.0 * M_PI * std::pow(spec.radius, 3) / (box * box * box);
     return report;
   }

@@ -11,6 +11,7 @@
 #include "dem/system.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace anticrack::dem::shs
@@ -39,8 +40,12 @@ namespace anticrack::dem::shs
   /// diameter sigma) and depth eps with the same second virial coefficient,
   ///   ((1 + delta)^3 - 1) (exp(eps/kT) - 1) = 1 / (4 tau)     (B2 = B2_HS (1 - 1/(4 tau))),
   /// sampled by Metropolis single-particle moves that form and break contacts (acceptance
-  /// min(1, exp(eps/kT)^(n_new - n_old)) for hard-core-free trials). Pairs inside the well are the
-  /// contacts that become bonds. As delta -> 0 the model is Baxter's: at (phi, tau) = (0.3, 0.2) the
+  /// min(1, exp(eps/kT)^(n_new - n_old)) for hard-core-free trials). A pair inside the well carries
+  /// the weight exp(eps/kT) = 1 + (exp(eps/kT) - 1): the 1 is a hard-sphere pair that happens to be
+  /// close, the rest Baxter's adhesion; each pair in the well is therefore bonded with probability
+  /// 1 - exp(-eps/kT), and only bonded pairs count as contacts. (Counting every pair in the well
+  /// would add 8 phi ((1+delta)^3 - 1) g(sigma) to z, which does not vanish with the stickiness;
+  /// with the draw, dilute samples give z = 2 phi / tau, Baxter's low-density limit.) As delta -> 0 the model is Baxter's: at (phi, tau) = (0.3, 0.2) the
   /// coordination number is the same (2.81) for delta = 0.02 and 0.03, 3 % above Percus-Yevick.
   /// Aggregation-volume-bias moves help contacts form; dense, very sticky states (phi = 0.4,
   /// tau = 0.1) still need ~1e4 sweeps: watch `coordination_history` level off.
@@ -62,8 +67,10 @@ namespace anticrack::dem::shs
     double volume_fraction = 0;       ///< of the placed spheres (exact by construction)
     double stickiness = 0;            ///< tau used
     double percus_yevick_coordination = 0;
-    double coordination = 0;          ///< mean number of partners in the well, z
-    Index contacts = 0;
+    double coordination = 0;          ///< mean number of bonded partners, z = 2 bonds / N
+    Index contacts = 0;               ///< bonded pairs (Baxter contacts)
+    Index well_pairs = 0;             ///< pairs inside the well, bonded or not
+    std::vector<std::pair<Index, Index>> bonded_pairs; ///< particle ids (i < j) in the system
     double acceptance = 0;            ///< of the last sweeps' moves
     double largest_cluster_fraction = 0;
     bool percolating = false;         ///< the largest cluster wraps around the periodic box
@@ -72,7 +79,8 @@ namespace anticrack::dem::shs
   };
 
   /// Samples the fluid, appends the spheres to `system` (domain set to the periodic cube) and
-  /// returns the statistics; bonds are made by the caller (bond_touching_pairs with a gap tolerance
-  /// of 2 delta, the well width in radii). Throws SetupError for tau < tau_min(phi) or bad input.
+  /// returns the statistics; bonds are made by the caller: bond_touching_pairs with a gap tolerance
+  /// of 2 delta (the well width in radii) restricted to report.bonded_pairs. Throws SetupError for
+  /// tau < tau_min(phi) or bad input.
   SamplerReport sample_sticky_hard_spheres(DemSystem &system, const SamplerSpec &spec);
 } // namespace anticrack::dem::shs

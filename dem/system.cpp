@@ -116,7 +116,8 @@ namespace anticrack::dem
       const Index i = candidates.i[c], j = candidates.j[c];
       const Material &mi = materials[particles.material_id[i]];
       const Material &mj = materials[particles.material_id[j]];
-      if (!mi.bond.enabled || !mj.bond.enabled || existing.count({i, j}))
+      if (!mi.bond.enabled || !mj.bond.enabled || existing.count({i, j}) ||
+          (!rule.only_pairs.empty() && !rule.only_pairs.count({i, j})))
         continue;
       const double ri = particles.radius[i], rj = particles.radius[j];
       const Vec3 branch = particles.position[j] + candidates.shift[c] - particles.position[i];

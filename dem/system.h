@@ -22,6 +22,8 @@
 #include "dem/walls.h"
 
 #include <functional>
+#include <set>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -43,7 +45,10 @@ namespace anticrack::dem
   /// What a bonding pass should bond.
   struct BondingRule
   {
-    double gap_tolerance = 0.0;  ///< bond pairs with gap <= tolerance * min(R_i, R_j)
+    BondingRule(double tolerance = 0.0) : gap_tolerance(tolerance) {}
+    double gap_tolerance;        ///< bond pairs with gap <= tolerance * min(R_i, R_j)
+    /// If not empty, only these pairs (i < j) may be bonded (e.g. the bonds a sampler drew).
+    std::set<std::pair<Index, Index>> only_pairs;
   };
 
   class DemSystem
