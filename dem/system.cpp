@@ -122,18 +122,28 @@ namespace anticrack::dem
       const double ri = particles.radius[i], rj = particles.radius[j];
       const Vec3 branch = particles.position[j] + candidates.shift[c] - particles.position[i];
       const double gap = branch.norm() - ri - rj;
-      const double rmin = std::min(ri, rj);
-      if (gap > std::max(rule.gap_tolerance, 1e-9) * rmin)
+      if (gap > std::max(rule.gap_tolerance, 1e-9) * std::min(ri, rj))
         continue;
-      const BondParameters &p =
-        particles.material_id[i] <= particles.material_id[j] ? mi.bond : mj.bond;
-      bonds.add(i, j, candidates.shift[c], branch.normalized(), p.radius_multiplier * rmin, ri + rj,
-                p.modulus, p.stiffness_ratio, p.tensile_strength, p.cohesion, p.friction_angle,
-                p.moment_factor);
+      add_bond(i, j);
       ++added;
     }
-    incidence_valid_ = false;
     return added;
+  }
+
+  Index DemSystem::add_bond(Index i, Index j, double bond_radius)
+  {
+    if (i < 0 || j < 0 || i >= particles.size() || j >= particles.size() || i == j)
+      throw SetupError("add_bond: particle ids " + std::to_string(i) + " and " + std::to_string(j) +
+                       " must be distinct and below " + std::to_string(particles.size()));
+    const int mi = particles.material_id[i], mj = particles.material_id[j];
+    const BondParameters &p = materials[std::min(mi, mj)].bond;
+    const double ri = particles.radius[i], rj = particles.radius[j];
+    const Vec3 shift = domain.minimum_image_shift(particles.position[i], particles.position[j]);
+    const Vec3 branch = particles.position[j] + shift - particles.position[i];
+    const double radius = bond_radius > 0 ? bond_radius : p.radius_multiplier * std::min(ri, rj);
+    incidence_valid_ = false;
+    return bonds.add(i, j, shift, branch.normalized(), radius, ri + rj, p.modulus, p.stiffness_ratio,
+                     p.tensile_strength, p.cohesion, p.friction_angle, p.moment_factor);
   }
 
   Index DemSystem::add_clump(const std::vector<Index> &members)

@@ -79,6 +79,11 @@ namespace anticrack::dem
     /// rule's tolerance; parameters from the material with the smaller id. Returns the count.
     Index bond_touching_pairs(const BondingRule &rule = {});
 
+    /// Bonds particles i and j with the bond parameters of their materials (the one with the smaller
+    /// id), across the minimum periodic image; `bond_radius` 0 selects lambda_bar min(R_i, R_j).
+    /// Returns the bond's index. Throws SetupError for bad ids.
+    Index add_bond(Index i, Index j, double bond_radius = 0);
+
     /// Adds a clump made of `members`; returns its index.
     Index add_clump(const std::vector<Index> &members);
 
