@@ -2,15 +2,16 @@
 
 #include "app/input_error.h"
 #include "dem/force_history.h"
+#include "dem/io_hdf5.h"
 #include "dem/lattice.h"
 
-#include <hdf5.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <ostream>
 #include <random>
 #include <sstream>
@@ -42,62 +43,6 @@ namespace anticrack::app
   namespace
   {
     using parameters::Walls;
-
-    /// Positions and radii of an anticrack snapshot (/particles/position N x 3, /particles/radius N).
-    /// Only these two arrays are taken: the scene supplies everything else.
-    void read_snapshot_spheres(const std::string &file, std::vector<Vec3> &position,
-                               std::vector<double> &radius)
-    {
-      const std::string where = "DEM/Sample/Snapshot file = " + file + ": ";
-      // Silence HDF5's own error stack printout; we report the failure ourselves.
-      H5E_auto2_t old_handler;
-      void *old_data;
-      H5Eget_auto2(H5E_DEFAULT, &old_handler, &old_data);
-      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-      struct Restore
-      {
-        H5E_auto2_t handler;
-        void *data;
-        ~Restore() { H5Eset_auto2(H5E_DEFAULT, handler, data); }
-      } restore{old_handler, old_data};
-
-      const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-      if (f < 0)
-        throw InputError(where + "not an HDF5 file that can be opened");
-      auto read = [&](const char *name, int columns, double *data, hsize_t &rows) {
-        const hid_t set = H5Dopen2(f, name, H5P_DEFAULT);
-        if (set < 0)
-          return false;
-        const hid_t space = H5Dget_space(set);
-        hsize_t dims[2] = {0, 0};
-        const int rank = H5Sget_simple_extent_ndims(space);
-        H5Sget_simple_extent_dims(space, dims, nullptr);
-        H5Sclose(space);
-        const bool shape_ok = rank == (columns == 1 ? 1 : 2) && (columns == 1 || dims[1] == hsize_t(columns));
-        herr_t status = -1;
-        if (shape_ok && data == nullptr)
-          status = 0; // size query only
-        else if (shape_ok)
-          status = H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
-        rows = dims[0];
-        H5Dclose(set);
-        return status >= 0;
-      };
-      hsize_t n = 0, n_radius = 0;
-      bool ok = read("/particles/position", 3, nullptr, n) && read("/particles/radius", 1, nullptr, n_radius) &&
-                n == n_radius;
-      if (ok)
-      {
-        position.resize(n);
-        radius.resize(n);
-        ok = read("/particles/position", 3, position.data()->data(), n) &&
-             read("/particles/radius", 1, radius.data(), n_radius);
-      }
-      H5Fclose(f);
-      if (!ok)
-        throw InputError(where + "needs /particles/position (N x 3) and /particles/radius (N) of an "
-                                 "anticrack snapshot");
-    }
 
     /// Initial velocity amplitude for the generated samples (the generators leave them at rest).
     void add_random_velocities(const parameters::Dem &d, dem::DemSystem &system, const Index first)
@@ -162,11 +107,20 @@ namespace anticrack::app
         return;
       }
 
-      std::vector<Vec3> position;
-      std::vector<double> radius;
-      read_snapshot_spheres(d.sample.snapshot_file, position, radius);
+      // An external sample (dem/io_hdf5.h read_sample): spheres, optional clumps and bonds.
+      dem::io::ExternalSample sample;
+      try
+      {
+        sample = dem::io::read_sample(d.sample.snapshot_file);
+      }
+      catch (const std::exception &e)
+      {
+        throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": " + e.what());
+      }
+      const std::vector<Vec3> &position = sample.position;
       std::mt19937_64 rng(d.seed);
       std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+      const Index first = system.particles.size();
       for (std::size_t k = 0; k < position.size(); ++k)
       {
         for (int a = 0; a < 3; ++a)
@@ -175,15 +129,24 @@ namespace anticrack::app
             throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": sphere " +
                              std::to_string(k) + " at (" + format_vector(position[k]) +
                              ") m lies outside DEM/Domain");
-        if (!(radius[k] > 0))
-          throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": sphere " +
-                           std::to_string(k) + " has radius " + std::to_string(radius[k]));
-        const Index p = system.particles.add_sphere(system.domain.wrap(position[k]), radius[k],
+        const Index p = system.particles.add_sphere(system.domain.wrap(position[k]), sample.radius[k],
                                                     d.material.density, 0);
         if (d.sample.velocity_amplitude > 0)
           for (int a = 0; a < 3; ++a)
             system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
       }
+      // Rigid grains: spheres sharing a clump id.
+      std::map<int, std::vector<Index>> grains;
+      for (std::size_t k = 0; k < sample.clump_id.size(); ++k)
+        if (sample.clump_id[k] >= 0)
+          grains[sample.clump_id[k]].push_back(first + static_cast<Index>(k));
+      for (const auto &[id, members] : grains)
+        system.add_clump(members);
+      // Bonds given by the file replace the bonding of touching pairs.
+      model.imported_bonds = !sample.bond_i.empty();
+      for (std::size_t b = 0; b < sample.bond_i.size(); ++b)
+        system.add_bond(first + sample.bond_i[b], first + sample.bond_j[b],
+                        sample.bond_radius.empty() ? 0.0 : sample.bond_radius[b]);
     }
 
     /// Fixed base and loaded clump (PHYSICS.md 1.5). Both start at rest.
@@ -305,7 +268,8 @@ namespace anticrack::app
           rule.only_pairs.insert(model->sticky_hard_spheres->bonded_pairs.begin(),
                                  model->sticky_hard_spheres->bonded_pairs.end());
         }
-        model->initial_bonds = system.bond_touching_pairs(rule);
+        model->initial_bonds =
+          model->imported_bonds ? system.bonds.size() : system.bond_touching_pairs(rule);
       }
       add_walls(scene, *model);
       system.settings = d.integration.settings;

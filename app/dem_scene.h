@@ -26,6 +26,7 @@ namespace anticrack::app
     Index clump = -1;                     ///< index into system.clumps, -1 without a clump
     std::vector<int> wall_face;           ///< face index (0..5 = x-..z+) of system.walls[w]
     Index initial_bonds = 0;              ///< bonds created when the sample was built
+    bool imported_bonds = false;          ///< the sample file brought its own bonds
     double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
     double critical_time_step = 0;        ///< dt_crit at initialise() [s]
     /// Statistics of the sample generator (DEM/Sample/Type = sticky hard spheres or ballistic

@@ -142,6 +142,12 @@ namespace anticrack::dem::io
         return {file_, path_ + "/" + name, Handle(group, H5Gclose, "open group", where(name))};
       }
 
+      /// Whether this node has a child `name`.
+      [[nodiscard]] bool has(const std::string &name) const
+      {
+        return check(H5Lexists(id(), name.c_str(), H5P_DEFAULT), "look up", where(name)) > 0;
+      }
+
       /// Throws a "missing" error when this node has no child `name`.
       void require_link(const std::string &name) const
       {
@@ -883,6 +889,57 @@ namespace anticrack::dem::io
                       [&](const char *name, const auto &value) { write_attribute(settings, name, value); });
       write_energy(root, system.ledger);
     });
+  }
+
+  ExternalSample read_sample(const std::string &file)
+  {
+    const QuietHdf5Errors quiet;
+    const Node root = Node::open_file(file);
+    ExternalSample sample;
+    const Node particles = root.open_group("particles");
+    read_array(particles, "position", sample.position, any_rows);
+    const auto n = static_cast<Index>(sample.position.size());
+    read_array(particles, "radius", sample.radius, n);
+    for (Index p = 0; p < n; ++p)
+      if (!(sample.radius[p] > 0))
+        fail(particles.where("radius"), "sphere " + std::to_string(p) + " has radius " +
+                                          std::to_string(sample.radius[p]) + " m; radii must be positive");
+    if (particles.has("clump_id"))
+      read_array(particles, "clump_id", sample.clump_id, n);
+    if (!root.has("bonds"))
+      return sample;
+    const Node bonds = root.open_group("bonds");
+    std::vector<Index> i, j;
+    read_array(bonds, "i", i, any_rows);
+    const auto m = static_cast<Index>(i.size());
+    read_array(bonds, "j", j, m);
+    check_range(bonds, "i", i, 0, n, "bond ends name spheres of the file");
+    check_range(bonds, "j", j, 0, n, "bond ends name spheres of the file");
+    std::vector<std::uint8_t> state(m, 0);
+    if (bonds.has("state"))
+      read_array(bonds, "state", state, m);
+    std::vector<double> radius;
+    if (bonds.has("area"))
+    {
+      read_array(bonds, "area", radius, m);
+      for (double &r : radius)
+        r = r > 0 ? std::sqrt(r / M_PI) : r; // R_bar = sqrt(A / pi)
+    }
+    else if (bonds.has("radius"))
+      read_array(bonds, "radius", radius, m);
+    for (Index b = 0; b < m; ++b)
+    {
+      if (state[b] != 0)
+        continue;
+      if (!radius.empty() && !(radius[b] > 0))
+        fail(bonds.where(bonds.has("area") ? "area" : "radius"),
+             "bond " + std::to_string(b) + " has a non-positive cross-section");
+      sample.bond_i.push_back(i[b]);
+      sample.bond_j.push_back(j[b]);
+      if (!radius.empty())
+        sample.bond_radius.push_back(radius[b]);
+    }
+    return sample;
   }
 
   void read_checkpoint(const std::string &file, DemSystem &system)

@@ -43,9 +43,33 @@
 #include "dem/system.h"
 
 #include <string>
+#include <vector>
 
 namespace anticrack::dem::io
 {
+  /// A sample made elsewhere (e.g. grains segmented from tomography, seed 001) or an earlier run's
+  /// snapshot: spheres, optional rigid clumps of (overlapping) spheres, optional bonds with their
+  /// cross-section. File layout (SI units):
+  ///   /particles/position (N x 3), /particles/radius (N)          required
+  ///   /particles/clump_id (N, int; -1 = free sphere)               optional: spheres sharing an id
+  ///                                                                form one rigid clump
+  ///   /bonds/i, /bonds/j (M, int64)                                optional
+  ///   /bonds/area (M) [m^2] or /bonds/radius (M) [m]                optional bond cross-section
+  ///   /bonds/state (M, uint8)                                      optional: only state 0 is taken
+  /// An anticrack snapshot is such a file.
+  struct ExternalSample
+  {
+    std::vector<Vec3> position;
+    std::vector<double> radius;
+    std::vector<int> clump_id;          ///< empty or one per sphere
+    std::vector<Index> bond_i, bond_j;  ///< intact bonds
+    std::vector<double> bond_radius;    ///< empty or one per bond (from area or radius)
+  };
+
+  /// Reads and validates an external sample (sizes, indices, positive radii and areas); errors name
+  /// the file and the dataset.
+  ExternalSample read_sample(const std::string &file);
+
   /// Writes the post-processing snapshot of `system` (format above) to `file`.
   void write_snapshot(const std::string &file, const DemSystem &system);
 
