@@ -20,6 +20,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -158,17 +159,8 @@ namespace anticrack::app
       files_{fs::path(options.output_directory)}, total_steps_(scene.dem.steps)
   {
     declare_history_columns();
-    const auto &particles = system_.particles;
-    if (particles.size() > 0)
-    {
-      double low = particles.position[0].z() - particles.radius[0], high = particles.position[0].z() + particles.radius[0];
-      for (Index q = 1; q < particles.size(); ++q)
-      {
-        low = std::min(low, particles.position[q].z() - particles.radius[q]);
-        high = std::max(high, particles.position[q].z() + particles.radius[q]);
-      }
-      initial_sample_height_ = high - low;
-    }
+    const auto [low, high] = dem::sphere_extent(system_.particles, 2);
+    initial_sample_height_ = high - low;
   }
 
   void DemRun::declare_history_columns()
@@ -244,18 +236,13 @@ namespace anticrack::app
     double speed = model_->clump >= 0 ? system_.clumps[model_->clump].velocity.norm() : 0.0;
     for (const auto &wall : system_.walls)
       speed = std::max(speed, wall.velocity.norm());
-    double low = particles.position[0].z(), high = low, radius_sum = 0;
-    for (Index q = 0; q < particles.size(); ++q)
-    {
-      low = std::min(low, particles.position[q].z() - particles.radius[q]);
-      high = std::max(high, particles.position[q].z() + particles.radius[q]);
-      radius_sum += particles.radius[q];
-    }
+    const auto [low, high] = dem::sphere_extent(particles, 2);
     if (speed == 0 || high <= low)
       return 0;
     if (mean_pressure == 0)
       return std::numeric_limits<double>::infinity();
-    const double diameter = 2 * radius_sum / particles.size();
+    const double diameter =
+      2 * std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
     const double density = system_.materials[particles.material_id[0]].density;
     return speed / (high - low) * diameter * std::sqrt(density / std::abs(mean_pressure));
   }

@@ -84,26 +84,34 @@ namespace anticrack::dem
     return fabric;
   }
 
+  std::pair<double, double> sphere_extent(const ParticleStore &particles, int axis)
+  {
+    if (particles.size() == 0)
+      return {0, 0};
+    double lo = particles.position[0][axis] - particles.radius[0];
+    double hi = particles.position[0][axis] + particles.radius[0];
+    for (Index p = 1; p < particles.size(); ++p)
+    {
+      lo = std::min(lo, particles.position[p][axis] - particles.radius[p]);
+      hi = std::max(hi, particles.position[p][axis] + particles.radius[p]);
+    }
+    return {lo, hi};
+  }
+
   double sample_volume(const DemSystem &system)
   {
-    const auto &particles = system.particles;
-    if (particles.size() == 0)
+    if (system.particles.size() == 0)
       return 0;
     double volume = 1;
     for (int a = 0; a < 3; ++a)
     {
       if (system.domain.periodic[a])
-      {
         volume *= system.domain.length()[a];
-        continue;
-      }
-      double lo = particles.position[0][a] - particles.radius[0], hi = particles.position[0][a] + particles.radius[0];
-      for (Index p = 1; p < particles.size(); ++p)
+      else
       {
-        lo = std::min(lo, particles.position[p][a] - particles.radius[p]);
-        hi = std::max(hi, particles.position[p][a] + particles.radius[p]);
+        const auto [lo, hi] = sphere_extent(system.particles, a);
+        volume *= hi - lo;
       }
-      volume *= hi - lo;
     }
     return volume;
   }

@@ -6,6 +6,8 @@
 #include "dem/stress_invariants.h"
 #include "dem/system.h"
 
+#include <utility>
+
 namespace anticrack::dem
 {
   /// Love-Weber stress over the volume V (tension positive, PHYSICS.md §0):
@@ -26,6 +28,9 @@ namespace anticrack::dem
   /// Fabric of the touching contacts (overlap > 0 at the last step) and of the intact bonds, counted
   /// once per pair (a bonded pair that touches counts once), over all particles.
   Fabric contact_and_bond_fabric(const DemSystem &system);
+
+  /// Lowest and highest sphere surface along an axis (0, 0 for no spheres).
+  std::pair<double, double> sphere_extent(const ParticleStore &particles, int axis);
 
   /// Volume the sample occupies: along periodic axes the box length, along open axes the extent of
   /// the spheres (lowest surface to highest surface). The volume for the Love-Weber stress.

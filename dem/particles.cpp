@@ -9,7 +9,7 @@ namespace anticrack::dem
     if (!(r > 0) || !(density > 0))
       throw SetupError("add_sphere: radius and density must be positive (got R = " + std::to_string(r) +
                        " m, rho = " + std::to_string(density) + " kg/m^3)");
-    const double m = density * 4.0 / 3.0 * M_PI * r * r * r;
+    const double m = density * sphere_volume(r);
     position.push_back(x);
     velocity.push_back(Vec3::Zero());
     angular_velocity.push_back(Vec3::Zero());

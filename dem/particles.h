@@ -4,6 +4,7 @@
 
 #include "dem/types.h"
 
+#include <cmath>
 #include <vector>
 
 namespace anticrack::dem
@@ -17,6 +18,9 @@ namespace anticrack::dem
     block_rotation = 2,
     block_all = block_translation | block_rotation
   };
+
+  /// Volume of a sphere of radius r, 4/3 pi r^3.
+  inline double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
   struct ParticleStore
   {

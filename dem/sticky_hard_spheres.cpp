@@ -234,7 +234,7 @@ namespace anticrack::dem::shs
     const Index n = spec.particle_count;
     const double sigma = 2 * spec.radius;
     const double range = sigma * (1 + spec.well_width);
-    const double box = std::cbrt(n * M_PI / 6 * sigma * sigma * sigma / phi);
+    const double box = std::cbrt(n * sphere_volume(spec.radius) / phi);
     report.box_length = box;
     // Boltzmann factor of one contact, from the matched second virial coefficient.
     const double contact_weight =
@@ -425,7 +425,7 @@ namespace anticrack::dem::shs
       i += first;
       j += first;
     }
-    report.volume_fraction = n * 4.0 / 3.0 * M_PI * std::pow(spec.radius, 3) / (box * box * box);
+    report.volume_fraction = n * sphere_volume(spec.radius) / (box * box * box);
     return report;
   }
 } // namespace anticrack::dem::shs

@@ -403,7 +403,7 @@ namespace anticrack::dem
       {
         const ContactParameters &c = materials[particles.material_id[p]].contact;
         const double modulus = c.law == ContactLaw::linear ? c.contact_modulus : c.young_modulus;
-        const double density = particles.mass[p] / (4.0 / 3.0 * M_PI * std::pow(particles.radius[p], 3));
+        const double density = particles.mass[p] / sphere_volume(particles.radius[p]);
         const double estimate = particles.radius[p] * std::sqrt(density / modulus);
         if (estimate * estimate < dt2)
           dt2 = estimate * estimate, limiting = p;
