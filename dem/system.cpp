@@ -185,12 +185,7 @@ namespace anticrack::dem
       if (std::abs(w.normal.norm() - 1) > 1e-12)
         throw SetupError("wall '" + w.name + "' needs a unit normal");
 
-    if (particles.size() > 0)
-    {
-      const double mean_radius =
-        std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
-      skin_ = settings.verlet_skin > 0 ? settings.verlet_skin : 0.1 * mean_radius;
-    }
+    choose_skin();
     previous_velocity = particles.velocity;
     previous_angular_velocity = particles.angular_velocity;
     wall_shear.assign(walls.size() * particles.size(), Vec3::Zero());
@@ -212,12 +207,7 @@ namespace anticrack::dem
 
   void DemSystem::resume()
   {
-    if (particles.size() > 0)
-    {
-      const double mean_radius =
-        std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
-      skin_ = settings.verlet_skin > 0 ? settings.verlet_skin : 0.1 * mean_radius;
-    }
+    choose_skin();
     const std::size_t wall_slots = walls.size() * particles.size();
     if (wall_shear.size() != wall_slots || wall_dashpot.size() != wall_slots)
       throw SetupError("checkpoint: sphere-wall state does not match the walls and particles");
@@ -254,6 +244,16 @@ namespace anticrack::dem
     if (wall_overlap_.size() != walls.size() * particles.size())
       wall_overlap_.assign(walls.size() * particles.size(), 0.0);
     update_time_step();
+  }
+
+  void DemSystem::choose_skin()
+  {
+    // The scene's skin, or a tenth of the mean radius: few rebuilds, few extra candidate pairs.
+    if (particles.size() == 0)
+      return;
+    const double mean_radius =
+      std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
+    skin_ = settings.verlet_skin > 0 ? settings.verlet_skin : 0.1 * mean_radius;
   }
 
   void DemSystem::update_wall_overlaps()

@@ -152,6 +152,7 @@ namespace anticrack::dem
     void update_time_step();
     void build_incidence();
     void update_wall_overlaps();
+    void choose_skin();
     void check_stability();
 
     NeighborList neighbor_list_;
