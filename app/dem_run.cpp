@@ -1,5 +1,6 @@
 #include "app/dem_run.h"
 
+#include "app/campaign.h"
 #include "app/dem_scene.h"
 #include "app/history.h"
 #include "app/input_error.h"
@@ -120,13 +121,14 @@ namespace anticrack::app
   private:
     void declare_history_columns();
     void record_history();
-    [[nodiscard]] double inertial_number(double mean_pressure) const;
+    [[nodiscard]] double inertial_number(const dem::Mat3 &stress) const;
     double initial_sample_height_ = 0; ///< z extent of the spheres at the start [m] (loading strain)
     void write_history();
     void write_snapshot();
     void write_checkpoint();
     void write_outputs(bool first, bool last);
     void report_progress();
+
     [[nodiscard]] Json summary(const std::string &status, const std::string &message) const;
     void print_start() const;
     void print_end(double wall) const;
@@ -134,6 +136,7 @@ namespace anticrack::app
     // --- scene and model
     const SceneParameters &scene_;
     std::unique_ptr<DemModel> model_;
+    std::unique_ptr<dem::LabProtocol> protocol_; ///< the test's loading programme, if any
     dem::DemSystem &system_;
     RunOptions options_;
     OutputFiles files_;
@@ -145,6 +148,7 @@ namespace anticrack::app
     double wall_seconds_ = 0;
     Index last_history_step_ = -1, last_snapshot_step_ = -1, last_checkpoint_step_ = -1;
     Index snapshots_written_ = 0, checkpoints_written_ = 0;
+    bool protocol_finished_ = false;
 
     // --- time series
     History history_;
@@ -161,6 +165,7 @@ namespace anticrack::app
     declare_history_columns();
     const auto [low, high] = dem::sphere_extent(system_.particles, 2);
     initial_sample_height_ = high - low;
+    protocol_ = make_lab_protocol(scene_, *model_);
   }
 
   void DemRun::declare_history_columns()
@@ -223,13 +228,16 @@ namespace anticrack::app
       h.add_column(std::string("fabric_") + c, "-", "fabric tensor C_" + std::string(c) + " = <n n> over contacts and bonds");
     h.add_column("broken_bond_fraction", "-", "broken bonds / all bonds");
     h.add_column("inertial_number", "-",
-                 "I = strain rate x mean diameter x sqrt(rho / |p|), strain rate = actuator speed / sample height");
+                 "I = strain rate x mean diameter x sqrt(rho / s), strain rate = actuator speed / sample height, "
+                 "s = sqrt(sigma:sigma / 3) the Love-Weber stress magnitude (= |p| under isotropic stress)");
   }
 
-  double DemRun::inertial_number(double mean_pressure) const
+  double DemRun::inertial_number(const dem::Mat3 &stress) const
   {
-    // I = gamma_dot d sqrt(rho / |p|) (seed 002), with the strain rate taken as the actuator's speed
-    // (clump or fastest wall) over the sample height.
+    // I = gamma_dot d sqrt(rho / P) (seed 002), with the strain rate taken as the actuator's speed
+    // (clump or fastest wall) over the sample height. The confining stress P of shear flows is
+    // generalised to any loading angle as the stress magnitude s = sqrt(sigma:sigma / 3), which is
+    // |p| under isotropic stress and does not vanish in pure shear, where p does.
     const auto &particles = system_.particles;
     if (particles.size() == 0)
       return 0;
@@ -239,12 +247,13 @@ namespace anticrack::app
     const auto [low, high] = dem::sphere_extent(particles, 2);
     if (speed == 0 || high <= low)
       return 0;
-    if (mean_pressure == 0)
+    const double magnitude = std::sqrt(stress.squaredNorm() / 3);
+    if (magnitude == 0)
       return std::numeric_limits<double>::infinity();
     const double diameter =
       2 * std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / particles.size();
     const double density = system_.materials[particles.material_id[0]].density;
-    return speed / (high - low) * diameter * std::sqrt(density / std::abs(mean_pressure));
+    return speed / (high - low) * diameter * std::sqrt(density / magnitude);
   }
 
   void DemRun::record_history()
@@ -309,7 +318,7 @@ namespace anticrack::app
     for (int a = 0; a < 3; ++a)
       row.push_back(fabric.tensor(a, a));
     row.push_back(dem::broken_bond_fraction(system_.bonds));
-    row.push_back(inertial_number(p));
+    row.push_back(inertial_number(stress));
     history_.append(row);
     last_history_step_ = system_.step_count;
   }
@@ -356,6 +365,8 @@ namespace anticrack::app
     info["scene"] = scene_info(scene_);
     info["step"] = system_.step_count;
     info["time"] = system_.time;
+    if (protocol_)
+      info["protocol_state"] = protocol_->state();
     write_json_atomically(files_.checkpoint_info().string(), info);
     last_checkpoint_step_ = system_.step_count;
     ++checkpoints_written_;
@@ -372,7 +383,8 @@ namespace anticrack::app
     // No checkpoint at the first step of a run: there is nothing to resume yet.
     if (o.checkpoint_interval > 0 && !first && (last || multiple_of(step, o.checkpoint_interval)))
       write_checkpoint();
-    if (o.progress_interval > 0 && step > first_step_ && (last || multiple_of(step, o.progress_interval)))
+    if (!options_.quiet && o.progress_interval > 0 && step > first_step_ &&
+        (last || multiple_of(step, o.progress_interval)))
       report_progress();
   }
 
@@ -446,6 +458,8 @@ namespace anticrack::app
                        ", beyond DEM/Steps = " + std::to_string(total_steps_) + " of <" + scene_.file + ">.");
     resumed_from_step_ = system_.step_count;
     last_checkpoint_step_ = system_.step_count;
+    if (protocol_ && info.contains("protocol_state"))
+      protocol_->restore(info["protocol_state"].get<std::map<std::string, double>>());
 
     if (fs::exists(files_.history(), error))
     {
@@ -490,7 +504,8 @@ namespace anticrack::app
 
     first_step_ = system_.step_count;
     progress_.emplace(std::cout, ProgressReporter::stdout_is_terminal(), first_step_);
-    print_start();
+    if (!options_.quiet)
+      print_start();
 
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -501,19 +516,28 @@ namespace anticrack::app
     {
       if (!resumed_from_step_)
         write_outputs(true, total_steps_ == 0);
-      // Steps run in chunks that end at the next output step (at most 1000 steps, so that a stop
-      // request is honoured promptly).
+      // Steps run in chunks that end at the next output or control step (at most 1000 steps, so
+      // that a stop request is honoured promptly).
       constexpr Index max_chunk = 1000;
+      const Index control_interval = protocol_ ? protocol_->control_interval() : 0;
       while (system_.step_count < total_steps_)
       {
         const Index now = system_.step_count;
         Index next = std::min(total_steps_, now + max_chunk);
         for (const Index interval : {o.history_interval, o.snapshot_interval, o.checkpoint_interval,
-                                     o.progress_interval})
+                                     o.progress_interval, control_interval})
           if (interval > 0)
             next = std::min(next, (now / interval + 1) * interval);
         system_.run(next - now);
-        write_outputs(false, system_.step_count == total_steps_);
+        if (protocol_ && multiple_of(system_.step_count, control_interval))
+          protocol_->control(system_);
+        protocol_finished_ = protocol_ && protocol_->finished(system_);
+        write_outputs(false, system_.step_count == total_steps_ || protocol_finished_);
+        if (protocol_finished_)
+        {
+          message = "the test ended at step " + std::to_string(system_.step_count) + ": " + protocol_->stage(system_);
+          break;
+        }
         if (stop_requested)
         {
           status = "interrupted";
@@ -569,7 +593,7 @@ namespace anticrack::app
                      std::to_string(last_history_step_) + ")\n  at step " +
                      std::to_string(system_.step_count) + ", t = " + format_number(system_.time) +
                      " s:\n\n  " + message);
-    else
+    else if (!options_.quiet)
       print_end(wall_seconds_);
     if (status == "interrupted")
       std::cout << "interrupted at step " << system_.step_count << " of " << total_steps_
@@ -592,6 +616,8 @@ namespace anticrack::app
     if (!message.empty())
       s["message"] = message;
     s["command"] = options_.command_line;
+    if (!options_.labels.is_null())
+      s["labels"] = options_.labels;
     s["scene"] = scene_info(scene_);
     s["components"] = scene_.components;
     s["output_directory"] = files_.directory.string();
@@ -685,6 +711,20 @@ namespace anticrack::app
       c["velocity_m_per_s"] = {clump.velocity[0], clump.velocity[1], clump.velocity[2]};
       c["applied_force_N"] = {force[0], force[1], force[2]};
       d["clump"] = c;
+      const auto &loading = scene_.dem.loading;
+      Json l;
+      l["adaptive_rate"] = loading.adaptive;
+      l["fast_rate_N_per_s"] = scene_.dem.boundary.clump_force_rate;
+      if (loading.adaptive)
+      {
+        l["slow_rate_N_per_s"] = loading.ramp.slow_fraction * loading.ramp.fast_rate;
+        l["control_interval_steps"] = loading.ramp.interval;
+        l["lag_tolerance"] = loading.ramp.lag_tolerance;
+      }
+      l["final_rate_N_per_s"] = dem::clump_ramp_rate(clump);
+      l["stop_strain"] = loading.stop_strain;
+      l["stopped_at_stop_strain"] = protocol_finished_;
+      d["loading"] = l;
       // The yield point of this test (seed 002's failure criterion) and its companions.
       d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_);
     }
@@ -772,7 +812,7 @@ namespace anticrack::app
     const Index steps_done = system_.step_count - first_step_;
     std::ostringstream s;
     s << std::setprecision(4);
-    s << (system_.step_count == total_steps_ ? "done: " : "stopped: ") << steps_done << " steps in " << format_duration(wall) << " ("
+    s << (system_.step_count == total_steps_ || protocol_finished_ ? "done: " : "stopped: ") << steps_done << " steps in " << format_duration(wall) << " ("
       << (wall > 0 ? steps_done / wall : 0.0) << " steps/s); t = " << system_.time << " s\n"
       << "  intact bonds " << bonds.intact << "/" << system_.bonds.size() << " (broken: " << bonds.tension
       << " in tension, " << bonds.shear << " in shear); energy balance error "
@@ -808,8 +848,15 @@ namespace anticrack::app
   {
     const SceneParameters scene = read_scene(options.scene_file);
     require_dem(scene);
+    if (scene.campaign.enabled())
+      return run_campaign(scene, options);
     const int threads = options.threads >= 0 ? options.threads : scene.dem.threads;
-    DemRun run(scene, build_dem_model(scene, threads), options);
+    return run_dem_model(scene, build_dem_model(scene, threads), options);
+  }
+
+  int run_dem_model(const SceneParameters &scene, std::unique_ptr<DemModel> model, const RunOptions &options)
+  {
+    DemRun run(scene, std::move(model), options);
     run.prepare();
     return run.run();
   }
@@ -820,6 +867,8 @@ namespace anticrack::app
     require_dem(scene);
     const auto model = build_dem_model(scene, threads >= 0 ? threads : scene.dem.threads);
     describe_dem_model(std::cout, scene, *model);
+    if (scene.campaign.enabled())
+      describe_campaign(std::cout, scene);
     std::cout << "\nThe scene is valid.\n";
     return exit_success;
   }

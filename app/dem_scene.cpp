@@ -4,6 +4,8 @@
 #include "dem/force_history.h"
 #include "dem/io_hdf5.h"
 #include "dem/lattice.h"
+#include "dem/load_control.h"
+#include "dem/measurements.h"
 
 #include <omp.h>
 
@@ -12,6 +14,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <ostream>
 #include <random>
 #include <sstream>
@@ -56,6 +59,15 @@ namespace anticrack::app
           system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
     }
 
+    /// The generators sample in a periodic box; the specimen is periodic only along the axes the
+    /// scene lists. Opening an axis before the bonding pass means that no bond crosses its faces
+    /// (the spheres keep their wrapped positions inside the box).
+    void open_axes_the_scene_does_not_wrap(const parameters::Dem &d, dem::DemSystem &system)
+    {
+      for (int a = 0; a < 3; ++a)
+        system.domain.periodic[a] = system.domain.periodic[a] && d.domain.periodic[a];
+    }
+
     void add_sample(const SceneParameters &scene, DemModel &model)
     {
       dem::DemSystem &system = model.system;
@@ -68,12 +80,16 @@ namespace anticrack::app
         spec.volume_fraction = d.sample.volume_fraction;
         spec.stickiness = d.sample.stickiness;
         spec.target_coordination = d.sample.target_coordination;
-        spec.radius = d.sample.radius;
+        spec.radius = d.sample.box_edge > 0 ?
+                        std::cbrt(d.sample.volume_fraction * std::pow(d.sample.box_edge, 3) /
+                                  (d.sample.particle_count * dem::sphere_volume(1.0))) :
+                        d.sample.radius;
         spec.well_width = d.sample.well_width;
         spec.sweeps = d.sample.sweeps;
         spec.material = 0;
         spec.seed = d.seed;
         model.sticky_hard_spheres = dem::shs::sample_sticky_hard_spheres(system, spec);
+        open_axes_the_scene_does_not_wrap(d, system);
         add_random_velocities(d, system, 0);
         return;
       }
@@ -90,6 +106,7 @@ namespace anticrack::app
         spec.seed = d.seed;
         const Index first = system.particles.size();
         model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
+        open_axes_the_scene_does_not_wrap(d, system);
         add_random_velocities(d, system, first);
         return;
       }
@@ -161,34 +178,55 @@ namespace anticrack::app
       const std::string range = "the sphere centres span z = [" + format_number(z_min) + ", " +
                                 format_number(z_max) + "] m";
 
+      // Thresholds in mean radii become heights: the base from the domain's floor, the actuator from
+      // the sample's top (the lower of the domain's ceiling and the highest sphere top).
+      const dem::Domain &domain = model.system.domain;
+      const double mean_radius =
+        n > 0 ? std::accumulate(particles.radius.begin(), particles.radius.end(), 0.0) / n : 0.0;
+      double top = -std::numeric_limits<double>::infinity();
+      for (Index p = 0; p < n; ++p)
+        top = std::max(top, particles.position[p][2] + particles.radius[p]);
+      top = std::min(top, domain.upper[2]);
+      const std::optional<double> fix_below =
+        bp.base_thickness ? std::optional(domain.lower[2] + *bp.base_thickness * mean_radius) : bp.fix_below;
+      const std::optional<double> clump_above =
+        bp.actuator_thickness ? std::optional(top - *bp.actuator_thickness * mean_radius) : bp.clump_above;
+      const std::string which_base =
+        bp.base_thickness ? "Base thickness [mean radii] = " + format_number(*bp.base_thickness) + " (z < " +
+                              format_number(*fix_below) + " m)" :
+                            "Fix below [m] = " + (fix_below ? format_number(*fix_below) : std::string());
+      const std::string which_clump =
+        bp.actuator_thickness ?
+          "Actuator thickness [mean radii] = " + format_number(*bp.actuator_thickness) + " (z > " +
+            format_number(clump_above.value_or(0)) + " m)" :
+          "Clump above [m] = " + (clump_above ? format_number(*clump_above) : std::string());
+
       std::vector<Index> clump_members;
       for (Index p = 0; p < n; ++p)
       {
         const double z = particles.position[p][2];
-        if (bp.fix_below && z < *bp.fix_below)
+        if (fix_below && z < *fix_below)
         {
           model.fixed_particles.push_back(p);
           particles.blocked[p] = dem::block_all;
           particles.velocity[p].setZero();
           particles.angular_velocity[p].setZero();
         }
-        else if (bp.clump_above && z > *bp.clump_above)
+        else if (clump_above && z > *clump_above)
         {
           clump_members.push_back(p);
           particles.velocity[p].setZero();
           particles.angular_velocity[p].setZero();
         }
       }
-      if (bp.fix_below && model.fixed_particles.empty())
-        throw InputError("DEM/Boundary particles/Fix below [m] = " + format_number(*bp.fix_below) +
-                         " selects no sphere: " + range + ".");
-      if (bp.clump_above && clump_members.empty())
-        throw InputError("DEM/Boundary particles/Clump above [m] = " + format_number(*bp.clump_above) +
-                         " selects no sphere: " + range + ".");
+      if (fix_below && model.fixed_particles.empty())
+        throw InputError("DEM/Boundary particles/" + which_base + " selects no sphere: " + range + ".");
+      if (clump_above && clump_members.empty())
+        throw InputError("DEM/Boundary particles/" + which_clump + " selects no sphere: " + range + ".");
       const Index free = n - static_cast<Index>(model.fixed_particles.size() + clump_members.size());
       if (n > 0 && free == 0)
-        throw InputError("DEM/Boundary particles: Fix below [m] and Clump above [m] leave no free "
-                         "sphere between the base and the clump (" + range + ").");
+        throw InputError("DEM/Boundary particles: " + which_base + " and " + which_clump +
+                         " leave no free sphere between the base and the clump (" + range + ").");
       if (clump_members.empty())
         return;
       model.clump = model.system.add_clump(clump_members);
@@ -294,6 +332,20 @@ namespace anticrack::app
     return model;
   }
 
+  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, const DemModel &model)
+  {
+    const auto &d = scene.dem;
+    if (model.clump < 0 || !(d.loading.adaptive || d.loading.stop_strain > 0))
+      return nullptr;
+    // Stop strain is relative to the specimen's initial height (the z extent of its spheres).
+    const auto [low, high] = dem::sphere_extent(model.system.particles, 2);
+    auto ramp = std::make_unique<dem::ClumpForceRamp>(model.clump, model.fixed_particles,
+                                                      d.boundary.clump_force_direction, d.loading.ramp,
+                                                      d.loading.adaptive, d.loading.stop_strain * (high - low));
+    ramp->start(model.system);
+    return ramp;
+  }
+
   void describe_dem_model(std::ostream &out, const SceneParameters &scene, const DemModel &model)
   {
     const auto &d = scene.dem;
@@ -326,7 +378,8 @@ namespace anticrack::app
     else if (model.sticky_hard_spheres)
     {
       const auto &r = *model.sticky_hard_spheres;
-      s << "sticky hard spheres, N = " << d.sample.particle_count << ", R = " << d.sample.radius
+      s << "sticky hard spheres, N = " << d.sample.particle_count << ", R = " << system.particles.radius.front()
+        << (d.sample.box_edge > 0 ? " (from Box edge [m])" : "")
         << " m, well width delta/sigma = " << d.sample.well_width << ", " << d.sample.sweeps << " sweeps\n"
         << "                      (DEM/Domain is replaced by the sampler's periodic cube, edge " << r.box_length
         << " m)\n"

@@ -7,6 +7,7 @@
 
 #include "app/scene_parameters.h"
 #include "dem/ballistic_deposition.h"
+#include "dem/lab_protocol.h"
 #include "dem/sticky_hard_spheres.h"
 #include "dem/system.h"
 
@@ -37,6 +38,10 @@ namespace anticrack::app
 
   /// Builds and initialises the model; `threads` <= 0 means all available.
   std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, int threads);
+
+  /// The loading programme of the scene's test (dem/lab_protocol.h), or nullptr when the scene
+  /// only runs its steps: the clump force ramp (DEM/Boundary particles, DEM/Loading).
+  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, const DemModel &model);
 
   /// Sets the engine's thread count (0: all available) and returns the count in use.
   int apply_thread_count(int threads);

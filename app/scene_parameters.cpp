@@ -256,15 +256,20 @@ namespace anticrack::app
                         "and the rest come from this scene). `sticky hard spheres`: N spheres of "
                         "radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at "
                         "volume fraction phi and stickiness tau (PHYSICS.md 1.4) in a periodic cube "
-                        "of edge L = (N 4/3 pi R^3 / phi)^(1/3) with its lower corner at the origin: "
-                        "DEM/Domain is ignored and replaced by this cube (periodic in x, y, z, so no "
-                        "walls), and every pair inside the well (gap <= 2 delta R) is bonded, "
-                        "whatever DEM/Bond/Gap tolerance says. `ballistic deposition`: N spheres "
-                        "dropped one by one along -z onto the base z = DEM/Domain lower z inside the "
-                        "DEM/Domain box, which must be periodic in x and y and not in z; the domain's "
-                        "upper z is raised to the deposit's top if needed; bonds use DEM/Bond/Gap "
-                        "tolerance. Both generators are seeded by DEM/Random seed and run again by "
-                        "`anticrack check`, which prints their statistics.");
+                        "of edge L = (N 4/3 pi R^3 / phi)^(1/3) (or of edge Box edge [m], which then "
+                        "sets R) with its lower corner at the origin: DEM/Domain's corners are "
+                        "ignored and replaced by this cube, sampled periodic in x, y and z; axes "
+                        "missing from DEM/Domain/Periodic axes are opened after sampling (no bond "
+                        "crosses them: seed 002's specimen is periodic in x and y only), and every "
+                        "pair inside the well (gap <= 2 delta R) is bonded, whatever DEM/Bond/Gap "
+                        "tolerance says. `ballistic deposition`: N spheres dropped one by one along "
+                        "-z onto the base z = DEM/Domain lower z inside the DEM/Domain box, "
+                        "laterally periodic while depositing; the domain's upper z is raised to the "
+                        "deposit's top if needed; with DEM/Domain/Periodic axes = x, y the specimen "
+                        "stays laterally periodic (seed 002), with none its sides are opened after "
+                        "deposition, like a box whose side walls are removed (seed 000); bonds use "
+                        "DEM/Bond/Gap tolerance. Both generators are seeded by DEM/Random seed and "
+                        "run again by `anticrack check`, which prints their statistics.");
       prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
                         "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
       prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
@@ -304,6 +309,11 @@ namespace anticrack::app
                         "relative to the diameter sigma = 2 R, in (0, 0.1]; pairs in the well "
                         "(gap <= delta sigma) become bonds (sticky hard spheres only). "
                         "Dimensionless.");
+      prm.declare_entry("Box edge [m]", "0", Patterns::Double(0),
+                        "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
+                        "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (seed 002 keeps "
+                        "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
+                        "Units: m.");
       prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
                         "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
       prm.declare_entry("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
@@ -336,6 +346,7 @@ namespace anticrack::app
       target_coordination = prm.get_double("Target coordination number");
       well_width = prm.get_double("Well width");
       sweeps = prm.get_integer("Sweeps");
+      box_edge = prm.get_double("Box edge [m]");
       rolling = prm.get("Deposition rule") == "rolling";
       radius_half_width = prm.get_double("Radius half width [m]");
       prm.leave_subsection();
@@ -461,6 +472,14 @@ namespace anticrack::app
       declare_optional_double(prm, "Clump above [m]",
                               "Spheres whose centre has z above this form one rigid clump (the loading "
                               "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
+      declare_optional_double(prm, "Base thickness [mean radii]",
+                              "t_b: alternative to Fix below [m] in units of the mean radius R: spheres "
+                              "whose centre lies below the domain's lower z + t_b R are fixed (seed 002: "
+                              "t_b = 3, 'z_p0 < 3r'). Empty for none.");
+      declare_optional_double(prm, "Actuator thickness [mean radii]",
+                              "t_a: alternative to Clump above [m] in units of the mean radius R: spheres "
+                              "whose centre lies above z_top - t_a R form the clump, with z_top the lower "
+                              "of the domain's upper z and the highest sphere top. Empty for none.");
       prm.declare_entry("Clump force rate [N/s]", "0", Patterns::Double(),
                         "Fdot: the clump is loaded by F(t) = Fdot t d at its centre of mass. "
                         "Units: N/s.");
@@ -478,11 +497,51 @@ namespace anticrack::app
       prm.enter_subsection("Boundary particles");
       fix_below = get_optional_double(prm, "Fix below [m]");
       clump_above = get_optional_double(prm, "Clump above [m]");
+      base_thickness = get_optional_double(prm, "Base thickness [mean radii]");
+      actuator_thickness = get_optional_double(prm, "Actuator thickness [mean radii]");
       clump_force_rate = prm.get_double("Clump force rate [N/s]");
       clump_force_direction = get_triple<Vec3>(prm, "Clump force direction");
       if (clump_force_direction.norm() > 0)
         clump_force_direction.normalize();
       clump_rotation_locked = prm.get_bool("Clump rotation locked");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------ Loading
+    void Loading::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loading");
+      prm.declare_entry("Adaptive rate", "false", Patterns::Bool(),
+                        "Adapt the clump force rate (dem/load_control.h): DEM/Boundary particles/Clump "
+                        "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
+                        "the base reaction lags the applied force, the rate drops to Slow rate "
+                        "fraction x fast, and recovers by Rate recovery factor per quiet interval. "
+                        "false = constant rate.");
+      prm.declare_entry("Slow rate fraction", "0.1", Patterns::Double(0, 1),
+                        "f_s: slow rate / fast rate, in (0, 1]. Dimensionless.");
+      prm.declare_entry("Control interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between two rate decisions.");
+      prm.declare_entry("Rate recovery factor", "1.25", Patterns::Double(1),
+                        "Growth of the rate per quiet control interval, > 1. Dimensionless.");
+      prm.declare_entry("Lag tolerance", "0.02", Patterns::Double(0),
+                        "Relative lag |F_applied - R_base| / |F_applied| of the base reaction (projected "
+                        "on the force direction) above which the ramp slows. Dimensionless.");
+      prm.declare_entry("Stop strain", "0", Patterns::Double(0),
+                        "End the run once the clump has moved by this fraction of the specimen's "
+                        "initial height (|u_clump| / H0; seed 002 follows the collapse to ~8 %); "
+                        "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
+      prm.leave_subsection();
+    }
+
+    void Loading::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loading");
+      adaptive = prm.get_bool("Adaptive rate");
+      ramp.slow_fraction = prm.get_double("Slow rate fraction");
+      ramp.interval = prm.get_integer("Control interval [steps]");
+      ramp.recovery_factor = prm.get_double("Rate recovery factor");
+      ramp.lag_tolerance = prm.get_double("Lag tolerance");
+      stop_strain = prm.get_double("Stop strain");
       prm.leave_subsection();
     }
 
@@ -506,6 +565,7 @@ namespace anticrack::app
       Integration::declare_parameters(prm);
       Walls::declare_parameters(prm);
       BoundaryParticles::declare_parameters(prm);
+      Loading::declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -522,6 +582,76 @@ namespace anticrack::app
       integration.parse_parameters(prm);
       walls.parse_parameters(prm);
       boundary.parse_parameters(prm);
+      loading.parse_parameters(prm);
+      loading.ramp.fast_rate = boundary.clump_force_rate;
+      prm.leave_subsection();
+    }
+  } // namespace parameters
+
+  namespace parameters
+  {
+    // ----------------------------------------------------------------------------- Campaign
+    void Campaign::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Campaign");
+      prm.declare_entry("Loading angles [deg]", "", Patterns::List(Patterns::Double(-180, 360)),
+                        "psi: loading angles of the mixed-mode test, the clump force direction being "
+                        "(sin psi, 0, -cos psi): 0 = compression, 90 = shear, 180 = tension (seed 002). "
+                        "Empty: the scene is a single run; otherwise `anticrack run` runs every angle x "
+                        "realization x microstructure as a separate test (DEM/Boundary particles/Clump "
+                        "force direction is then ignored) and writes campaign.h5. Units: degrees.");
+      prm.declare_entry("Realizations", "1", Patterns::Integer(1),
+                        "Samples per microstructure; realization r uses DEM/Random seed + r.");
+      prm.declare_entry("Microstructures", "", Patterns::Anything(),
+                        "Variants of DEM/Sample, separated by ';', each a comma-separated list of "
+                        "`entry = value` of DEM/Sample (e.g. `Volume fraction = 0.3, Target "
+                        "coordination number = 2.9; Volume fraction = 0.35, Target coordination "
+                        "number = 3.5`). An entry with a '/' is a path below DEM, so that material "
+                        "sweeps run the same way (`Bond/Tensile strength [Pa] = 2e6, Bond/Cohesion [Pa] = "
+                        "2e6`). Empty: the scene's own sample is the one microstructure.");
+      prm.declare_entry("Quasi-static check", "none", Patterns::Selection("none|first realization|all"),
+                        "Which tests are repeated with every loading rate divided by Quasi-static "
+                        "slowdown, to show that the failure point does not depend on the rate: none, "
+                        "every angle and microstructure of the first realization, or all tests.");
+      prm.declare_entry("Quasi-static slowdown", "4", Patterns::Double(1),
+                        "Factor by which the reference runs load more slowly (>= 1). Dimensionless.");
+      prm.declare_entry("Quasi-static tolerance", "0.02", Patterns::Double(0),
+                        "Allowed relative difference |s - s_ref| / |s_ref| of the failure point "
+                        "s = (p, q) of the Love-Weber stress between a test and its slow reference; "
+                        "summary.json reports every difference (and that of the base stresses "
+                        "(sigma, tau)) and whether it is within. Dimensionless.");
+      prm.leave_subsection();
+    }
+
+    void Campaign::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Campaign");
+      loading_angles_deg.clear();
+      for (const std::string &a : dealii::Utilities::split_string_list(prm.get("Loading angles [deg]"), ','))
+        loading_angles_deg.push_back(dealii::Utilities::string_to_double(a));
+      realizations = prm.get_integer("Realizations");
+      microstructures_text = prm.get("Microstructures");
+      microstructures.clear();
+      for (const std::string &variant : dealii::Utilities::split_string_list(microstructures_text, ';'))
+      {
+        std::vector<std::pair<std::string, std::string>> entries;
+        for (const std::string &item : dealii::Utilities::split_string_list(variant, ','))
+        {
+          const auto equal = item.find('=');
+          if (equal == std::string::npos)
+            throw std::invalid_argument("Campaign/Microstructures: '" + item +
+                                        "' is not of the form `entry = value` (entry of DEM/Sample)");
+          entries.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
+                               dealii::Utilities::trim(item.substr(equal + 1)));
+        }
+        microstructures.push_back(entries);
+      }
+      const std::string check = prm.get("Quasi-static check");
+      quasi_static_check = check == "all"                 ? QuasiStaticCheck::all :
+                           check == "first realization" ? QuasiStaticCheck::first_realization :
+                                                          QuasiStaticCheck::none;
+      quasi_static_slowdown = prm.get_double("Quasi-static slowdown");
+      quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
       prm.leave_subsection();
     }
   } // namespace parameters
@@ -533,6 +663,7 @@ namespace anticrack::app
                       "and finite elements will be added as further components).");
     parameters::Output::declare_parameters(prm);
     parameters::Dem::declare_parameters(prm);
+    parameters::Campaign::declare_parameters(prm);
   }
 
   void SceneParameters::parse_parameters(ParameterHandler &prm)
@@ -540,6 +671,7 @@ namespace anticrack::app
     components = dealii::Utilities::split_string_list(prm.get("Components"), ',');
     output.parse_parameters(prm);
     dem.parse_parameters(prm);
+    campaign.parse_parameters(prm);
   }
 
   // --------------------------------------------------------------------------- validation
@@ -716,24 +848,20 @@ namespace anticrack::app
               problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
             }
         }
-        for (int f = 0; f < 6; ++f)
-          if (d.walls.face[f].active)
-            problems.add(std::string("DEM/Walls/") + parameters::Walls::face_names[f] + "/Active", "true",
-                         "no walls" + why_type + ": its domain is a cube periodic in x, y and z");
       }
       else if (s.type == Sample::Type::ballistic_deposition)
       {
         const std::string why_type = " for DEM/Sample/Type = ballistic deposition";
-        if (!d.domain.periodic[0] || !d.domain.periodic[1] || d.domain.periodic[2])
+        if (d.domain.periodic[0] != d.domain.periodic[1] || d.domain.periodic[2])
         {
           std::string axes;
           for (int a = 0; a < 3; ++a)
             if (d.domain.periodic[a])
               axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
           problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
-                       "must be exactly x, y" + why_type +
-                         ": spheres are dropped into a laterally periodic box onto the base z = "
-                         "lower z");
+                       "must be x, y (laterally periodic specimen) or empty (sides opened after "
+                       "deposition)" + why_type + "; z is never periodic: spheres are dropped onto "
+                       "the base z = lower z");
         }
         if (!(s.radius > 0))
           problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
@@ -801,7 +929,38 @@ namespace anticrack::app
       if (bp.clump_above && bp.clump_force_rate != 0 && bp.clump_force_direction.norm() == 0)
         problems.add("DEM/Boundary particles/Clump force direction", vec(bp.clump_force_direction),
                      "must be a nonzero vector when the clump force rate is nonzero");
-      if (!bp.clump_above && bp.clump_force_rate != 0)
+      if (bp.fix_below && bp.base_thickness)
+        problems.add("DEM/Boundary particles/Base thickness [mean radii]", *bp.base_thickness,
+                     "and Fix below [m] both select the base; leave one of them empty");
+      if (bp.clump_above && bp.actuator_thickness)
+        problems.add("DEM/Boundary particles/Actuator thickness [mean radii]", *bp.actuator_thickness,
+                     "and Clump above [m] both select the clump; leave one of them empty");
+      for (const auto &[name, value] : {std::pair{"Base thickness [mean radii]", bp.base_thickness},
+                                        {"Actuator thickness [mean radii]", bp.actuator_thickness}})
+        if (value && !(*value > 0))
+          problems.add(std::string("DEM/Boundary particles/") + name, *value, "must be positive");
+      const bool has_clump = bp.clump_above || bp.actuator_thickness;
+      if (d.loading.adaptive && !(has_clump && bp.clump_force_rate > 0))
+        problems.add("DEM/Loading/Adaptive rate", "true",
+                     "adapts the clump force ramp: it needs a clump (DEM/Boundary particles/Clump above "
+                     "[m] or Actuator thickness [mean radii]) and Clump force rate [N/s] > 0");
+      if (d.loading.stop_strain > 0 && !has_clump)
+        problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
+                     "measures the clump's displacement: it needs a clump (DEM/Boundary particles)");
+      if (scene.campaign.enabled())
+      {
+        const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";
+        if (!has_clump || !(bp.fix_below || bp.base_thickness) || !(bp.clump_force_rate > 0))
+          problems.add("Campaign/Loading angles [deg]", "(" + std::to_string(scene.campaign.loading_angles_deg.size()) + " angles)",
+                       why + "a fixed base (DEM/Boundary particles/Fix below [m] or Base thickness [mean "
+                       "radii]), a clump (Clump above [m] or Actuator thickness [mean radii]) and Clump force "
+                       "rate [N/s] > 0");
+        if (!(d.loading.stop_strain > 0))
+          problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
+                       "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
+                       "DEM/Steps after its failure");
+      }
+      if (!bp.clump_above && !bp.actuator_thickness && bp.clump_force_rate != 0)
         problems.add("DEM/Boundary particles/Clump force rate [N/s]", bp.clump_force_rate,
                      "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
     }
@@ -827,7 +986,8 @@ namespace anticrack::app
     }
   } // namespace
 
-  SceneParameters read_scene(const std::string &file)
+  SceneParameters read_scene(const std::string &file,
+                             const std::vector<std::pair<std::string, std::string>> &overrides)
   {
     SceneParameters scene;
     scene.file = file;
@@ -840,6 +1000,24 @@ namespace anticrack::app
     {
       std::istringstream input(bytes);
       prm.parse_input(input, file);
+      for (const auto &[path, value] : overrides)
+      {
+        const std::vector<std::string> parts = dealii::Utilities::split_string_list(path, '/');
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          prm.enter_subsection(parts[k]);
+        try
+        {
+          prm.set(parts.back(), value);
+        }
+        catch (const dealii::ExceptionBase &)
+        {
+          throw std::invalid_argument("the override " + path + " = " + value +
+                                      " names no entry, or its value does not match the entry's pattern "
+                                      "(`anticrack params` lists them)");
+        }
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          prm.leave_subsection();
+      }
       scene.parse_parameters(prm);
     }
     catch (const dealii::ExceptionBase &e)

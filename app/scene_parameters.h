@@ -11,6 +11,7 @@
 // Only scene_parameters.cpp includes deal.II: the rest of the application sees plain structs.
 #pragma once
 
+#include "dem/load_control.h"
 #include "dem/materials.h"
 #include "dem/system.h"
 #include "dem/types.h"
@@ -104,6 +105,7 @@ namespace anticrack::app
       double target_coordination = 0;   ///< z, 0 = use tau
       double well_width = 0.03;         ///< delta / sigma
       Index sweeps = 5000;
+      double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]
@@ -154,9 +156,22 @@ namespace anticrack::app
     {
       std::optional<double> fix_below;   ///< [m], z of the centre
       std::optional<double> clump_above; ///< [m], z of the centre
+      std::optional<double> base_thickness;     ///< [mean radii] above the domain's lower z
+      std::optional<double> actuator_thickness; ///< [mean radii] below the sample's top
       double clump_force_rate = 0;       ///< dF/dt [N/s]
       Vec3 clump_force_direction = -Vec3::UnitZ(); ///< normalised when parsed (if nonzero)
       bool clump_rotation_locked = false;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Loading: adaptive quasi-static ramp of the clump force and the end of a test.
+    struct Loading
+    {
+      bool adaptive = false;
+      dem::RampControlSettings ramp;  ///< fast_rate = Boundary particles/Clump force rate [N/s]
+      double stop_strain = 0;         ///< |u_clump| / H0 at which the run ends, 0 = never
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
@@ -175,6 +190,35 @@ namespace anticrack::app
       Integration integration;
       Walls walls;
       BoundaryParticles boundary;
+      Loading loading;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace parameters
+
+  namespace parameters
+  {
+    /// subsection Campaign: a virtual-laboratory campaign, loading angles x realizations x
+    /// microstructures of the scene's mixed-mode test (app/campaign.h).
+    struct Campaign
+    {
+      enum class QuasiStaticCheck
+      {
+        none,
+        first_realization, ///< every angle and microstructure of realization 0
+        all
+      };
+      std::vector<double> loading_angles_deg; ///< psi; empty = the scene is a single run
+      Index realizations = 1;                 ///< seeds DEM/Random seed + 0, 1, ...
+      /// Each microstructure: (entry of DEM/Sample, value) pairs that override the scene's sample.
+      std::vector<std::vector<std::pair<std::string, std::string>>> microstructures;
+      std::string microstructures_text;       ///< as written, for messages
+      QuasiStaticCheck quasi_static_check = QuasiStaticCheck::none;
+      double quasi_static_slowdown = 4;       ///< rate divisor of the reference runs
+      double quasi_static_tolerance = 0.02;   ///< allowed relative difference of the failure stress
+
+      [[nodiscard]] bool enabled() const { return !loading_angles_deg.empty(); }
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
@@ -197,13 +241,17 @@ namespace anticrack::app
     std::vector<std::string> components;
     parameters::Output output;
     parameters::Dem dem;
+    parameters::Campaign campaign;
 
     static void declare_parameters(dealii::ParameterHandler &prm);
     void parse_parameters(dealii::ParameterHandler &prm);
   };
 
   /// Reads, parses and validates a scene file; throws InputError with a complete message.
-  SceneParameters read_scene(const std::string &file);
+  /// `overrides` (entry path with '/' between subsections, value) are set after the file is read,
+  /// as if the file said so: a campaign's microstructures are the scene with other sample entries.
+  SceneParameters read_scene(const std::string &file,
+                             const std::vector<std::pair<std::string, std::string>> &overrides = {});
 
   enum class ParameterFormat
   {

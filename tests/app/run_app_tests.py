@@ -569,6 +569,133 @@ def bad_input_generators(work):
     expect_bad_input(work, scene, "DEM/Sample/Stickiness", "0.05", "tau_min(phi) = 0.0699")
 
 
+# ------------------------------------------------------------------------------------ campaigns
+def campaign_scene(angles, check_mode="none", microstructures="", **changes):
+    """scenes/shs_yield_surface.prm shrunk 8-fold: N = 256 spheres in a 5 mm cube (the same sphere
+    radius, 0.33 mm, as seed 002's 2048 in 1 cm), one realization, force rates scaled with the
+    4x smaller cross-section (100 N/s fast, 6.25 N/s slow). A test takes ~50 000 steps."""
+    text = open(os.path.join(SOURCE, "scenes", "shs_yield_surface.prm")).read()
+    return edit_scene(text, {
+        "Campaign/Loading angles [deg]": angles, "Campaign/Realizations": "1",
+        "Campaign/Quasi-static check": check_mode, "Campaign/Microstructures": microstructures,
+        "DEM/Sample/Particle count": "256", "DEM/Sample/Box edge [m]": "0.005",
+        "DEM/Sample/Sweeps": "2000", "DEM/Boundary particles/Clump force rate [N/s]": "100", **changes})
+
+
+def failure_points(directory):
+    with h5py.File(os.path.join(directory, "campaign.h5"), "r") as f:
+        return {name: f["failure_points"][name][()] for name in f["failure_points"]}
+
+
+@case
+def campaign_envelope(work):
+    """A campaign at 0, 90 and 180 degrees fails in compression, shear and tension: the envelope is
+    closed, compressive strength > tensile and shear strengths (seed 002), and campaign.h5 holds
+    every history and a failure-point table consistent with the tests' own summaries."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 90, 180"))
+    stdout, _ = anticrack("check", scene, cwd=work)
+    check("Campaign" in stdout and "tests               3" in stdout, f"`check` does not describe the campaign:\n{stdout}")
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    check(summary["status"] == "completed", f"campaign status {summary['status']}")
+    check([t["status"] for t in summary["tests"]] == ["completed"] * 3, f"tests: {summary['tests']}")
+    fp = failure_points(out)
+    sigma, tau, p, q = fp["sigma"], fp["tau"], fp["p"], fp["q"]
+    check(list(fp["loading_angle_deg"]) == [0, 90, 180], f"angles {fp['loading_angle_deg']}")
+    # Compression: sigma > 0, little shear. Shear: tau > 0 dominates. Tension: sigma < 0, p < 0.
+    check(sigma[0] > 0 and abs(tau[0]) < 0.2 * sigma[0], f"compression failure (sigma, tau) = ({sigma[0]}, {tau[0]})")
+    check(tau[1] > 0 and tau[1] > abs(sigma[1]), f"shear failure (sigma, tau) = ({sigma[1]}, {tau[1]})")
+    check(sigma[2] < 0 and p[2] < 0 and abs(tau[2]) < 0.2 * abs(sigma[2]),
+          f"tension failure (sigma, tau, p) = ({sigma[2]}, {tau[2]}, {p[2]})")
+    check(sigma[0] > max(-sigma[2], tau[1]), f"compressive strength {sigma[0]} not above tension {-sigma[2]} and shear {tau[1]}")
+    check(np.all(q > 0) and np.all(np.isfinite(fp["love_stress"])), f"q = {q}")
+    # Quasi-static loading as failure approaches (seed 002: I < 1e-4; the rate decisions of the
+    # adaptive ramp cause short transients of a few 1e-4, hence the bound).
+    check(np.all(fp["max_inertial_number"] < 1e-3), f"inertial numbers {fp['max_inertial_number']}")
+    with h5py.File(os.path.join(out, "campaign.h5"), "r") as f:
+        for test_id, row in zip(fp["test"], range(3)):
+            test_id = test_id.decode() if isinstance(test_id, bytes) else test_id
+            history = f["tests"][test_id]["history"]
+            check("love_stress_zz" in history and history["time"].shape[0] > 10, f"/tests/{test_id}/history")
+            own = json.load(open(os.path.join(out, "tests", test_id, "summary.json")))
+            failure = own["dem"]["failure_analysis"]["failure"]
+            check(failure["base_normal_stress_sigma_Pa"] == sigma[row] and failure["von_mises_q_Pa"] == q[row],
+                  f"{test_id}: campaign.h5 and the test's summary.json disagree")
+
+
+@case
+def campaign_mpi_equals_serial(work):
+    """The campaign on 2 MPI ranks (one thread each) writes exactly the failure points and the
+    histories of the serial campaign on one thread."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("45, 135"))
+    serial, parallel = os.path.join(work, "serial"), os.path.join(work, "mpi")
+    anticrack("run", scene, "-o", serial, "--threads", "1")
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    result = subprocess.run(["mpirun", "--oversubscribe", "-np", "2", ANTICRACK, "run", scene, "-o", parallel,
+                             "--threads", "1"], capture_output=True, text=True, env=environment, cwd=work)
+    check(result.returncode == 0, f"mpirun exit {result.returncode}:\n{result.stdout}\n{result.stderr}")
+    check("on 2 rank(s)" in result.stdout, f"the campaign did not run on 2 ranks:\n{result.stdout}")
+    check("[rank 1]" in result.stdout, f"rank 1 ran no test:\n{result.stdout}")
+    a, b = failure_points(serial), failure_points(parallel)
+    compare_exactly(a, b, "failure points")
+    with h5py.File(os.path.join(serial, "campaign.h5"), "r") as fa, h5py.File(os.path.join(parallel, "campaign.h5"), "r") as fb:
+        for test_id in fa["tests"]:
+            ha, hb = fa["tests"][test_id]["history"], fb["tests"][test_id]["history"]
+            compare_exactly({k: ha[k][()] for k in ha}, {k: hb[k][()] for k in hb}, f"history of {test_id}")
+    summary = json.load(open(os.path.join(parallel, "summary.json")))
+    check(summary["timing"]["ranks"] == 2, f"summary timing {summary['timing']}")
+
+
+@case
+def campaign_quasi_static(work):
+    """The adaptive ramp's failure stress is within the stated 2 % of a 4x slower run (compression
+    and shear); summary.json and campaign.h5 report the check."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 90", check_mode="first realization"))
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    qs = summary["quasi_static_check"]
+    check(len(qs["pairs"]) == 2 and qs["tolerance"] == 0.02, f"quasi_static_check = {qs}")
+    check(qs["all_within_tolerance"] and qs["largest_relative_difference"] <= 0.02, f"quasi_static_check = {qs}")
+    with h5py.File(os.path.join(out, "campaign.h5"), "r") as f:
+        difference = f["quasi_static_check"]["relative_difference"][()]
+    check(np.allclose(sorted(difference), sorted(p["relative_difference"] for p in qs["pairs"])), f"{difference}")
+
+
+def linear_fit_r2(x, y):
+    """Slope, intercept and R^2 of the least-squares line (R^2 = 1 - SS_res / SS_tot)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    slope, intercept = np.polyfit(x, y, 1)
+    residual = y - (slope * x + intercept)
+    return slope, intercept, 1 - np.sum(residual ** 2) / np.sum((y - y.mean()) ** 2)
+
+
+@case
+def macro_linear_in_micro(work):
+    """Seed 000 Eqs. 5-8 on a small sweep in compression (one sample): the macroscopic strength is
+    linear in the bond strength and the secant modulus linear in the particle modulus (E_c = E_bar),
+    R^2 > 0.98 each, and both lines pass near the origin (the bonded network has no other scale)."""
+    factors = [0.5, 1.0, 1.5, 2.0]
+    strength = "; ".join(f"Bond/Tensile strength [Pa] = {f * 1e6:g}, Bond/Cohesion [Pa] = {f * 1e6:g}" for f in factors)
+    modulus = "; ".join(f"Bond/Modulus [Pa] = {f * 1e9:g}, Material/Contact modulus [Pa] = {f * 1e9:g}" for f in factors)
+    results = {}
+    for name, variants in [("strength", strength), ("modulus", modulus)]:
+        scene = write(os.path.join(work, f"{name}.prm"), campaign_scene("0", microstructures=variants))
+        out = os.path.join(work, name)
+        anticrack("run", scene, "-o", out)
+        results[name] = failure_points(out)
+    sigma = results["strength"]["sigma"]
+    slope, intercept, r2 = linear_fit_r2(factors, sigma)
+    check(r2 > 0.98, f"strength vs bond strength: R^2 = {r2} (sigma_f = {sigma})")
+    check(abs(intercept) < 0.1 * sigma.max(), f"strength line intercept {intercept} Pa (sigma_f = {sigma})")
+    modulus_values = results["modulus"]["secant_modulus"]
+    slope, intercept, r2 = linear_fit_r2(factors, modulus_values)
+    check(np.all(np.isfinite(modulus_values)), f"secant moduli {modulus_values}")
+    check(r2 > 0.98, f"secant modulus vs particle modulus: R^2 = {r2} (E = {modulus_values})")
+    check(abs(intercept) < 0.1 * modulus_values.max(), f"modulus line intercept {intercept} Pa (E = {modulus_values})")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
