@@ -726,7 +726,8 @@ namespace anticrack::app
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
       // The yield point of this test (seed 002's failure criterion) and its companions.
-      d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_);
+      d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
+                                                   scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
     }
     // The sample generator's report (DEM/Sample/Type = sticky hard spheres or ballistic deposition).
     Json sample;

@@ -5,6 +5,7 @@
 #include "dem/io_hdf5.h"
 #include "dem/lattice.h"
 #include "dem/load_control.h"
+#include "dem/simple_shear.h"
 #include "dem/measurements.h"
 
 #include <omp.h>
@@ -332,16 +333,35 @@ namespace anticrack::app
     return model;
   }
 
-  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, const DemModel &model)
+  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, DemModel &model)
   {
     const auto &d = scene.dem;
-    if (model.clump < 0 || !(d.loading.adaptive || d.loading.stop_strain > 0))
+    using Test = parameters::Loading::Test;
+    if (model.clump < 0)
       return nullptr;
-    // Stop strain is relative to the specimen's initial height (the z extent of its spheres).
+    // Strains are relative to the specimen's initial height (the z extent of its spheres).
     const auto [low, high] = dem::sphere_extent(model.system.particles, 2);
-    auto ramp = std::make_unique<dem::ClumpForceRamp>(model.clump, model.fixed_particles,
-                                                      d.boundary.clump_force_direction, d.loading.ramp,
-                                                      d.loading.adaptive, d.loading.stop_strain * (high - low));
+    if (d.loading.test == Test::simple_shear)
+    {
+      dem::SimpleShearSettings s;
+      s.normal_stress = d.loading.normal_stress;
+      s.area = model.base_area;
+      s.height = high - low;
+      s.shear_velocity = d.loading.shear_velocity;
+      s.consolidation_time = d.loading.consolidation_time;
+      s.acceleration_time = 0.1 * d.loading.consolidation_time;
+      s.final_shear_strain = d.loading.final_shear_strain;
+      s.interval = d.loading.ramp.interval;
+      auto shear = std::make_unique<dem::SimpleShear>(model.clump, model.fixed_particles, s);
+      shear->start(model.system);
+      return shear;
+    }
+    const bool tilted = d.loading.test == Test::tilted_gravity;
+    if (!(tilted || d.loading.adaptive || d.loading.stop_strain > 0))
+      return nullptr;
+    auto ramp = std::make_unique<dem::ClumpForceRamp>(
+      model.clump, model.fixed_particles, d.boundary.clump_force_direction, d.loading.ramp, d.loading.adaptive,
+      d.loading.stop_strain * (high - low), tilted ? d.integration.settings.gravity.norm() : 0.0);
     ramp->start(model.system);
     return ramp;
   }

@@ -40,8 +40,9 @@ namespace anticrack::app
   std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, int threads);
 
   /// The loading programme of the scene's test (dem/lab_protocol.h), or nullptr when the scene
-  /// only runs its steps: the clump force ramp (DEM/Boundary particles, DEM/Loading).
-  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, const DemModel &model);
+  /// only runs its steps: the clump force ramp, the tilted-gravity actuator or simple shear
+  /// (DEM/Boundary particles, DEM/Loading). Prepares the model for a fresh run (gravity, platen).
+  std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, DemModel &model);
 
   /// Sets the engine's thread count (0: all available) and returns the count in use.
   int apply_thread_count(int threads);

@@ -511,6 +511,15 @@ namespace anticrack::app
     void Loading::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
+      prm.declare_entry("Test", "clump force", Patterns::Selection("clump force|tilted gravity|simple shear"),
+                        "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
+                        "F(t) = Fdot t d at its centre of mass (seed 002's mixed-mode test). `tilted "
+                        "gravity`: seed 000's actuator, whose density grows linearly under gravity of "
+                        "magnitude |DEM/Integration/Gravity| along d = Clump force direction (tilted by psi), "
+                        "acting on every sphere; Clump force rate [N/s] is the growth rate of the "
+                        "actuator's weight. `simple shear`: seed 001's test at constant normal stress: the "
+                        "clump (a platen) is pressed with Normal stress [Pa], then driven along +x at "
+                        "Shear velocity [m/s], free along z, to Final shear strain.");
       prm.declare_entry("Adaptive rate", "false", Patterns::Bool(),
                         "Adapt the clump force rate (dem/load_control.h): DEM/Boundary particles/Clump "
                         "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
@@ -530,18 +539,34 @@ namespace anticrack::app
                         "End the run once the clump has moved by this fraction of the specimen's "
                         "initial height (|u_clump| / H0; seed 002 follows the collapse to ~8 %); "
                         "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
+      prm.declare_entry("Normal stress [Pa]", "1e4", Patterns::Double(0),
+                        "sigma_n: compressive normal stress on the platen (simple shear). Units: Pa.");
+      prm.declare_entry("Shear velocity [m/s]", "1e-3", Patterns::Double(0),
+                        "v: platen velocity along +x while shearing (simple shear). Units: m/s.");
+      prm.declare_entry("Consolidation time [s]", "1e-3", Patterns::Double(0),
+                        "Duration of the normal-force ramp before shearing (simple shear). Units: s.");
+      prm.declare_entry("Final shear strain", "0.1", Patterns::Double(0),
+                        "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
       prm.leave_subsection();
     }
 
     void Loading::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
+      const std::string test_name = prm.get("Test");
+      test = test_name == "tilted gravity" ? Test::tilted_gravity :
+             test_name == "simple shear"   ? Test::simple_shear :
+                                             Test::clump_force;
       adaptive = prm.get_bool("Adaptive rate");
       ramp.slow_fraction = prm.get_double("Slow rate fraction");
       ramp.interval = prm.get_integer("Control interval [steps]");
       ramp.recovery_factor = prm.get_double("Rate recovery factor");
       ramp.lag_tolerance = prm.get_double("Lag tolerance");
       stop_strain = prm.get_double("Stop strain");
+      normal_stress = prm.get_double("Normal stress [Pa]");
+      shear_velocity = prm.get_double("Shear velocity [m/s]");
+      consolidation_time = prm.get_double("Consolidation time [s]");
+      final_shear_strain = prm.get_double("Final shear strain");
       prm.leave_subsection();
     }
 
@@ -947,6 +972,33 @@ namespace anticrack::app
       if (d.loading.stop_strain > 0 && !has_clump)
         problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
                      "measures the clump's displacement: it needs a clump (DEM/Boundary particles)");
+      using LoadingTest = parameters::Loading::Test;
+      if (d.loading.test != LoadingTest::clump_force && !(has_clump && (bp.fix_below || bp.base_thickness)))
+        problems.add("DEM/Loading/Test", d.loading.test == LoadingTest::simple_shear ? "simple shear" : "tilted gravity",
+                     "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
+                     "[mean radii], Clump above [m] or Actuator thickness [mean radii])");
+      if (d.loading.test == LoadingTest::tilted_gravity && !(d.integration.settings.gravity.norm() > 0))
+        problems.add("DEM/Integration/Gravity [m/s^2]", vec(d.integration.settings.gravity),
+                     "must be nonzero for DEM/Loading/Test = tilted gravity (its magnitude is g; the direction "
+                     "is DEM/Boundary particles/Clump force direction)");
+      if (d.loading.test == LoadingTest::simple_shear)
+      {
+        for (const auto &[name, value] : {std::pair{"Normal stress [Pa]", d.loading.normal_stress},
+                                          {"Shear velocity [m/s]", d.loading.shear_velocity},
+                                          {"Consolidation time [s]", d.loading.consolidation_time},
+                                          {"Final shear strain", d.loading.final_shear_strain}})
+          if (!(value > 0))
+            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for simple shear");
+        if (!d.domain.periodic[0])
+          problems.add("DEM/Domain/Periodic axes", "(x not periodic)",
+                       "simple shear drives the platen along x: the specimen must be periodic along x");
+        if (d.loading.adaptive)
+          problems.add("DEM/Loading/Adaptive rate", "true",
+                       "adapts a force ramp; simple shear is displacement-controlled (set false)");
+      }
+      if (scene.campaign.enabled() && d.loading.test == LoadingTest::simple_shear)
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run load-controlled tests at loading angles; simple shear has none");
       if (scene.campaign.enabled())
       {
         const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";

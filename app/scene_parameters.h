@@ -169,9 +169,21 @@ namespace anticrack::app
     /// subsection DEM/Loading: adaptive quasi-static ramp of the clump force and the end of a test.
     struct Loading
     {
+      enum class Test
+      {
+        clump_force,    ///< force ramp on the clump (seed 002)
+        tilted_gravity, ///< growing actuator weight under gravity tilted by psi (seed 000)
+        simple_shear    ///< platen driven along x at constant normal stress (seed 001)
+      };
+      Test test = Test::clump_force;
       bool adaptive = false;
       dem::RampControlSettings ramp;  ///< fast_rate = Boundary particles/Clump force rate [N/s]
       double stop_strain = 0;         ///< |u_clump| / H0 at which the run ends, 0 = never
+      // simple shear (dem/simple_shear.h)
+      double normal_stress = 1e4;        ///< [Pa]
+      double shear_velocity = 1e-3;      ///< [m/s]
+      double consolidation_time = 1e-3;  ///< [s]
+      double final_shear_strain = 0.1;
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);

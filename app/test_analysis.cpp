@@ -35,7 +35,7 @@ namespace anticrack::app
     }
   } // namespace
 
-  nlohmann::json analyse_test_history(const History &history, double sample_height)
+  nlohmann::json analyse_test_history(const History &history, double sample_height, const bool shear_controlled)
   {
     nlohmann::json result;
     try
@@ -62,24 +62,36 @@ namespace anticrack::app
                  &uz = column(history, "clump_displacement_z");
       for (std::size_t i = 0; i < n; ++i)
       {
-        h.clump_velocity.emplace_back(vx[i], vy[i], vz[i]);
+        if (!shear_controlled)
+          h.clump_velocity.emplace_back(vx[i], vy[i], vz[i]);
         h.clump_displacement.emplace_back(ux[i], uy[i], uz[i]);
-        h.strain.push_back(-uz[i] / sample_height); // compression positive, like sigma
+        // Compression positive like sigma; shear strain along +x like tau.
+        h.strain.push_back(shear_controlled ? ux[i] / sample_height : -uz[i] / sample_height);
       }
       if (history.find("base_normal_stress"))
       {
         h.base_normal_stress = column(history, "base_normal_stress");
         h.base_shear_stress = column(history, "base_shear_stress");
       }
-      const dem::FailureAnalysis a = dem::analyse_failure(h);
+      dem::FailureAnalysisOptions options;
+      if (shear_controlled)
+      {
+        options.loading_measure = dem::Measure::base_shear;
+        options.failure_at_loading_peak = true;
+      }
+      const dem::FailureAnalysis a = dem::analyse_failure(h, options);
       const auto &steps = column(history, "step");
-      result["criterion"] = "seed 002: max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
+      result["criterion"] = shear_controlled ?
+                              "peak of the base shear stress tau (displacement-controlled simple shear)" :
+                              "seed 002: max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
       result["failure"] = point_json(a.failure, steps);
       result["peak_q"] = point_json(a.peak_q, steps);
       if (a.peak_loading)
-        result["peak_base_normal_stress"] = point_json(*a.peak_loading, steps);
+        result[shear_controlled ? "peak_base_shear_stress" : "peak_base_normal_stress"] =
+          point_json(*a.peak_loading, steps);
       if (a.secant_modulus)
-        result["secant_modulus_70_percent_Pa"] = *a.secant_modulus;
+        result[shear_controlled ? "secant_shear_modulus_70_percent_Pa" : "secant_modulus_70_percent_Pa"] =
+          *a.secant_modulus;
       if (a.softening_ratio)
         result["softening_ratio"] = *a.softening_ratio;
       if (a.flow_angle)

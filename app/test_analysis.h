@@ -14,5 +14,7 @@ namespace anticrack::app
   /// Analysis of a clump-driven test (needs the clump and Love-Weber columns); `sample_height` [m]
   /// turns the clump's vertical displacement into the loading strain. Returns a JSON object; if the
   /// history does not allow the analysis (no clump, no run-away yet) it says why in "error".
-  nlohmann::json analyse_test_history(const History &history, double sample_height);
+  /// `shear_controlled`: a displacement-controlled simple shear test; failure is the peak of the
+  /// base shear stress, the strain is the shear strain u_x / H.
+  nlohmann::json analyse_test_history(const History &history, double sample_height, bool shear_controlled = false);
 } // namespace anticrack::app

@@ -27,6 +27,9 @@ namespace anticrack::dem
     std::vector<Vec3> member_offset;     ///< member centres in the principal body frame
     bool rotation_locked = false;
     std::uint8_t blocked = free_dofs;    ///< block_translation keeps the clump velocity
+    /// Bit a set: the velocity component a is prescribed (kept), the others follow the forces
+    /// (a platen driven along x and free along z, e.g. simple shear at constant normal force).
+    std::uint8_t held_axes = 0;
     ForceHistory applied_force;          ///< external force on the centre of mass [N]
     Vec3 force = Vec3::Zero();           ///< last total force (members + applied + gravity)
     Vec3 torque = Vec3::Zero();          ///< last total torque about the centre

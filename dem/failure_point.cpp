@@ -288,6 +288,12 @@ namespace anticrack::dem
       if (!valid_fraction || (tail < n && static_cast<Index>(n - tail) > peak))
         a.softening_ratio = softening_ratio(s, peak, options.residual_fraction);
     }
+    if (options.failure_at_loading_peak)
+    {
+      if (!a.peak_loading)
+        throw std::invalid_argument("analyse_failure: failure_at_loading_peak needs the loading measure's series");
+      a.failure = *a.peak_loading;
+    }
     if (!h.clump_displacement.empty() &&
         a.failure.index + options.flow_window < static_cast<Index>(h.clump_displacement.size()))
       a.flow_angle = flow_angle(h, a.failure.index, options.flow_window);

@@ -120,6 +120,10 @@ namespace anticrack::dem
     double secant_fraction = 0.7;
     double residual_fraction = 0.1;
     Index flow_window = 10;                 ///< samples after failure for the flow angle
+    /// Failure at the peak of the loading measure instead of the kinetic-energy window (tests whose
+    /// actuator is displacement-controlled, e.g. simple shear with base_shear: its velocity is
+    /// prescribed, so its kinetic energy says nothing about failure).
+    bool failure_at_loading_peak = false;
   };
 
   /// Everything for one test. Quantities whose input series is missing stay empty.

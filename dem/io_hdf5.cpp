@@ -610,6 +610,7 @@ namespace anticrack::dem::io
       visit("principal_frame", [](auto &c) -> auto & { return c.principal_frame; }, "quaternion w, x, y, z");
       visit("rotation_locked", [](auto &c) -> auto & { return c.rotation_locked; }, "-");
       visit("blocked", [](auto &c) -> auto & { return c.blocked; }, "-");
+      visit("held_axes", [](auto &c) -> auto & { return c.held_axes; }, "-");
       visit("applied_force_time", [](auto &c) -> auto & { return c.applied_force.time; }, "s");
       visit("applied_force_value", [](auto &c) -> auto & { return c.applied_force.value; }, "N");
       visit("applied_force_extrapolate",

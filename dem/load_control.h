@@ -69,11 +69,18 @@ namespace anticrack::dem
   /// The mixed-mode test's loading programme (seed 002): the clump force ramps along `direction`,
   /// at a constant rate or adaptively (RampControlSettings), until the clump has moved by
   /// `stop_displacement` (0: never; the run's step limit ends it).
+  ///
+  /// Tilted-gravity actuator (seed 000): with `actuator_gravity` g > 0 the load is the weight of an
+  /// actuator whose density grows, under gravity g `direction` acting on every sphere (start() sets
+  /// the system's gravity). Between two control steps the weight gained so far is an applied force
+  /// ramp; at each control step it is moved into the clump's mass (and inertia) and the ramp restarts
+  /// from zero: the load m g + F(t) is continuous, and the actuator's inertia grows with its weight
+  /// as in seed 000's linear density increase.
   class ClumpForceRamp : public LabProtocol
   {
   public:
     ClumpForceRamp(Index clump, std::vector<Index> base, const Vec3 &direction, const RampControlSettings &settings,
-                   bool adaptive, double stop_displacement);
+                   bool adaptive, double stop_displacement, double actuator_gravity = 0);
 
     [[nodiscard]] Index control_interval() const override { return settings_.interval; }
     void control(DemSystem &system) override;
@@ -82,16 +89,22 @@ namespace anticrack::dem
     [[nodiscard]] std::map<std::string, double> state() const override;
     void restore(const std::map<std::string, double> &state) override;
 
-    /// Starts the count of broken bonds (call once before the first step of a fresh run).
-    void start(const DemSystem &system);
+    /// Prepares a fresh run: the count of broken bonds, and for the tilted-gravity actuator the
+    /// system's gravity and the actuator's initial mass. Call once before the first step.
+    void start(DemSystem &system);
 
   private:
+    void set_actuator_mass(DemSystem &system, double mass) const;
+
     Index clump_;
     std::vector<Index> base_;
     Vec3 direction_;
     RampControlSettings settings_;
     bool adaptive_;
     double stop_displacement_;
+    double actuator_gravity_;
+    double initial_actuator_mass_ = 0;  ///< m0 [kg]
+    double specimen_weight_ = 0;        ///< g x the free spheres' mass [N], part of the expected reaction
     Index broken_bonds_at_last_control_ = 0;
   };
 

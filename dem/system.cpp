@@ -81,6 +81,27 @@ namespace anticrack::dem
       damping_work -= damping.dot(0.5 * (velocity + v_plus)) * dt;
       return v_plus;
     }
+
+    /// The same with some components held (bit a of `held_axes`: component a keeps `velocity[a]`,
+    /// a prescribed velocity, and the holding agent's work -F_a v_a dt is booked), the others
+    /// integrated; used for clumps driven along some axes and free along others (simple shear).
+    inline Vec3 leapfrog_update_partly_held(std::uint8_t held_axes, double alpha, const Vec3 &force, double mass,
+                                            double dt, const Vec3 &velocity, Vec3 &v_minus, double &damping_work,
+                                            double &external_work)
+    {
+      Vec3 free_force = force, held_force = Vec3::Zero();
+      for (int a = 0; a < 3; ++a)
+        if (held_axes & (1u << a))
+          free_force[a] = 0, held_force[a] = force[a];
+      // Zero force on a held component: no damping there, and its velocity is restored below.
+      Vec3 v_plus = leapfrog_update(false, alpha, free_force, mass, dt, velocity, velocity, v_minus, damping_work,
+                                    external_work);
+      for (int a = 0; a < 3; ++a)
+        if (held_axes & (1u << a))
+          v_plus[a] = velocity[a];
+      external_work -= held_force.dot(velocity) * dt;
+      return v_plus;
+    }
   } // namespace
 
   // ---------------------------------------------------------------------------------------------
@@ -751,8 +772,12 @@ namespace anticrack::dem
       const Vec3 v_old = clump.velocity;
       Vec3 v_minus;
       double damping = 0, external = 0;
-      const Vec3 v_plus = leapfrog_update(clump.blocked & block_translation, alpha, force, clump.mass, dt, v_old,
-                                          v_old, v_minus, damping, external);
+      const Vec3 v_plus =
+        clump.held_axes != 0 && !(clump.blocked & block_translation) ?
+          leapfrog_update_partly_held(clump.held_axes, alpha, force, clump.mass, dt, v_old, v_minus, damping,
+                                      external) :
+          leapfrog_update(clump.blocked & block_translation, alpha, force, clump.mass, dt, v_old, v_old, v_minus,
+                          damping, external);
       const Vec3 v_mean = 0.5 * (v_minus + v_plus);
       external += clump.applied_force(time).dot(v_mean) * dt;
       ledger.gravity_potential -= clump.mass * gravity.dot(v_minus) * dt;
