@@ -9,6 +9,7 @@
 #include "app/test_analysis.h"
 #include "dem/io_hdf5.h"
 #include "dem/io_vtp.h"
+#include "dem/lab_tests.h"
 #include "dem/measurements.h"
 
 #include <algorithm>
@@ -729,6 +730,24 @@ namespace anticrack::app
       d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
                                                    scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
     }
+    // The loading programme's stage and results (triaxial peak, platen peak force, ...).
+    if (protocol_)
+    {
+      Json lab;
+      lab["stage"] = protocol_->stage(system_);
+      lab["finished"] = protocol_->finished(system_);
+      Json results = Json::object();
+      for (const auto &[name, value] : protocol_->results(system_))
+        results[name] = value;
+      // Brazilian disc (seed 003): splitting tensile strength 2 F / (pi D t), t the disc's thickness
+      // (the domain's y length: the disc axis is y).
+      const double diameter = scene_.dem.sample.disc_diameter;
+      if (diameter > 0 && results.contains("peak_force_N"))
+        results["brazilian_tensile_strength_Pa"] = dem::brazilian_tensile_strength(
+          results["peak_force_N"].get<double>(), diameter, system_.domain.length()[1]);
+      lab["results"] = results;
+      d["lab_test"] = lab;
+    }
     // The sample generator's report (DEM/Sample/Type = sticky hard spheres or ballistic deposition).
     Json sample;
     if (model_->sticky_hard_spheres)
@@ -761,10 +780,28 @@ namespace anticrack::app
       sample["bulk_lower_m"] = r.bulk_lower;
       sample["bulk_upper_m"] = r.bulk_upper;
     }
+    else if (model_->dense_packing)
+    {
+      const auto &r = *model_->dense_packing;
+      sample["type"] = "dense random packing";
+      sample["formation_friction"] = scene_.dem.sample.formation_friction;
+      sample["volume_fraction"] = r.solid_fraction;
+      sample["coordination"] = r.coordination;
+      sample["mechanical_coordination"] = r.mechanical_coordination;
+      sample["rattlers"] = r.rattlers;
+      sample["pressure_Pa"] = r.pressure;
+      sample["formation_steps"] = r.steps;
+      sample["mean_radius_m"] = r.mean_radius;
+      sample["max_overlap_ratio"] = r.max_overlap_ratio;
+      sample["particles_after_carving"] = system_.particles.size();
+      sample["disc_diameter_m"] = scene_.dem.sample.disc_diameter;
+    }
     else
       sample["type"] = scene_.dem.sample.type == parameters::Sample::Type::snapshot ? "snapshot" :
                                                                                      "simple cubic lattice";
     sample["initial_bonds"] = model_->initial_bonds;
+    if (scene_.dem.bedding.enabled)
+      sample["bedding_bonds"] = model_->bedding_bonds;
     d["sample"] = sample;
     s["dem"] = d;
 

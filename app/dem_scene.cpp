@@ -2,8 +2,10 @@
 
 #include "app/input_error.h"
 #include "dem/force_history.h"
+#include "dem/bedding.h"
 #include "dem/io_hdf5.h"
 #include "dem/lattice.h"
+#include "dem/lab_tests.h"
 #include "dem/load_control.h"
 #include "dem/simple_shear.h"
 #include "dem/measurements.h"
@@ -109,6 +111,29 @@ namespace anticrack::app
         model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
         open_axes_the_scene_does_not_wrap(d, system);
         add_random_velocities(d, system, first);
+        return;
+      }
+      if (d.sample.type == parameters::Sample::Type::dense_random_packing)
+      {
+        dem::DensePackingSpec spec;
+        spec.particle_count = d.sample.particle_count;
+        spec.radius.mean = d.sample.radius;
+        spec.radius.half_width = d.sample.radius_half_width;
+        spec.box_lower = d.domain.lower;
+        spec.box_upper = d.domain.upper;
+        spec.periodic = d.domain.periodic;
+        spec.formation_friction = d.sample.formation_friction;
+        spec.target_pressure = d.sample.packing_pressure;
+        spec.material = 0;
+        spec.seed = d.seed;
+        model.dense_packing = dem::add_dense_packing(system, spec);
+        if (d.sample.disc_diameter > 0)
+        {
+          // The Brazilian disc: axis along y, centred in the x-z section.
+          const Vec3 centre = 0.5 * (system.domain.lower + system.domain.upper);
+          dem::carve_cylinder(system, 1, centre, 0.5 * d.sample.disc_diameter);
+        }
+        add_random_velocities(d, system, 0);
         return;
       }
       if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
@@ -309,8 +334,16 @@ namespace anticrack::app
         }
         model->initial_bonds =
           model->imported_bonds ? system.bonds.size() : system.bond_touching_pairs(rule);
+        if (d.bedding.enabled)
+          model->bedding_bonds = dem::apply_bedding(system, d.bedding.spec);
       }
       add_walls(scene, *model);
+      if (d.loading.test == parameters::Loading::Test::triaxial)
+      {
+        model->box_walls = dem::add_box_walls(system, d.material.contact);
+        for (int f = 0; f < 6; ++f)
+          model->wall_face.push_back(f);
+      }
       system.settings = d.integration.settings;
       system.initialise();
       model->critical_time_step = system.critical_time_step();
@@ -337,6 +370,38 @@ namespace anticrack::app
   {
     const auto &d = scene.dem;
     using Test = parameters::Loading::Test;
+    if (d.loading.test == Test::triaxial)
+    {
+      dem::TriaxialSettings s;
+      s.confining_pressure = d.loading.confining_pressure;
+      s.axial_strain_rate = d.loading.axial_strain_rate;
+      s.final_axial_strain = d.loading.final_axial_strain;
+      const Vec3 box = model.system.domain.length();
+      s.max_servo_speed =
+        d.loading.max_servo_speed > 0 ? d.loading.max_servo_speed : 10 * s.axial_strain_rate * box.maxCoeff();
+      auto triaxial = std::make_unique<dem::TriaxialTest>(model.system, model.box_walls, s);
+      triaxial->start(model.system);
+      return triaxial;
+    }
+    if (d.loading.test == Test::platen_compression)
+    {
+      dem::PlatenSettings s;
+      s.platen_speed = d.loading.platen_speed;
+      s.post_peak_fraction = d.loading.post_peak_fraction;
+      s.max_strain = d.loading.final_axial_strain;
+      // The platens are the walls on the z- and z+ faces (face indices 4 and 5).
+      Index lower = -1, upper = -1;
+      for (std::size_t w = 0; w < model.wall_face.size(); ++w)
+      {
+        if (model.wall_face[w] == 4)
+          lower = static_cast<Index>(w);
+        if (model.wall_face[w] == 5)
+          upper = static_cast<Index>(w);
+      }
+      auto platens = std::make_unique<dem::PlatenCompression>(model.system, lower, upper, s);
+      platens->start(model.system);
+      return platens;
+    }
     if (model.clump < 0)
       return nullptr;
     // Strains are relative to the specimen's initial height (the z extent of its spheres).
@@ -421,6 +486,19 @@ namespace anticrack::app
         << r.mean_contacts_all << " (all),\n                      height " << r.height << " m, "
         << r.on_base << " on the base, " << r.fallbacks << " sticky fallbacks"
         << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
+    }
+    else if (model.dense_packing)
+    {
+      const auto &r = *model.dense_packing;
+      s << "dense random packing, N = " << d.sample.particle_count << ", R = " << d.sample.radius << " +- "
+        << d.sample.radius_half_width << " m, formation friction " << d.sample.formation_friction << "\n"
+        << "  generator report    solid fraction " << r.solid_fraction << ", coordination " << r.coordination
+        << " (mechanical " << r.mechanical_coordination << ", " << r.rattlers << " rattlers), p = " << r.pressure
+        << " Pa after " << r.steps << " steps, mean radius " << r.mean_radius << " m";
+      if (d.sample.disc_diameter > 0)
+        s << "\n                      disc of diameter " << d.sample.disc_diameter << " m carved (axis y): "
+          << system.particles.size() << " spheres kept";
+      s << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
     }
     else
       s << "snapshot " << d.sample.snapshot_file;

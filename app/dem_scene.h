@@ -7,10 +7,12 @@
 
 #include "app/scene_parameters.h"
 #include "dem/ballistic_deposition.h"
+#include "dem/dense_packing.h"
 #include "dem/lab_protocol.h"
 #include "dem/sticky_hard_spheres.h"
 #include "dem/system.h"
 
+#include <array>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -27,6 +29,7 @@ namespace anticrack::app
     Index clump = -1;                     ///< index into system.clumps, -1 without a clump
     std::vector<int> wall_face;           ///< face index (0..5 = x-..z+) of system.walls[w]
     Index initial_bonds = 0;              ///< bonds created when the sample was built
+    Index bedding_bonds = 0;              ///< bonds given the bedding strengths (DEM/Bedding)
     bool imported_bonds = false;          ///< the sample file brought its own bonds
     double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
     double critical_time_step = 0;        ///< dt_crit at initialise() [s]
@@ -34,6 +37,8 @@ namespace anticrack::app
     /// deposition); summary.json records them under dem.sample, `anticrack check` prints them.
     std::optional<dem::shs::SamplerReport> sticky_hard_spheres;
     std::optional<dem::DepositionReport> ballistic_deposition;
+    std::optional<dem::DensePackingReport> dense_packing;
+    std::array<Index, 6> box_walls{-1, -1, -1, -1, -1, -1}; ///< the triaxial test's walls (BoxFace order)
   };
 
   /// Builds and initialises the model; `threads` <= 0 means all available.

@@ -249,7 +249,7 @@ namespace anticrack::app
       prm.enter_subsection("Sample");
       prm.declare_entry("Type", "simple cubic lattice",
                         Patterns::Selection("simple cubic lattice|snapshot|sticky hard spheres|"
-                                            "ballistic deposition"),
+                                            "ballistic deposition|dense random packing"),
                         "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
                         "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
                         "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
@@ -268,8 +268,14 @@ namespace anticrack::app
                         "deposit's top if needed; with DEM/Domain/Periodic axes = x, y the specimen "
                         "stays laterally periodic (seed 002), with none its sides are opened after "
                         "deposition, like a box whose side walls are removed (seed 000); bonds use "
-                        "DEM/Bond/Gap tolerance. Both generators are seeded by DEM/Random seed and "
-                        "run again by `anticrack check`, which prints their statistics.");
+                        "DEM/Bond/Gap tolerance. `dense random packing`: N spheres (radius R +- w) grown "
+                        "in the DEM/Domain box with friction Formation friction until the mean stress is "
+                        "Packing pressure [Pa] (seed 004: the formation friction sets the density; "
+                        "frictionless ~0.64, rough ~0.56); open axes are walled while it forms; "
+                        "touching pairs are bonded (Gap tolerance); Disc diameter [m] > 0 then carves a "
+                        "disc with its axis along y for the Brazilian test. The generators are seeded by "
+                        "DEM/Random seed and run again by `anticrack check`, which prints their "
+                        "statistics.");
       prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
                         "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
       prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
@@ -322,7 +328,17 @@ namespace anticrack::app
                         "deposition only).");
       prm.declare_entry("Radius half width [m]", "0", Patterns::Double(0),
                         "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
-                        "(ballistic deposition only). Units: m.");
+                        "(ballistic deposition, dense random packing). Units: m.");
+      prm.declare_entry("Formation friction", "0", Patterns::Double(0),
+                        "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
+                        "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
+      prm.declare_entry("Packing pressure [Pa]", "1e5", Patterns::Double(0),
+                        "Mean stress at which the dense random packing is complete, in (0, 1e-2 x "
+                        "contact modulus) (dense random packing only). Units: Pa.");
+      prm.declare_entry("Disc diameter [m]", "0", Patterns::Double(0),
+                        "D > 0: keep only the spheres within the disc of diameter D, axis along y, "
+                        "centred in the domain's x-z section (Brazilian test; dense random packing "
+                        "only). 0 = no carving. Units: m.");
       prm.leave_subsection();
     }
 
@@ -333,6 +349,7 @@ namespace anticrack::app
       type = type_name == "snapshot"             ? Type::snapshot :
              type_name == "sticky hard spheres"  ? Type::sticky_hard_spheres :
              type_name == "ballistic deposition" ? Type::ballistic_deposition :
+             type_name == "dense random packing" ? Type::dense_random_packing :
                                                    Type::simple_cubic_lattice;
       lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
       radius = prm.get_double("Radius [m]");
@@ -349,6 +366,9 @@ namespace anticrack::app
       box_edge = prm.get_double("Box edge [m]");
       rolling = prm.get("Deposition rule") == "rolling";
       radius_half_width = prm.get_double("Radius half width [m]");
+      formation_friction = prm.get_double("Formation friction");
+      packing_pressure = prm.get_double("Packing pressure [Pa]");
+      disc_diameter = prm.get_double("Disc diameter [m]");
       prm.leave_subsection();
     }
 
@@ -511,7 +531,8 @@ namespace anticrack::app
     void Loading::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
-      prm.declare_entry("Test", "clump force", Patterns::Selection("clump force|tilted gravity|simple shear"),
+      prm.declare_entry("Test", "clump force",
+                        Patterns::Selection("clump force|tilted gravity|simple shear|triaxial|platen compression"),
                         "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
                         "F(t) = Fdot t d at its centre of mass (seed 002's mixed-mode test). `tilted "
                         "gravity`: seed 000's actuator, whose density grows linearly under gravity of "
@@ -519,7 +540,14 @@ namespace anticrack::app
                         "acting on every sphere; Clump force rate [N/s] is the growth rate of the "
                         "actuator's weight. `simple shear`: seed 001's test at constant normal stress: the "
                         "clump (a platen) is pressed with Normal stress [Pa], then driven along +x at "
-                        "Shear velocity [m/s], free along z, to Final shear strain.");
+                        "Shear velocity [m/s], free along z, to Final shear strain. `triaxial`: seed 004's "
+                        "test in a box of six servo walls (added on the domain's faces; DEM/Walls must be "
+                        "inactive and no axis periodic): isotropic consolidation to Confining pressure "
+                        "[Pa], then the z walls close at Axial strain rate [1/s] to Final axial strain "
+                        "while the lateral walls hold the confinement. `platen compression`: seed 003's "
+                        "uniaxial compression or Brazilian disc test: DEM/Walls/z- and z+ (must be "
+                        "active) move towards each other at Platen speed [m/s] each, until the force has "
+                        "fallen below Post-peak fraction of its peak (or Final axial strain).");
       prm.declare_entry("Adaptive rate", "false", Patterns::Bool(),
                         "Adapt the clump force rate (dem/load_control.h): DEM/Boundary particles/Clump "
                         "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
@@ -547,6 +575,21 @@ namespace anticrack::app
                         "Duration of the normal-force ramp before shearing (simple shear). Units: s.");
       prm.declare_entry("Final shear strain", "0.1", Patterns::Double(0),
                         "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
+      prm.declare_entry("Confining pressure [Pa]", "1e5", Patterns::Double(0),
+                        "sigma_c of the triaxial test (seed 004: 100, 250, 500 kPa). Units: Pa.");
+      prm.declare_entry("Axial strain rate [1/s]", "1", Patterns::Double(0),
+                        "Axial strain rate of the triaxial test's loading stage. Units: 1/s.");
+      prm.declare_entry("Final axial strain", "0.2", Patterns::Double(0, 1),
+                        "Axial strain at which the triaxial test ends (seed 004: 0.2); the platen test's "
+                        "strain limit. Dimensionless.");
+      prm.declare_entry("Max servo speed [m/s]", "0", Patterns::Double(0),
+                        "Cap on the triaxial servo walls' speed; 0 = 10 x strain rate x the largest box "
+                        "length. Units: m/s.");
+      prm.declare_entry("Platen speed [m/s]", "0.01", Patterns::Double(0),
+                        "Speed of each platen towards the other (platen compression). Units: m/s.");
+      prm.declare_entry("Post-peak fraction", "0.5", Patterns::Double(0, 1),
+                        "The platen test ends once the force has fallen below this fraction of its peak. "
+                        "Dimensionless.");
       prm.leave_subsection();
     }
 
@@ -556,6 +599,8 @@ namespace anticrack::app
       const std::string test_name = prm.get("Test");
       test = test_name == "tilted gravity" ? Test::tilted_gravity :
              test_name == "simple shear"   ? Test::simple_shear :
+             test_name == "triaxial"       ? Test::triaxial :
+             test_name == "platen compression" ? Test::platen_compression :
                                              Test::clump_force;
       adaptive = prm.get_bool("Adaptive rate");
       ramp.slow_fraction = prm.get_double("Slow rate fraction");
@@ -567,6 +612,53 @@ namespace anticrack::app
       shear_velocity = prm.get_double("Shear velocity [m/s]");
       consolidation_time = prm.get_double("Consolidation time [s]");
       final_shear_strain = prm.get_double("Final shear strain");
+      confining_pressure = prm.get_double("Confining pressure [Pa]");
+      axial_strain_rate = prm.get_double("Axial strain rate [1/s]");
+      final_axial_strain = prm.get_double("Final axial strain");
+      max_servo_speed = prm.get_double("Max servo speed [m/s]");
+      platen_speed = prm.get_double("Platen speed [m/s]");
+      post_peak_fraction = prm.get_double("Post-peak fraction");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------ Bedding
+    void Bedding::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bedding");
+      prm.declare_entry("Enabled", "false", Patterns::Bool(),
+                        "Give the bonds that cross bedding planes their own strengths (seed 003's layered "
+                        "slate; dem/bedding.h).");
+      prm.declare_entry("Inclination [deg]", "0", Patterns::Double(-90, 90),
+                        "theta: angle between the bedding planes and the x-y plane (rotation about y): "
+                        "0 = planes normal to z, 90 = planes normal to x. Units: degrees.");
+      prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
+                        "Distance between neighbouring bedding planes. Units: m.");
+      prm.declare_entry("Offset [m]", "0", Patterns::Double(),
+                        "n.x of the plane k = 0. Units: m.");
+      prm.declare_entry("Thickness [m]", "0", Patterns::Double(0),
+                        "Thickness of the band around each plane whose bonds are weakened (0: bonds that "
+                        "cross the plane itself). Units: m.");
+      prm.declare_entry("Tensile strength [Pa]", "1e5", Patterns::Double(0),
+                        "sigma_bar_c of bedding bonds. Units: Pa.");
+      prm.declare_entry("Cohesion [Pa]", "1e5", Patterns::Double(0), "c_bar of bedding bonds. Units: Pa.");
+      prm.declare_entry("Friction angle [deg]", "0", Patterns::Double(0, 90),
+                        "phi_bar of bedding bonds. Units: degrees.");
+      prm.leave_subsection();
+    }
+
+    void Bedding::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bedding");
+      enabled = prm.get_bool("Enabled");
+      inclination_deg = prm.get_double("Inclination [deg]");
+      const double theta = inclination_deg * M_PI / 180.0;
+      spec.normal = Vec3(std::sin(theta), 0.0, std::cos(theta));
+      spec.spacing = prm.get_double("Spacing [m]");
+      spec.offset = prm.get_double("Offset [m]");
+      spec.thickness = prm.get_double("Thickness [m]");
+      spec.tensile_strength = prm.get_double("Tensile strength [Pa]");
+      spec.cohesion = prm.get_double("Cohesion [Pa]");
+      spec.friction_angle = prm.get_double("Friction angle [deg]") * M_PI / 180.0;
       prm.leave_subsection();
     }
 
@@ -591,6 +683,7 @@ namespace anticrack::app
       Walls::declare_parameters(prm);
       BoundaryParticles::declare_parameters(prm);
       Loading::declare_parameters(prm);
+      Bedding::declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -609,6 +702,7 @@ namespace anticrack::app
       boundary.parse_parameters(prm);
       loading.parse_parameters(prm);
       loading.ramp.fast_rate = boundary.clump_force_rate;
+      bedding.parse_parameters(prm);
       prm.leave_subsection();
     }
   } // namespace parameters
@@ -905,6 +999,25 @@ namespace anticrack::app
                            " m) must be at least " + format_number(needed) +
                            " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
       }
+      else if (s.type == Sample::Type::dense_random_packing)
+      {
+        const std::string why_type = " for DEM/Sample/Type = dense random packing";
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        else if (!(s.radius_half_width < s.radius))
+          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
+                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
+                         " (allowed: 0 <= w < R)");
+        const double modulus = d.material.contact.law == dem::ContactLaw::linear ? d.material.contact.contact_modulus :
+                                                                                  d.material.contact.young_modulus;
+        if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
+          problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
+                       "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" + why_type);
+        if (s.disc_diameter > 0 && (s.disc_diameter > length[0] * (1 + 1e-12) || s.disc_diameter > length[2] * (1 + 1e-12)))
+          problems.add("DEM/Sample/Disc diameter [m]", s.disc_diameter,
+                       "must fit in the domain's x-z section (" + format_number(length[0]) + " x " +
+                         format_number(length[2]) + " m)");
+      }
       else
       {
         if (s.snapshot_file.empty())
@@ -972,8 +1085,46 @@ namespace anticrack::app
       if (d.loading.stop_strain > 0 && !has_clump)
         problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
                      "measures the clump's displacement: it needs a clump (DEM/Boundary particles)");
+      if (d.bedding.enabled)
+      {
+        if (!d.bond.bond.enabled)
+          problems.add("DEM/Bedding/Enabled", "true", "weakens bonds: DEM/Bond/Enabled must be true");
+        if (!(d.bedding.spec.spacing > 0))
+          problems.add("DEM/Bedding/Spacing [m]", d.bedding.spec.spacing, "must be positive");
+      }
       using LoadingTest = parameters::Loading::Test;
-      if (d.loading.test != LoadingTest::clump_force && !(has_clump && (bp.fix_below || bp.base_thickness)))
+      const bool clump_test = d.loading.test == LoadingTest::clump_force || d.loading.test == LoadingTest::tilted_gravity ||
+                              d.loading.test == LoadingTest::simple_shear;
+      if (d.loading.test == LoadingTest::triaxial)
+      {
+        for (int a = 0; a < 3; ++a)
+          if (d.domain.periodic[a])
+            problems.add("DEM/Domain/Periodic axes", axis_name[a],
+                         "the triaxial test walls every face of the domain: no axis may be periodic");
+        for (int f = 0; f < 6; ++f)
+          if (d.walls.face[f].active)
+            problems.add(std::string("DEM/Walls/") + parameters::Walls::face_names[f] + "/Active", "true",
+                         "the triaxial test adds its own six servo walls; leave DEM/Walls inactive");
+        for (const auto &[name, value] : {std::pair{"Confining pressure [Pa]", d.loading.confining_pressure},
+                                          {"Axial strain rate [1/s]", d.loading.axial_strain_rate},
+                                          {"Final axial strain", d.loading.final_axial_strain}})
+          if (!(value > 0))
+            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for the triaxial test");
+      }
+      if (d.loading.test == LoadingTest::platen_compression)
+      {
+        if (!d.walls.face[4].active || !d.walls.face[5].active)
+          problems.add("DEM/Walls/z- and z+/Active", "false",
+                       "platen compression drives the walls z- and z+: activate both");
+        if (!(d.loading.platen_speed > 0))
+          problems.add("DEM/Loading/Platen speed [m/s]", d.loading.platen_speed, "must be positive");
+        if (!(d.loading.post_peak_fraction > 0))
+          problems.add("DEM/Loading/Post-peak fraction", d.loading.post_peak_fraction, "must be in (0, 1)");
+      }
+      if (!clump_test && scene.campaign.enabled())
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run the clump tests at loading angles; the triaxial and platen tests have none");
+      if (d.loading.test != LoadingTest::clump_force && clump_test && !(has_clump && (bp.fix_below || bp.base_thickness)))
         problems.add("DEM/Loading/Test", d.loading.test == LoadingTest::simple_shear ? "simple shear" : "tilted gravity",
                      "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
                      "[mean radii], Clump above [m] or Actuator thickness [mean radii])");

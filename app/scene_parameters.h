@@ -11,6 +11,7 @@
 // Only scene_parameters.cpp includes deal.II: the rest of the application sees plain structs.
 #pragma once
 
+#include "dem/bedding.h"
 #include "dem/load_control.h"
 #include "dem/materials.h"
 #include "dem/system.h"
@@ -88,7 +89,8 @@ namespace anticrack::app
         simple_cubic_lattice,
         snapshot,
         sticky_hard_spheres,  ///< dem/sticky_hard_spheres.h; the domain becomes the sampler's cube
-        ballistic_deposition  ///< dem/ballistic_deposition.h into the DEM/Domain box
+        ballistic_deposition, ///< dem/ballistic_deposition.h into the DEM/Domain box
+        dense_random_packing  ///< dem/dense_packing.h filling the DEM/Domain box
       };
       Type type = Type::simple_cubic_lattice;
       std::array<Index, 3> lattice_size = {10, 10, 10};
@@ -109,6 +111,10 @@ namespace anticrack::app
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]
+      // dense random packing
+      double formation_friction = 0;    ///< mu while the packing forms
+      double packing_pressure = 1e5;    ///< [Pa]
+      double disc_diameter = 0;         ///< [m], > 0 carves a disc (axis y) for the Brazilian test
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
@@ -173,7 +179,9 @@ namespace anticrack::app
       {
         clump_force,    ///< force ramp on the clump (seed 002)
         tilted_gravity, ///< growing actuator weight under gravity tilted by psi (seed 000)
-        simple_shear    ///< platen driven along x at constant normal stress (seed 001)
+        simple_shear,   ///< platen driven along x at constant normal stress (seed 001)
+        triaxial,       ///< six servo walls: consolidation, then axial strain (seed 004)
+        platen_compression ///< z walls approach each other: uniaxial compression, Brazilian disc (seed 003)
       };
       Test test = Test::clump_force;
       bool adaptive = false;
@@ -184,6 +192,25 @@ namespace anticrack::app
       double shear_velocity = 1e-3;      ///< [m/s]
       double consolidation_time = 1e-3;  ///< [s]
       double final_shear_strain = 0.1;
+      // triaxial and platen compression (dem/lab_tests.h)
+      double confining_pressure = 1e5;   ///< [Pa]
+      double axial_strain_rate = 1;      ///< [1/s]
+      double final_axial_strain = 0.2;   ///< also the platen test's strain limit
+      double max_servo_speed = 0;        ///< [m/s], 0 = 10 x strain rate x box length
+      double platen_speed = 1e-2;        ///< [m/s]
+      double post_peak_fraction = 0.5;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Bedding: bonds crossing a family of parallel planes get their own strengths
+    /// (seed 003, dem/bedding.h).
+    struct Bedding
+    {
+      bool enabled = false;
+      double inclination_deg = 0;   ///< angle between the bedding planes and the x-y plane
+      dem::BeddingSpec spec;        ///< normal from the inclination (rotated about y)
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
@@ -203,6 +230,7 @@ namespace anticrack::app
       Walls walls;
       BoundaryParticles boundary;
       Loading loading;
+      Bedding bedding;
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);

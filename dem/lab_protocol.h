@@ -33,6 +33,10 @@ namespace anticrack::dem
     /// What the protocol is doing (e.g. "consolidation", "axial loading") or why it finished.
     [[nodiscard]] virtual std::string stage(const DemSystem &system) const = 0;
 
+    /// The test's own results so far, by name with the unit in the name (e.g. peak deviator stress
+    /// of a triaxial test); summary.json reports them.
+    [[nodiscard]] virtual std::map<std::string, double> results(const DemSystem & /*system*/) const { return {}; }
+
     /// Protocol state that a checkpoint must carry besides the DemSystem, by name.
     [[nodiscard]] virtual std::map<std::string, double> state() const { return {}; }
     virtual void restore(const std::map<std::string, double> & /*state*/) {}

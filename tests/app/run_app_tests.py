@@ -751,6 +751,65 @@ def simple_shear_constant_normal_stress(work):
     check(ux[-1] / height >= 0.03 * 0.999, f"final shear strain {ux[-1] / height}")
 
 
+@case
+def triaxial_small(work):
+    """scenes/triaxial.prm shrunk to 300 spheres and 3 % axial strain: consolidation brings the six
+    walls to sigma_c = 100 kPa, the lateral walls hold it within 3 % (mean, proportional servo)
+    during axial loading, the test stops at the final strain, and the peak mobilised friction angle
+    of the dense mu = 0.5 packing lies in 20-45 degrees (dense packings of mu = 0.5 spheres peak at
+    ~25-40 degrees; a walled sample of ~7 diameters adds a few; measured 38)."""
+    text = open(os.path.join(SOURCE, "scenes", "triaxial.prm")).read()
+    text = edit_scene(text, {
+        "Output/History interval [steps]": "500", "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
+        "Output/Write ParaView": "false", "DEM/Domain/Upper corner [m]": "0.004, 0.004, 0.004",
+        "DEM/Sample/Particle count": "300", "DEM/Loading/Axial strain rate [1/s]": "2",
+        "DEM/Loading/Final axial strain": "0.03"})
+    scene = write(os.path.join(work, "triaxial.prm"), text)
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    lab = summary["dem"]["lab_test"]
+    check(lab["finished"], f"the test did not end: {lab}")
+    results = lab["results"]
+    check(abs(results["axial_strain"] - 0.03) < 0.005, f"final axial strain {results['axial_strain']}")
+    phi = results["peak_friction_angle_deg"]
+    check(20 <= phi <= 45, f"peak friction angle {phi} deg")
+    h = {name: values for name, (values, unit) in read_history(out).items()}
+    loading = h["step"] > results["consolidation_end_step"]
+    check(loading.sum() > 5, "no axial loading recorded")
+    for wall in ("x-", "x+", "y-", "y+"):
+        mean = h[f"wall_{wall}_normal_stress"][loading].mean()
+        check(abs(mean - 1e5) < 0.03e5, f"wall {wall}: mean stress {mean} Pa while loading axially, sigma_c = 1e5")
+
+
+@case
+def brazilian_disc_small(work):
+    """scenes/brazilian_disc.prm shrunk to a 5 mm disc: the bonded disc splits, the force falls below
+    half its peak (the test's end), and the splitting strength 2F/(pi D t) lies between 0.05 and 1
+    times the bond tensile strength (bonds cover only part of the diametral plane; measured ~0.5)."""
+    text = open(os.path.join(SOURCE, "scenes", "brazilian_disc.prm")).read()
+    text = edit_scene(text, {
+        "Output/History interval [steps]": "100", "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+        "DEM/Domain/Upper corner [m]": "0.005, 0.002, 0.005", "DEM/Sample/Particle count": "500",
+        "DEM/Sample/Disc diameter [m]": "0.005", "DEM/Loading/Platen speed [m/s]": "2.5e-3",
+        # 10x softer and weaker (same failure strain, 3x longer time step)
+        "DEM/Material/Contact modulus [Pa]": "1e9", "DEM/Bond/Modulus [Pa]": "1e9",
+        "DEM/Bond/Tensile strength [Pa]": "2e6", "DEM/Bond/Cohesion [Pa]": "2e6", "DEM/Sample/Packing pressure [Pa]": "1e5"})
+    scene = write(os.path.join(work, "brazilian.prm"), text)
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    lab = summary["dem"]["lab_test"]
+    check(lab["finished"], f"the test did not end: {lab}")
+    results = lab["results"]
+    check(results["force_N"] < 0.5 * results["peak_force_N"] or results["strain"] >= 0.2, f"results {results}")
+    ratio = results["brazilian_tensile_strength_Pa"] / 2e6
+    check(0.05 <= ratio <= 1, f"splitting strength / bond strength = {ratio}")
+    check(summary["dem"]["broken_bonds_tension"] > 0, "no bond broke in tension")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
