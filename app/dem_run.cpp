@@ -216,6 +216,9 @@ namespace anticrack::app
         h.add_column(std::string("clump_applied_force_") + a, "N", "applied force F(t) on the clump");
       h.add_column("clump_normal_stress", "Pa", "-F_z(t) / A with A the x-y area of the domain");
       h.add_column("clump_shear_stress", "Pa", "F_x(t) / A with A the x-y area of the domain");
+      h.add_column("clump_kinetic_energy", "J", "1/2 m |v|^2 + 1/2 w.I w of the clump (seed 002's failure window)");
+      h.add_column("normal_strain", "-", "-u_z / H0: clump displacement over the initial sample height, compression positive");
+      h.add_column("shear_strain", "-", "u_x / H0: clump displacement along x over the initial sample height");
     }
     // Micro-to-macro measures (PHYSICS.md 1.5), over the sample volume (dem/measurements.h).
     for (const char *c : {"xx", "yy", "zz", "xy", "xz", "yz"})
@@ -305,6 +308,11 @@ namespace anticrack::app
         row.push_back(force[a]);
       row.push_back(-force[2] / model_->base_area);
       row.push_back(force[0] / model_->base_area);
+      const Vec3 spin = clump.angular_velocity;
+      row.push_back(0.5 * clump.mass * clump.velocity.squaredNorm() +
+                    0.5 * spin.dot(clump.inverse_inertia_world().inverse() * spin));
+      row.push_back(-clump.displacement[2] / initial_sample_height_);
+      row.push_back(clump.displacement[0] / initial_sample_height_);
     }
     const double volume = dem::sample_volume(system_);
     const dem::Mat3 stress = volume > 0 ? dem::love_weber_stress(system_, volume) : dem::Mat3::Zero();

@@ -109,6 +109,18 @@ namespace anticrack::app
         spec.seed = d.seed;
         const Index first = system.particles.size();
         model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
+        if (d.sample.actuator_count > 0)
+        {
+          // Seed 000's actuator: a cohesionless (rolling) deposit of larger spheres on the layer.
+          dem::BallisticDepositionSpec actuator = spec;
+          actuator.rule = dem::DepositionRule::rolling;
+          actuator.particle_count = d.sample.actuator_count;
+          actuator.radius.mean = d.sample.actuator_radius;
+          actuator.radius.half_width = 0;
+          actuator.seed = d.seed + 0x5eed;
+          model.actuator_layer_first = system.particles.size();
+          dem::add_ballistic_deposit(system, actuator);
+        }
         open_axes_the_scene_does_not_wrap(d, system);
         add_random_velocities(d, system, first);
         return;
@@ -238,7 +250,8 @@ namespace anticrack::app
           particles.velocity[p].setZero();
           particles.angular_velocity[p].setZero();
         }
-        else if (clump_above && z > *clump_above)
+        else if ((clump_above && z > *clump_above) ||
+                 (model.actuator_layer_first >= 0 && p >= model.actuator_layer_first))
         {
           clump_members.push_back(p);
           particles.velocity[p].setZero();
@@ -247,7 +260,7 @@ namespace anticrack::app
       }
       if (fix_below && model.fixed_particles.empty())
         throw InputError("DEM/Boundary particles/" + which_base + " selects no sphere: " + range + ".");
-      if (clump_above && clump_members.empty())
+      if (clump_above && model.actuator_layer_first < 0 && clump_members.empty())
         throw InputError("DEM/Boundary particles/" + which_clump + " selects no sphere: " + range + ".");
       const Index free = n - static_cast<Index>(model.fixed_particles.size() + clump_members.size());
       if (n > 0 && free == 0)
@@ -509,6 +522,9 @@ namespace anticrack::app
     s << ")\n  bonds               " << model.initial_bonds;
     if (!d.bond.bond.enabled)
       s << " (bonding disabled)";
+    if (d.bedding.enabled)
+      s << " (" << model.bedding_bonds << " of them in the bedding bands, inclination " << d.bedding.inclination_deg
+        << " deg)";
     s << "\n  contact law         "
       << (d.material.contact.law == dem::ContactLaw::linear ? "linear" : "hertz-mindlin") << "\n";
     s << "  walls               " << (system.walls.empty() ? "none\n" : "\n");

@@ -30,6 +30,7 @@ namespace anticrack::app
     std::vector<int> wall_face;           ///< face index (0..5 = x-..z+) of system.walls[w]
     Index initial_bonds = 0;              ///< bonds created when the sample was built
     Index bedding_bonds = 0;              ///< bonds given the bedding strengths (DEM/Bedding)
+    Index actuator_layer_first = -1;      ///< first sphere of the actuator layer (DEM/Sample), -1 = none
     bool imported_bonds = false;          ///< the sample file brought its own bonds
     double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
     double critical_time_step = 0;        ///< dt_crit at initialise() [s]

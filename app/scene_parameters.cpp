@@ -329,6 +329,14 @@ namespace anticrack::app
       prm.declare_entry("Radius half width [m]", "0", Patterns::Double(0),
                         "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
                         "(ballistic deposition, dense random packing). Units: m.");
+      prm.declare_entry("Actuator layer count", "0", Patterns::Integer(0),
+                        "N_a > 0: after the deposit, N_a spheres of radius Actuator layer radius [m] are "
+                        "dropped on top by the rolling rule (seed 000's cohesionless actuator layer) and "
+                        "become the loading clump (DEM/Boundary particles/Clump above [m] and Actuator "
+                        "thickness [mean radii] must then be empty); they are bonded to the layer where "
+                        "they touch it (ballistic deposition only).");
+      prm.declare_entry("Actuator layer radius [m]", "0.01", Patterns::Double(0),
+                        "Radius of the actuator layer's spheres (seed 000: 10 mm). Units: m.");
       prm.declare_entry("Formation friction", "0", Patterns::Double(0),
                         "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
                         "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
@@ -366,6 +374,8 @@ namespace anticrack::app
       box_edge = prm.get_double("Box edge [m]");
       rolling = prm.get("Deposition rule") == "rolling";
       radius_half_width = prm.get_double("Radius half width [m]");
+      actuator_count = prm.get_integer("Actuator layer count");
+      actuator_radius = prm.get_double("Actuator layer radius [m]");
       formation_friction = prm.get_double("Formation friction");
       packing_pressure = prm.get_double("Packing pressure [Pa]");
       disc_diameter = prm.get_double("Disc diameter [m]");
@@ -1077,7 +1087,25 @@ namespace anticrack::app
                                         {"Actuator thickness [mean radii]", bp.actuator_thickness}})
         if (value && !(*value > 0))
           problems.add(std::string("DEM/Boundary particles/") + name, *value, "must be positive");
-      const bool has_clump = bp.clump_above || bp.actuator_thickness;
+      const bool has_clump = bp.clump_above || bp.actuator_thickness || d.sample.actuator_count > 0;
+      if (d.sample.actuator_count > 0)
+      {
+        if (d.sample.type != Sample::Type::ballistic_deposition)
+          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+                       "an actuator layer is deposited on a ballistic deposit only (DEM/Sample/Type)");
+        if (bp.clump_above || bp.actuator_thickness)
+          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+                       "the actuator layer is the clump: leave DEM/Boundary particles/Clump above [m] and "
+                       "Actuator thickness [mean radii] empty");
+        if (!(d.sample.actuator_radius > 0))
+          problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius, "must be positive");
+        else
+          for (int a = 0; a < 2; ++a)
+            if (!(length[a] >= 8 * d.sample.actuator_radius))
+              problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius,
+                           "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                             " m) must be at least 4 actuator diameters");
+      }
       if (d.loading.adaptive && !(has_clump && bp.clump_force_rate > 0))
         problems.add("DEM/Loading/Adaptive rate", "true",
                      "adapts the clump force ramp: it needs a clump (DEM/Boundary particles/Clump above "
@@ -1163,7 +1191,7 @@ namespace anticrack::app
                        "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
                        "DEM/Steps after its failure");
       }
-      if (!bp.clump_above && !bp.actuator_thickness && bp.clump_force_rate != 0)
+      if (!has_clump && bp.clump_force_rate != 0)
         problems.add("DEM/Boundary particles/Clump force rate [N/s]", bp.clump_force_rate,
                      "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
     }

@@ -111,6 +111,8 @@ namespace anticrack::app
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]
+      Index actuator_count = 0;         ///< > 0: spheres of a rolling actuator layer on top (seed 000)
+      double actuator_radius = 0;       ///< [m]
       // dense random packing
       double formation_friction = 0;    ///< mu while the packing forms
       double packing_pressure = 1e5;    ///< [Pa]

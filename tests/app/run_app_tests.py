@@ -504,16 +504,21 @@ def shs_scene(steps, **changes):
 
 def ballistic_scene(rule, count, steps=20, **changes):
     """scenes/ballistic_weak_layer.prm shrunk to R = 1 mm in a 2 cm x 2 cm periodic box, no fixed
-    base and no clump: thick enough (sticky 1200, rolling 2000 spheres) for a nonempty bulk slab."""
+    base, no clump, no gravity, no campaign: thick enough (sticky 1200, rolling 2000 spheres) for a
+    nonempty bulk slab."""
     text = open(os.path.join(SOURCE, "scenes", "ballistic_weak_layer.prm")).read()
     return edit_scene(text, {
         "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
         "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
         "DEM/Steps": str(steps), "DEM/Domain/Upper corner [m]": "0.02, 0.02, 0.01",
         "DEM/Sample/Deposition rule": rule, "DEM/Sample/Particle count": str(count),
-        "DEM/Sample/Radius [m]": "1e-3", "DEM/Boundary particles/Fix below [m]": "",
-        "DEM/Boundary particles/Clump above [m]": "", "DEM/Boundary particles/Clump force rate [N/s]": "0",
-        **changes})
+        "DEM/Sample/Radius [m]": "1e-3", "DEM/Boundary particles/Base thickness [mean radii]": "",
+        "DEM/Boundary particles/Actuator thickness [mean radii]": "",
+        "DEM/Boundary particles/Clump force rate [N/s]": "0", "DEM/Domain/Periodic axes": "x, y",
+        "DEM/Integration/Gravity [m/s^2]": "0, 0, 0", "Campaign/Loading angles [deg]": "",
+        "DEM/Loading/Test": "clump force", "DEM/Loading/Adaptive rate": "false", "DEM/Loading/Stop strain": "0",
+        "DEM/Sample/Actuator layer count": "0",
+        "Output/Checkpoint interval [steps]": "0", **changes})
 
 
 @case
@@ -579,7 +584,8 @@ def campaign_scene(angles, check_mode="none", microstructures="", **changes):
         "Campaign/Loading angles [deg]": angles, "Campaign/Realizations": "1",
         "Campaign/Quasi-static check": check_mode, "Campaign/Microstructures": microstructures,
         "DEM/Sample/Particle count": "256", "DEM/Sample/Box edge [m]": "0.005",
-        "DEM/Sample/Sweeps": "2000", "DEM/Boundary particles/Clump force rate [N/s]": "100", **changes})
+        "DEM/Sample/Sweeps": "2000", "DEM/Boundary particles/Clump force rate [N/s]": "100",
+        "DEM/Loading/Slow rate fraction": "0.0625", "DEM/Loading/Lag tolerance": "0.1", **changes})
 
 
 def failure_points(directory):
@@ -808,6 +814,38 @@ def brazilian_disc_small(work):
     ratio = results["brazilian_tensile_strength_Pa"] / 2e6
     check(0.05 <= ratio <= 1, f"splitting strength / bond strength = {ratio}")
     check(summary["dem"]["broken_bonds_tension"] > 0, "no bond broke in tension")
+
+
+@case
+def bedded_compression_weaker(work):
+    """scenes/bedded_uniaxial_compression.prm shrunk to a 3 x 3 x 6 mm prism: weak bedding bands at 45
+    degrees lower the uniaxial strength below that of the intact prism (seed 003: the minimum of the
+    U-shaped strength-inclination curve lies at 30-60 degrees), and bedding bands as strong as the
+    rock change nothing (same peak force to the bit: the bands only change strengths)."""
+    peaks = {}
+    for name, changes in [("intact", {"DEM/Bedding/Enabled": "false"}),
+                          ("same_strength", {"DEM/Bedding/Tensile strength [Pa]": "2e6", "DEM/Bedding/Cohesion [Pa]": "2e6"}),
+                          ("bedded", {"DEM/Bedding/Tensile strength [Pa]": "2e5", "DEM/Bedding/Cohesion [Pa]": "2e5"})]:
+        text = open(os.path.join(SOURCE, "scenes", "bedded_uniaxial_compression.prm")).read()
+        text = edit_scene(text, {
+            "Output/History interval [steps]": "200", "Output/Progress interval [steps]": "0",
+            "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+            "DEM/Domain/Upper corner [m]": "0.003, 0.003, 0.006", "DEM/Sample/Particle count": "450",
+            # 10x softer and weaker than the scene (same failure strain, 3x longer time step)
+            "DEM/Material/Contact modulus [Pa]": "1e9", "DEM/Bond/Modulus [Pa]": "1e9",
+            "DEM/Bond/Tensile strength [Pa]": "2e6", "DEM/Bond/Cohesion [Pa]": "2e6",
+            "DEM/Sample/Packing pressure [Pa]": "1e5", "DEM/Bedding/Spacing [m]": "1.5e-3",
+            "DEM/Loading/Platen speed [m/s]": "3e-3", **changes})
+        scene = write(os.path.join(work, f"{name}.prm"), text)
+        out = os.path.join(work, name)
+        anticrack("run", scene, "-o", out)
+        summary = json.load(open(os.path.join(out, "summary.json")))
+        check(summary["dem"]["lab_test"]["finished"], f"{name}: the test did not end")
+        peaks[name] = summary["dem"]["lab_test"]["results"]["peak_force_N"]
+        if name != "intact":
+            check(summary["dem"]["sample"]["bedding_bonds"] > 0, f"{name}: no bond in the bedding bands")
+    check(peaks["same_strength"] == peaks["intact"], f"bands as strong as the rock changed the peak: {peaks}")
+    check(peaks["bedded"] < 0.9 * peaks["intact"], f"weak bedding at 45 degrees did not lower the strength: {peaks}")
 
 
 def main():
