@@ -467,6 +467,7 @@ namespace anticrack::app
       o.output_directory = (directory / "tests" / t.id).string();
       o.overwrite = true;
       o.quiet = true;
+      o.progress_label = "[rank " + std::to_string(mpi.rank()) + "] " + t.id;
       o.threads = threads;
       o.command_line = options.command_line;
       o.labels = {{"campaign_test", t.id},

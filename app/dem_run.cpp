@@ -129,6 +129,8 @@ namespace anticrack::app
     void write_checkpoint();
     void write_outputs(bool first, bool last);
     void report_progress();
+    void report_quiet_progress();
+    std::chrono::steady_clock::time_point last_quiet_report_ = std::chrono::steady_clock::now();
 
     [[nodiscard]] Json summary(const std::string &status, const std::string &message) const;
     void print_start() const;
@@ -395,6 +397,24 @@ namespace anticrack::app
     if (!options_.quiet && o.progress_interval > 0 && step > first_step_ &&
         (last || multiple_of(step, o.progress_interval)))
       report_progress();
+    if (options_.quiet && !options_.progress_label.empty())
+      report_quiet_progress();
+  }
+
+  void DemRun::report_quiet_progress()
+  {
+    // A campaign test prints one line per minute of wall time, so that a long test shows it lives.
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_quiet_report_).count() < 60)
+      return;
+    last_quiet_report_ = now;
+    std::ostringstream line;
+    line.precision(4);
+    line << options_.progress_label << ": step " << system_.step_count << ", t = " << system_.time << " s, "
+         << system_.bonds.count_intact() << "/" << system_.bonds.size() << " bonds intact";
+    if (protocol_)
+      line << ", " << protocol_->stage(system_);
+    std::cout << line.str() << "\n" << std::flush;
   }
 
   void DemRun::report_progress()

@@ -22,6 +22,7 @@ namespace anticrack::app
     int threads = -1;         ///< < 0: DEM/Threads of the scene
     std::string command_line; ///< for the summary
     bool quiet = false;       ///< no start, progress and end lines (campaign tests)
+    std::string progress_label; ///< quiet runs with a label print "<label>: step ..." once a minute
     nlohmann::ordered_json labels; ///< copied into summary.json as "labels" (a campaign test's identity)
   };
 
