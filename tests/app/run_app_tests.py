@@ -667,6 +667,7 @@ def campaign_quasi_static(work):
     with h5py.File(os.path.join(out, "campaign.h5"), "r") as f:
         difference = f["quasi_static_check"]["relative_difference"][()]
     check(np.allclose(sorted(difference), sorted(p["relative_difference"] for p in qs["pairs"])), f"{difference}")
+    print(f"  quasi-static differences (p, q): {[round(100 * p['relative_difference'], 2) for p in qs['pairs']]} %")
 
 
 def linear_fit_r2(x, y):
@@ -700,6 +701,8 @@ def macro_linear_in_micro(work):
     check(np.all(np.isfinite(modulus_values)), f"secant moduli {modulus_values}")
     check(r2 > 0.98, f"secant modulus vs particle modulus: R^2 = {r2} (E = {modulus_values})")
     check(abs(intercept) < 0.1 * modulus_values.max(), f"modulus line intercept {intercept} Pa (E = {modulus_values})")
+    print(f"  strength: sigma_f = {np.round(sigma)} Pa, R^2 = {linear_fit_r2(factors, sigma)[2]:.5f}; "
+          f"modulus: E = {np.round(modulus_values / 1e6, 3)} MPa, R^2 = {r2:.5f}")
 
 
 @case
@@ -724,6 +727,7 @@ def tilted_gravity_equals_force_ramp(work):
     for name, point in points.items():
         ratio = point["tau"][0] / point["sigma"][0]
         check(abs(ratio - 1) < 0.10, f"{name}: failure tau / sigma = {ratio}, loading direction tan 45 deg = 1")
+    print(f"  (p, q) difference {100 * difference:.2f} %")
 
 
 @case
@@ -787,6 +791,7 @@ def triaxial_small(work):
     for wall in ("x-", "x+", "y-", "y+"):
         mean = h[f"wall_{wall}_normal_stress"][loading].mean()
         check(abs(mean - 1e5) < 0.03e5, f"wall {wall}: mean stress {mean} Pa while loading axially, sigma_c = 1e5")
+    print(f"  peak friction angle {phi:.1f} deg, peak q {results['peak_deviator_stress_Pa']:.4g} Pa")
 
 
 @case
@@ -814,6 +819,7 @@ def brazilian_disc_small(work):
     ratio = results["brazilian_tensile_strength_Pa"] / 2e6
     check(0.05 <= ratio <= 1, f"splitting strength / bond strength = {ratio}")
     check(summary["dem"]["broken_bonds_tension"] > 0, "no bond broke in tension")
+    print(f"  splitting strength / bond strength = {ratio:.3f}")
 
 
 @case
@@ -846,6 +852,7 @@ def bedded_compression_weaker(work):
             check(summary["dem"]["sample"]["bedding_bonds"] > 0, f"{name}: no bond in the bedding bands")
     check(peaks["same_strength"] == peaks["intact"], f"bands as strong as the rock changed the peak: {peaks}")
     check(peaks["bedded"] < 0.9 * peaks["intact"], f"weak bedding at 45 degrees did not lower the strength: {peaks}")
+    print(f"  peak forces {peaks} N")
 
 
 def main():
