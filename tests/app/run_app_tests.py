@@ -855,6 +855,29 @@ def bedded_compression_weaker(work):
     print(f"  peak forces {peaks} N")
 
 
+@case
+def campaign_resume_and_bad_input(work):
+    """--resume runs only the tests that have not completed and ends with the same campaign.h5 tables;
+    a microstructure that names no DEM/Sample entry, and a campaign without a stop strain, are
+    refused before anything is written (exit 2, message names the entry)."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 180"))
+    out = os.path.join(work, "run")
+    anticrack("run", scene, "-o", out)
+    first = failure_points(out)
+    shutil.rmtree(os.path.join(out, "tests", "m0_r0_psi180.0"))
+    stdout, _ = anticrack("run", scene, "-o", out, "--resume")
+    check("m0_r0_psi000.0: completed earlier, skipped" in stdout, f"the completed test was not skipped:\n{stdout}")
+    check("m0_r0_psi180.0: completed" in stdout, f"the missing test did not run:\n{stdout}")
+    compare_exactly(first, failure_points(out), "failure points after --resume")
+    stdout, stderr = anticrack("run", scene, "-o", out, expect=2)
+    check("--resume" in stderr and "--overwrite" in stderr, f"reusing a campaign directory: {stderr}")
+
+    bad = write(os.path.join(work, "bad.prm"), campaign_scene("0", microstructures="Volume fractoin = 0.3"))
+    expect_bad_input(work, bad, "Campaign/Microstructures", "Volume fractoin")
+    bad = write(os.path.join(work, "no_stop.prm"), campaign_scene("0", **{"DEM/Loading/Stop strain": "0"}))
+    expect_bad_input(work, bad, "DEM/Loading/Stop strain", "campaign")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
