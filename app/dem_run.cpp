@@ -788,6 +788,8 @@ namespace anticrack::app
       sample["percus_yevick_coordination"] = r.percus_yevick_coordination;
       sample["contacts"] = r.contacts;
       sample["acceptance"] = r.acceptance;
+      sample["cluster_move_fraction"] = scene_.dem.sample.cluster_move_fraction;
+      sample["cluster_acceptance"] = r.cluster_acceptance;
       sample["largest_cluster_fraction"] = r.largest_cluster_fraction;
       sample["percolating"] = r.percolating;
       sample["box_length_m"] = r.box_length;

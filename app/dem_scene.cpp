@@ -89,6 +89,7 @@ namespace anticrack::app
                         d.sample.radius;
         spec.well_width = d.sample.well_width;
         spec.sweeps = d.sample.sweeps;
+        spec.cluster_move_fraction = d.sample.cluster_move_fraction;
         spec.material = 0;
         spec.seed = d.seed;
         model.sticky_hard_spheres = dem::shs::sample_sticky_hard_spheres(system, spec);

@@ -322,6 +322,14 @@ namespace anticrack::app
                         "Units: m.");
       prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
                         "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
+      prm.declare_entry("Cluster move fraction", "0", Patterns::Double(0, 1),
+                        "fraction of Monte Carlo trial moves that translate a whole cluster of "
+                        "spheres in each other's well (pairs in the well linked with the contact "
+                        "probability 1 - exp(-eps/kT), Swendsen-Wang; detailed balance kept because "
+                        "the move is refused only on hard-core overlap, for clusters of more than 16 "
+                        "spheres and for clusters that wrap around the box); helps dense, sticky "
+                        "states with finite clusters equilibrate, not a network that already spans the "
+                        "box (sticky hard spheres only). Must be below 1. Dimensionless.");
       prm.declare_entry("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
                         "`sticky`: a falling sphere stops at its first contact (bulk solid fraction "
                         "~0.15); `rolling`: it rolls to a three-point rest (~0.58) (ballistic "
@@ -371,6 +379,7 @@ namespace anticrack::app
       target_coordination = prm.get_double("Target coordination number");
       well_width = prm.get_double("Well width");
       sweeps = prm.get_integer("Sweeps");
+      cluster_move_fraction = prm.get_double("Cluster move fraction");
       box_edge = prm.get_double("Box edge [m]");
       rolling = prm.get("Deposition rule") == "rolling";
       radius_half_width = prm.get_double("Radius half width [m]");
@@ -949,6 +958,9 @@ namespace anticrack::app
           problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
         if (!(s.well_width > 0))
           problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
+        if (!(s.cluster_move_fraction < 1))
+          problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
+                       "must be in [0, 1): single-sphere moves are needed to make and break clusters");
         const bool use_z = s.target_coordination > 0;
         if (use_z && s.stickiness > 0)
           problems.add("DEM/Sample/Stickiness", s.stickiness,

@@ -107,6 +107,7 @@ namespace anticrack::app
       double target_coordination = 0;   ///< z, 0 = use tau
       double well_width = 0.03;         ///< delta / sigma
       Index sweeps = 5000;
+      double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
       double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule

@@ -224,6 +224,8 @@ namespace anticrack::dem::shs
       fail("at least one sweep is needed");
     if (spec.material < 0 || spec.material >= system.materials.size())
       fail("material " + std::to_string(spec.material) + " is not defined");
+    if (!(spec.cluster_move_fraction >= 0 && spec.cluster_move_fraction < 1))
+      fail("cluster move fraction " + std::to_string(spec.cluster_move_fraction) + " outside [0, 1)");
 
     SamplerReport report;
     const double phi = spec.volume_fraction;
@@ -269,9 +271,11 @@ namespace anticrack::dem::shs
     //    contacts far faster in a narrow well: pick a partner j, then with probability 1/2 move i
     //    into j's well shell (volume V_in), otherwise out of it (anywhere else in the box, V_out);
     //    a move "in" when i is already in (or "out" when already out) is rejected, and acceptance
-    //    carries the volume ratio V_in / V_out (in) or V_out / V_in (out).
+    //    carries the volume ratio V_in / V_out (in) or V_out / V_in (out). V_out is the region the
+    //    "out" move draws from and an "in" move can start from: the box minus j's shell AND j's core
+    //    (hard core: i is never there), V_out = L^3 - 4/3 pi range^3.
     const double shell_volume = 4.0 / 3.0 * M_PI * (range * range * range - sigma * sigma * sigma);
-    const double outside_volume = box * box * box - shell_volume;
+    const double outside_volume = box * box * box - 4.0 / 3.0 * M_PI * range * range * range;
     const auto random_direction = [&]() {
       const double cos_theta = 2 * unit(rng) - 1, azimuth = 2 * M_PI * unit(rng);
       const double sin_theta = std::sqrt(1 - cos_theta * cos_theta);
@@ -283,11 +287,99 @@ namespace anticrack::dem::shs
     };
     double step = 0.1 * sigma;
     Index accepted = 0, tried = 0;
+
+    // Cluster moves (opt-in, a fraction `cluster_move_fraction` of the trials; the detailed-balance
+    // argument is in the header): the spheres linked to a random sphere p, each pair in the well
+    // linked with probability 1 - 1/contact_weight (drawn while the cluster grows, each pair at most
+    // once), are translated rigidly by a vector uniform in a cube of half-width `cluster_step`; the
+    // move is accepted unless a moved sphere overlaps a sphere that stays. Clusters that wrap around
+    // the periodic box or have more than `largest_moved_cluster` spheres are not moved.
+    const double cluster_fraction = spec.cluster_move_fraction;
+    const double link_probability = 1 - 1 / contact_weight;
+    const std::size_t largest_moved_cluster = 16;
+    std::vector<char> member(cluster_fraction > 0 ? n : 0, 0);
+    std::vector<Vec3> unwrapped(cluster_fraction > 0 ? n : 0);
+    std::vector<Index> cluster;
+    std::vector<Vec3> moved;
+    double cluster_step = 0.1 * sigma;
+    Index cluster_accepted = 0, cluster_tried = 0;
+    // 0: the cluster wraps or is too large (not moved), 1: the translation overlaps, 2: accepted.
+    const auto cluster_move = [&]() -> int {
+      const Index p = pick(rng);
+      cluster.assign(1, p);
+      member[p] = 1;
+      unwrapped[p] = x[p];
+      bool reject = false;
+      for (std::size_t q = 0; q < cluster.size() && !reject; ++q)
+      {
+        const Index i = cluster[q];
+        cells.for_each_near(x[i], [&](Index j) {
+          if (j == i || reject)
+            return;
+          const Vec3 d = minimum_image(x[j] - x[i], box);
+          if (d.squaredNorm() >= range * range)
+            return;
+          if (member[j])
+          {
+            // the pair closes a loop: through another periodic image, the cluster wraps
+            if ((unwrapped[i] + d - unwrapped[j]).squaredNorm() > 0.25 * box * box)
+              reject = true;
+            return;
+          }
+          if (unit(rng) >= link_probability)
+            return; // not linked: j stays, whatever the move does to the pair
+          member[j] = 1;
+          unwrapped[j] = unwrapped[i] + d;
+          cluster.push_back(j);
+          if (cluster.size() > largest_moved_cluster)
+            reject = true; // too large to move: nearly always blocked, and costly to grow
+        });
+      }
+      bool accept = !reject;
+      if (accept)
+      {
+        Vec3 v;
+        for (int a = 0; a < 3; ++a)
+          v[a] = cluster_step * (2 * unit(rng) - 1);
+        moved.resize(cluster.size());
+        for (std::size_t k = 0; k < cluster.size() && accept; ++k)
+        {
+          moved[k] = wrap(x[cluster[k]] + v, box);
+          cells.for_each_near(moved[k], [&](Index j) {
+            if (accept && !member[j] && minimum_image(x[j] - moved[k], box).squaredNorm() < sigma * sigma)
+              accept = false;
+          });
+        }
+      }
+      if (accept)
+        for (std::size_t k = 0; k < cluster.size(); ++k)
+        {
+          cells.move(cluster[k], moved[k]);
+          x[cluster[k]] = moved[k];
+        }
+      for (const Index i : cluster)
+        member[i] = 0;
+      return reject ? 0 : accept ? 2 : 1;
+    };
+
     for (Index sweep = 0; sweep < spec.sweeps; ++sweep)
     {
       Index sweep_accepted = 0, sweep_displacements = 0, displacements_accepted = 0;
+      Index sweep_cluster_tried = 0, sweep_cluster_accepted = 0, sweep_cluster_translations = 0;
       for (Index t = 0; t < n; ++t)
       {
+        if (cluster_fraction > 0 && unit(rng) < cluster_fraction)
+        {
+          ++sweep_cluster_tried;
+          const int outcome = cluster_move();
+          sweep_cluster_translations += outcome > 0;
+          if (outcome == 2)
+          {
+            ++sweep_cluster_accepted;
+            ++sweep_accepted;
+          }
+          continue;
+        }
         const Index p = pick(rng);
         Vec3 trial;
         double bias = 1; // proposal-volume ratio of the move
@@ -344,14 +436,22 @@ namespace anticrack::dem::shs
         const double rate =
           sweep_displacements > 0 ? static_cast<double>(displacements_accepted) / sweep_displacements : 0.4;
         step = std::clamp(step * (rate > 0.4 ? 1.05 : 0.95), 1e-4 * sigma, 0.5 * sigma);
+        if (sweep_cluster_translations > 0)
+        {
+          const double cluster_rate = static_cast<double>(sweep_cluster_accepted) / sweep_cluster_translations;
+          cluster_step = std::clamp(cluster_step * (cluster_rate > 0.4 ? 1.05 : 0.95), 1e-4 * sigma, 0.5 * sigma);
+        }
       }
       else
       {
         accepted += sweep_accepted;
         tried += n;
+        cluster_accepted += sweep_cluster_accepted;
+        cluster_tried += sweep_cluster_tried;
       }
     }
     report.acceptance = tried > 0 ? static_cast<double>(accepted) / tried : 0;
+    report.cluster_acceptance = cluster_tried > 0 ? static_cast<double>(cluster_accepted) / cluster_tried : 0;
 
     const double bond_probability = 1 - 1 / contact_weight;
     // Contact graph with the image offset of each edge, clusters and percolation (a cluster that

@@ -49,6 +49,33 @@ namespace anticrack::dem::shs
   /// coordination number is the same (2.81) for delta = 0.02 and 0.03, 3 % above Percus-Yevick.
   /// Aggregation-volume-bias moves help contacts form; dense, very sticky states (phi = 0.4,
   /// tau = 0.1) still need ~1e4 sweeps: watch `coordination_history` level off.
+  ///
+  /// Cluster moves (opt-in: `cluster_move_fraction` > 0 of the trial moves; 0 leaves the random
+  /// stream and every sample exactly as without them). Swendsen-Wang construction on Baxter's bond
+  /// picture above: write the weight of a configuration as w^n_well = prod over well pairs of
+  /// (1 + (w - 1)), w = exp(eps/kT), i.e. each pair in the well is linked with probability
+  /// p = 1 - 1/w, independently. A cluster move
+  ///   1. picks a sphere uniformly and grows its cluster C: from each member, every sphere in its well
+  ///      that is not yet a member is linked with probability p (each pair drawn at most once), so
+  ///      P(C | x) = f(C) (1 - p)^b(x), where b(x) counts the well pairs between C and the rest and
+  ///      f depends only on the pairs inside C;
+  ///   2. rejects (leaves x) when C wraps around the periodic box (a well pair inside C whose minimum
+  ///      image disagrees with the unwrapped positions along the links) or has more than 16 spheres
+  ///      (growth stops there; such clusters are nearly always blocked and costly to grow);
+  ///   3. translates C rigidly by v uniform in [-s, s]^3 (s adapted in the first half of the sweeps
+  ///      like the single-sphere step, frozen in the second) and accepts unless a moved sphere
+  ///      overlaps one that stays. Well pairs between C and the rest may form and break freely.
+  /// Detailed balance: a translation keeps every distance inside C, so the reverse move (any sphere
+  /// of C picked, same link draws inside C, all b(x') boundary pairs unlinked, -v) grows the same C,
+  /// with the same wrap/size verdict; the pick (|C|/N) and v are symmetric. Hence
+  ///   pi(x) T(x -> x') / (pi(x') T(x' -> x)) = w^(n(x) - n(x')) (1 - p)^(b(x) - b(x')) = 1,
+  /// because n(x) - n(x') = b(x) - b(x') (pairs inside C and among the rest do not change) and
+  /// 1 - p = 1/w; the acceptance is 1 for every hard-core-free trial. Only translations: a rotation
+  /// would need the cluster's minimum-image distances checked as well.
+  /// Benefit (N = 500, fraction 0.2): early aggregation ~1.5-2x faster per sweep at (0.3, 0.2), about
+  /// even per CPU second (cluster moves cost ~2.5x per sweep); none at (0.4, 0.1), where the bonded
+  /// network spans the box within ~100 sweeps and a spanning cluster is never moved (cluster
+  /// acceptance ~2e-4): the slow creep there is restructuring inside the network.
   struct SamplerSpec
   {
     Index particle_count = 2048;
@@ -60,6 +87,7 @@ namespace anticrack::dem::shs
     Index sweeps = 5000;              ///< Monte Carlo sweeps (N trial moves each)
     int material = 0;
     std::uint64_t seed = 1;
+    double cluster_move_fraction = 0; ///< fraction of trial moves that are cluster moves, in [0, 1)
   };
 
   struct SamplerReport
@@ -71,11 +99,14 @@ namespace anticrack::dem::shs
     Index contacts = 0;               ///< bonded pairs (Baxter contacts)
     Index well_pairs = 0;             ///< pairs inside the well, bonded or not
     std::vector<std::pair<Index, Index>> bonded_pairs; ///< particle ids (i < j) in the system
-    double acceptance = 0;            ///< of the last sweeps' moves
+    double acceptance = 0;            ///< of the last sweeps' moves (cluster moves included)
+    double cluster_acceptance = 0;    ///< of the last sweeps' cluster moves, wrapping/too-large
+                                      ///< clusters included (0 without cluster moves)
     double largest_cluster_fraction = 0;
     bool percolating = false;         ///< the largest cluster wraps around the periodic box
     double box_length = 0;            ///< [m]
-    std::vector<double> coordination_history; ///< z every 100 sweeps (equilibration check)
+    std::vector<double> coordination_history; ///< partners in the well per sphere (2 well pairs / N,
+                                              ///< not the bonded z) every 100 sweeps (equilibration check)
   };
 
   /// Samples the fluid, appends the spheres to `system` (domain set to the periodic cube) and
