@@ -512,6 +512,16 @@ namespace anticrack::dem::shs
       }
     }
     report.largest_cluster_fraction = static_cast<double>(largest) / n;
+    if (spec.require_percolation && !report.percolating)
+    {
+      std::ostringstream why;
+      why << "sticky hard spheres: the sample does not percolate at phi = " << spec.volume_fraction
+          << ", tau = " << report.stickiness << " (z = " << 2.0 * static_cast<double>(report.contacts) / n
+          << " bonded partners per sphere; the largest cluster holds " << 100 * report.largest_cluster_fraction
+          << " % of the spheres and does not wrap around the periodic box). A non-percolating sample carries "
+             "no load (seed 002): raise the coordination number (lower tau) or the volume fraction";
+      throw SetupError(why.str());
+    }
 
     system.domain.lower = Vec3::Zero();
     system.domain.upper = Vec3::Constant(box);

@@ -88,6 +88,9 @@ namespace anticrack::dem::shs
     int material = 0;
     std::uint64_t seed = 1;
     double cluster_move_fraction = 0; ///< fraction of trial moves that are cluster moves, in [0, 1)
+    /// Refuse (SetupError) a sample whose largest bonded cluster does not wrap around the box: it
+    /// would carry no load. false only for studies of the fluid itself (dilute-limit checks).
+    bool require_percolation = true;
   };
 
   struct SamplerReport

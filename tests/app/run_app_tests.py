@@ -566,12 +566,17 @@ def generated_ballistic_fractions(work):
 
 @case
 def bad_input_generators(work):
-    """Ballistic deposition without a periodic x axis; sticky hard spheres with tau < tau_min."""
+    """Ballistic deposition without a periodic x axis; sticky hard spheres with tau < tau_min, and a
+    sticky-hard-sphere sample that does not percolate."""
     scene = write(os.path.join(work, "not_periodic.prm"),
                   ballistic_scene("sticky", 100, **{"DEM/Domain/Periodic axes": "y"}))
     expect_bad_input(work, scene, "DEM/Domain/Periodic axes", "ballistic deposition")
     scene = write(os.path.join(work, "tau.prm"), shs_scene(20, **{"DEM/Sample/Stickiness": "0.05"}))
     expect_bad_input(work, scene, "DEM/Sample/Stickiness", "0.05", "tau_min(phi) = 0.0699")
+    scene = write(os.path.join(work, "dilute.prm"), shs_scene(20, **{"DEM/Sample/Volume fraction": "0.1",
+                                                                      "DEM/Sample/Stickiness": "1",
+                                                                      "DEM/Sample/Sweeps": "200"}))
+    expect_bad_input(work, scene, "does not percolate", "phi = 0.1")
 
 
 # ------------------------------------------------------------------------------------ campaigns

@@ -81,6 +81,7 @@ namespace
     spec.well_width = delta;
     spec.radius = 1e-3;
     spec.seed = seed;
+    spec.require_percolation = false; // short runs too; the tests check report.percolating themselves
     return shs::sample_sticky_hard_spheres(s, spec);
   }
 } // namespace
@@ -140,6 +141,7 @@ TEST(StickyHardSpheresSampler, DiluteLimitIsBaxters)
   spec.stickiness = 1.0;
   spec.sweeps = 2000;
   spec.radius = 1e-3;
+  spec.require_percolation = false; // a dilute fluid of small clusters
   const shs::SamplerReport r = shs::sample_sticky_hard_spheres(s, spec);
   EXPECT_NEAR(r.coordination, shs::percus_yevick_coordination(0.05, 1.0), 0.01)
     << "z = " << r.coordination << " (2 phi / tau = 0.1)";
@@ -193,6 +195,7 @@ namespace
     spec.radius = 1e-3;
     spec.seed = seed;
     spec.cluster_move_fraction = fraction;
+    spec.require_percolation = false; // these runs study the fluid's equilibrium, dilute ones included
     return shs::sample_sticky_hard_spheres(s, spec);
   }
 
@@ -322,4 +325,33 @@ TEST(StickyHardSpheresSampler, ClusterMoveBenefitAtPhi04Tau01IsMeasured)
                 seconds);
     EXPECT_NEAR(r.coordination / r.percus_yevick_coordination, 1.0, 0.15);
   }
+}
+
+// A sample whose bonded network does not span the box carries no load (seed 002): refused, with the
+// reason and the way out. phi = 0.1, tau = 1 is far below percolation (z ~ 0.2).
+TEST(StickyHardSpheresSampler, NonPercolatingSampleIsRefused)
+{
+  DemSystem s;
+  s.materials.add(Material{});
+  shs::SamplerSpec spec;
+  spec.particle_count = 300;
+  spec.volume_fraction = 0.1;
+  spec.stickiness = 1.0;
+  spec.sweeps = 200;
+  spec.radius = 1e-3;
+  try
+  {
+    shs::sample_sticky_hard_spheres(s, spec);
+    FAIL() << "a non-percolating sample was accepted";
+  }
+  catch (const SetupError &e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("does not percolate"), std::string::npos) << message;
+    EXPECT_NE(message.find("phi = 0.1"), std::string::npos) << message;
+  }
+  EXPECT_EQ(s.particles.size(), 0) << "nothing is appended to a refused system";
+  spec.require_percolation = false;
+  const shs::SamplerReport r = shs::sample_sticky_hard_spheres(s, spec);
+  EXPECT_FALSE(r.percolating);
 }
