@@ -23,17 +23,6 @@ namespace anticrack::dem
       return s.str();
     }
 
-    /// Keeps the entries i with keep[i] != 0, in order.
-    template <class T>
-    void keep_only(std::vector<T> &values, const std::vector<char> &keep)
-    {
-      std::size_t kept = 0;
-      for (std::size_t i = 0; i < values.size(); ++i)
-        if (keep[i])
-          values[kept++] = std::move(values[i]);
-      values.resize(kept);
-    }
-
     /// Per-wall blocks [w * n + p] of sphere-wall state, compacted to the kept particles (resized to
     /// the new count if the block layout does not match the old one).
     void keep_wall_slots(std::vector<Vec3> &slots, const std::vector<char> &keep, std::size_t walls, Index kept)
@@ -61,30 +50,16 @@ namespace anticrack::dem
                          std::to_string(system.bonds.size()) + " bonds, " + std::to_string(system.clumps.size()) +
                          " clumps and has run " + std::to_string(system.step_count) + " steps)");
       ParticleStore &ps = system.particles;
-      // Every array of ParticleStore is compacted below; a new field must be added there too.
-      static_assert(sizeof(ParticleStore) == 12 * sizeof(std::vector<double>),
-                    "ParticleStore gained or lost an array: update remove_particles");
       const Index before = ps.size();
-      keep_only(ps.position, keep);
-      keep_only(ps.velocity, keep);
-      keep_only(ps.angular_velocity, keep);
-      keep_only(ps.force, keep);
-      keep_only(ps.torque, keep);
-      keep_only(ps.radius, keep);
-      keep_only(ps.mass, keep);
-      keep_only(ps.inertia, keep);
-      keep_only(ps.material_id, keep);
-      keep_only(ps.group_id, keep);
-      keep_only(ps.blocked, keep);
-      keep_only(ps.clump_id, keep);
+      ps.keep(keep);
       if (!ps.consistent())
         throw SetupError(who + ": particle arrays became inconsistent");
       const Index kept = ps.size();
       // Run state sized by the particle count (present after initialise()).
       if (static_cast<Index>(system.previous_velocity.size()) == before)
-        keep_only(system.previous_velocity, keep);
+        keep_entries(system.previous_velocity, keep);
       if (static_cast<Index>(system.previous_angular_velocity.size()) == before)
-        keep_only(system.previous_angular_velocity, keep);
+        keep_entries(system.previous_angular_velocity, keep);
       keep_wall_slots(system.wall_shear, keep, system.walls.size(), kept);
       keep_wall_slots(system.wall_dashpot, keep, system.walls.size(), kept);
       // Candidate pairs hold old ids; initialise() builds the list again.

@@ -49,4 +49,27 @@ namespace anticrack::dem
            material_id.size() == n && group_id.size() == n && blocked.size() == n &&
            clump_id.size() == n;
   }
+
+
+  void ParticleStore::keep(const std::vector<char> &keep)
+  {
+    if (static_cast<Index>(keep.size()) != size())
+      throw SetupError("ParticleStore::keep: the mask has " + std::to_string(keep.size()) + " entries for " +
+                       std::to_string(size()) + " particles");
+    // Every array is compacted here; a new field must be added too.
+    static_assert(sizeof(ParticleStore) == 12 * sizeof(std::vector<double>),
+                  "ParticleStore gained or lost an array: update ParticleStore::keep");
+    keep_entries(position, keep);
+    keep_entries(velocity, keep);
+    keep_entries(angular_velocity, keep);
+    keep_entries(force, keep);
+    keep_entries(torque, keep);
+    keep_entries(radius, keep);
+    keep_entries(mass, keep);
+    keep_entries(inertia, keep);
+    keep_entries(material_id, keep);
+    keep_entries(group_id, keep);
+    keep_entries(blocked, keep);
+    keep_entries(clump_id, keep);
+  }
 } // namespace anticrack::dem

@@ -22,6 +22,18 @@ namespace anticrack::dem
   /// Volume of a sphere of radius r, 4/3 pi r^3.
   inline double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
 
+  /// Keeps the entries i with keep[i] != 0 (in order) and drops the others: the compaction of every
+  /// per-particle array when particles are removed.
+  template <class T>
+  void keep_entries(std::vector<T> &values, const std::vector<char> &keep)
+  {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      if (keep[i])
+        values[kept++] = std::move(values[i]);
+    values.resize(kept);
+  }
+
   struct ParticleStore
   {
     // --- kinematic state (velocities live at half steps in the leapfrog scheme)
@@ -47,6 +59,10 @@ namespace anticrack::dem
 
     /// Resize every array consistently (used by readers).
     void resize(Index n);
+
+    /// Keeps the particles with keep[p] != 0 (in their order) and drops the others from every
+    /// array; keep.size() must equal size(). Ids of the kept particles change.
+    void keep(const std::vector<char> &keep);
 
     /// True when every array has the same length.
     [[nodiscard]] bool consistent() const;

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -198,18 +197,6 @@ namespace
     spec.require_percolation = false; // these runs study the fluid's equilibrium, dilute ones included
     return shs::sample_sticky_hard_spheres(s, spec);
   }
-
-  /// Sweeps until the coordination history first comes within 2 % of its final level (the mean of
-  /// its last 10 entries, i.e. the last 1000 sweeps).
-  Index leveling_sweeps(const std::vector<double> &history)
-  {
-    const std::size_t tail = std::min<std::size_t>(10, history.size());
-    const double final_level = std::accumulate(history.end() - tail, history.end(), 0.0) / tail;
-    for (std::size_t k = 0; k < history.size(); ++k)
-      if (history[k] >= 0.98 * final_level)
-        return 100 * static_cast<Index>(k + 1);
-    return 100 * static_cast<Index>(history.size());
-  }
 } // namespace
 
 // Cluster moves must not change the equilibrium. At (phi, tau) = (0.3, 0.2) with a wide well
@@ -305,26 +292,18 @@ TEST(StickyHardSpheresSampler, ClusterMovesKeepHardCoresAndAreReproducible)
   EXPECT_THROW(sample_with_clusters(bad2, 64, 0.3, 0.2, 10, 0.03, -0.1, 1), SetupError);
 }
 
-// The benefit at (phi, tau) = (0.4, 0.1), N = 500, delta = 0.03, measured and printed, not
-// asserted (one seed; see the header: the bonded network spans the box within ~100 sweeps, and a
-// spanning cluster is never moved). Only sanity is checked: both samples within the 15 % band of
-// Percus-Yevick that the single-move test uses.
-TEST(StickyHardSpheresSampler, ClusterMoveBenefitAtPhi04Tau01IsMeasured)
+// Cluster moves in the dense, very sticky state (phi, tau) = (0.4, 0.1), N = 500, delta = 0.03, 6000
+// sweeps: the sample stays within the 15 % band of Percus-Yevick that the single-move test uses
+// (measured: z = 4.21 without, 4.14 with 20 % cluster moves; PY 4.66), and some cluster moves are
+// accepted (measured ~1e-3: the bonded network spans the box early and spanning clusters never
+// move; the header discusses why they do not speed this state up).
+TEST(StickyHardSpheresSampler, ClusterMovesKeepTheDenseStickyStateNearPercusYevick)
 {
-  for (const double fraction : {0.0, 0.2})
-  {
-    DemSystem s;
-    const auto start = std::chrono::steady_clock::now();
-    const shs::SamplerReport r = sample_with_clusters(s, 500, 0.4, 0.1, 6000, 0.03, fraction, 1);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("[ measured ] cluster move fraction %.1f: z = %.3f (PY %.3f), well coordination after 6000 "
-                "sweeps %.3f, within 2 %% of it after %lld sweeps, acceptance %.3f, cluster acceptance %.4f, "
-                "%.1f s\n",
-                fraction, r.coordination, r.percus_yevick_coordination, r.coordination_history.back(),
-                static_cast<long long>(leveling_sweeps(r.coordination_history)), r.acceptance, r.cluster_acceptance,
-                seconds);
-    EXPECT_NEAR(r.coordination / r.percus_yevick_coordination, 1.0, 0.15);
-  }
+  DemSystem s;
+  const shs::SamplerReport r = sample_with_clusters(s, 500, 0.4, 0.1, 6000, 0.03, 0.2, 1);
+  EXPECT_NEAR(r.coordination / r.percus_yevick_coordination, 1.0, 0.15);
+  EXPECT_GT(r.cluster_acceptance, 0.0);
+  EXPECT_TRUE(r.percolating);
 }
 
 // A sample whose bonded network does not span the box carries no load (seed 002): refused, with the
