@@ -1,7 +1,7 @@
 #include "app/campaign.h"
 
 #include "app/dem_scene.h"
-#include "app/hdf5_util.h"
+#include "util/hdf5_file.h"
 #include "app/input_error.h"
 #include "app/progress.h"
 #include "app/scene_parameters.h"
@@ -176,52 +176,11 @@ namespace anticrack::app
     // ------------------------------------------------------------------------- campaign.h5
     using hdf5::Handle;
 
-    void write_doubles(hid_t group, const std::string &name, const std::vector<double> &values,
-                       const std::string &unit, const std::string &description,
-                       const std::vector<hsize_t> &shape = {})
-    {
-      const std::vector<hsize_t> dims = shape.empty() ? std::vector<hsize_t>{values.size()} : shape;
-      const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
-                         "create a data space");
-      const Handle set(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT,
-                                  H5P_DEFAULT),
-                       H5Dclose, "create dataset " + name);
-      if (!values.empty() && H5Dwrite(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-        throw std::runtime_error("HDF5: cannot write " + name);
-      hdf5::write_string_attribute(set.id, "units", unit);
-      hdf5::write_string_attribute(set.id, "description", description);
-    }
-
-    void write_strings(hid_t group, const std::string &name, const std::vector<std::string> &values,
-                       const std::string &description)
-    {
-      const Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy the string type");
-      H5Tset_size(type.id, H5T_VARIABLE);
-      H5Tset_cset(type.id, H5T_CSET_UTF8);
-      const hsize_t n = values.size();
-      const Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a data space");
-      const Handle set(H5Dcreate2(group, name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                       H5Dclose, "create dataset " + name);
-      std::vector<const char *> pointers;
-      for (const auto &v : values)
-        pointers.push_back(v.c_str());
-      if (n > 0 && H5Dwrite(set.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
-        throw std::runtime_error("HDF5: cannot write " + name);
-      hdf5::write_string_attribute(set.id, "description", description);
-    }
-
     /// One column of a history.h5 file.
     std::vector<double> read_history_column(const fs::path &file, const std::string &name)
     {
-      const Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + file.string());
-      const Handle set(H5Dopen2(f.id, name.c_str(), H5P_DEFAULT), H5Dclose, "open " + name + " in " + file.string());
-      const Handle space(H5Dget_space(set.id), H5Sclose, "query " + name);
-      hsize_t n = 0;
-      H5Sget_simple_extent_dims(space.id, &n, nullptr);
-      std::vector<double> values(n);
-      if (n > 0 && H5Dread(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-        throw std::runtime_error("HDF5: cannot read " + name + " in " + file.string());
-      return values;
+      const Handle f = hdf5::open_file_read_only(file.string());
+      return hdf5::read_doubles(f.id, name);
     }
 
     /// Copies every dataset of the root of `file` into a new group `name` of `parent`.
@@ -260,6 +219,7 @@ namespace anticrack::app
       double flow_angle_deg = nan, secant_modulus = nan, softening_ratio = nan, peak_q = nan;
       double max_inertial_number = nan; ///< from half the failure stress to the failure point
       double solid_fraction = nan, coordination = nan, bonds = nan;
+      double specimen_height = nan; ///< initial height H0 of the tested layer (strains = u / H0)
       double steps = nan, wall_s = nan;
       std::string analysis_error;
     };
@@ -285,6 +245,7 @@ namespace anticrack::app
       if (std::isnan(o.coordination))
         o.coordination = number_at(s, "/dem/sample/mean_contacts");
       o.bonds = number_at(s, "/dem/bonds");
+      o.specimen_height = number_at(s, "/dem/specimen/height_m");
       const Json::json_pointer analysis("/dem/failure_analysis");
       if (!s.contains(analysis))
         return o;
@@ -517,10 +478,9 @@ namespace anticrack::app
     const fs::path campaign_file = directory / "campaign.h5";
     const fs::path temporary = directory / "campaign.h5.tmp";
     {
-      const Handle f(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-                     "create " + temporary.string());
+      const Handle f = hdf5::create_file(temporary.string());
       hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
-      hdf5::write_string_attribute(f.id, "format_version", "1");
+      hdf5::write_string_attribute(f.id, "format_version", "2");
       hdf5::write_string_attribute(f.id, "scene_file", scene.file);
       hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
       hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
@@ -546,6 +506,40 @@ namespace anticrack::app
           copy_history(history, group.id, "history");
       }
 
+      // What a calibration needs to know of each microstructure's material (params/ reads it).
+      {
+        const Handle g = hdf5::create_group(f.id, "microstructures");
+        std::vector<std::string> labels;
+        std::vector<double> contact_modulus, bond_modulus, particle_modulus, tensile, cohesion, density, periodic;
+        for (std::size_t m = 0; m < microstructure_scenes.size(); ++m)
+        {
+          const auto &d = microstructure_scenes[m].dem;
+          std::string label = c.microstructures.empty() ? "scene sample" : "";
+          if (!c.microstructures.empty())
+            for (const auto &[entry, value] : c.microstructures[m])
+              label += (label.empty() ? "" : ", ") + entry + " = " + value;
+          labels.push_back(label);
+          contact_modulus.push_back(d.material.contact.contact_modulus);
+          bond_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : nan);
+          particle_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : d.material.contact.contact_modulus);
+          tensile.push_back(d.bond.bond.enabled ? d.bond.bond.tensile_strength : nan);
+          cohesion.push_back(d.bond.bond.enabled ? d.bond.bond.cohesion : nan);
+          density.push_back(d.material.density);
+          periodic.push_back(d.domain.periodic[0] && d.domain.periodic[1] ? 1.0 : 0.0);
+        }
+        hdf5::write_strings(g.id, "label", labels, "the microstructure variant (Campaign/Microstructures)");
+        hdf5::write_doubles(g.id, "contact_modulus", contact_modulus, "Pa", "E_c of the linear contact law");
+        hdf5::write_doubles(g.id, "bond_modulus", bond_modulus, "Pa", "E_bar of the parallel bonds (NaN: no bonds)");
+        hdf5::write_doubles(g.id, "particle_modulus", particle_modulus, "Pa",
+                            "the micro modulus of seed 000's E_macro(E_particle): the bond modulus of bonded "
+                            "samples, else the contact modulus");
+        hdf5::write_doubles(g.id, "bond_tensile_strength", tensile, "Pa", "sigma_bar_c of the parallel bonds");
+        hdf5::write_doubles(g.id, "bond_cohesion", cohesion, "Pa", "c_bar of the parallel bonds");
+        hdf5::write_doubles(g.id, "particle_density", density, "kg/m^3", "density of the sphere material");
+        hdf5::write_doubles(g.id, "laterally_periodic", periodic, "-",
+                            "1: periodic along x and y (laterally confined, uniaxial strain at psi = 0); 0: open sides");
+      }
+
       // The failure-point table: one row per test of the campaign proper (references apart).
       std::vector<const CampaignTest *> main_tests, references;
       for (const auto &t : tests)
@@ -566,47 +560,49 @@ namespace anticrack::app
           const auto &s = outcomes[t->id].love_stress;
           stress.insert(stress.end(), s.begin(), s.end());
         }
-        write_strings(group, "test", ids, "test id: m<microstructure>_r<realization>_psi<angle>");
-        write_strings(group, "status", status, "completed, failed, interrupted or missing");
+        hdf5::write_strings(group, "test", ids, "test id: m<microstructure>_r<realization>_psi<angle>");
+        hdf5::write_strings(group, "status", status, "completed, failed, interrupted or missing");
         using O = TestOutcome;
         using T = CampaignTest;
-        write_doubles(group, "microstructure", column([](const T &t, const O &) { return double(t.microstructure); }), "-",
+        hdf5::write_doubles(group, "microstructure", column([](const T &t, const O &) { return double(t.microstructure); }), "-",
                       "index into the root attribute `microstructures` (0 = the scene's own sample)");
-        write_doubles(group, "realization", column([](const T &t, const O &) { return double(t.realization); }), "-",
+        hdf5::write_doubles(group, "realization", column([](const T &t, const O &) { return double(t.realization); }), "-",
                       "realization r, sample seed = DEM/Random seed + r");
-        write_doubles(group, "loading_angle_deg", column([](const T &t, const O &) { return t.angle_deg; }), "deg",
+        hdf5::write_doubles(group, "loading_angle_deg", column([](const T &t, const O &) { return t.angle_deg; }), "deg",
                       "psi, clump force direction (sin psi, 0, -cos psi)");
-        write_doubles(group, "sigma", column([](const T &, const O &o) { return o.sigma; }), "Pa",
+        hdf5::write_doubles(group, "sigma", column([](const T &, const O &o) { return o.sigma; }), "Pa",
                       "base normal stress at failure, compression positive (seed 002)");
-        write_doubles(group, "tau", column([](const T &, const O &o) { return o.tau; }), "Pa",
+        hdf5::write_doubles(group, "tau", column([](const T &, const O &o) { return o.tau; }), "Pa",
                       "base shear stress at failure (along +x)");
-        write_doubles(group, "p", column([](const T &, const O &o) { return o.p; }), "Pa",
+        hdf5::write_doubles(group, "p", column([](const T &, const O &o) { return o.p; }), "Pa",
                       "mean pressure of the Love-Weber stress at failure, compression positive");
-        write_doubles(group, "q", column([](const T &, const O &o) { return o.q; }), "Pa",
+        hdf5::write_doubles(group, "q", column([](const T &, const O &o) { return o.q; }), "Pa",
                       "von Mises stress of the Love-Weber stress at failure");
-        write_doubles(group, "love_stress", stress, "Pa",
+        hdf5::write_doubles(group, "love_stress", stress, "Pa",
                       "full Love-Weber stress tensor at failure, tension positive, [test][i][j]",
                       {rows.size(), 3, 3});
-        write_doubles(group, "failure_time", column([](const T &, const O &o) { return o.time; }), "s",
+        hdf5::write_doubles(group, "failure_time", column([](const T &, const O &o) { return o.time; }), "s",
                       "time of the failure point");
-        write_doubles(group, "failure_step", column([](const T &, const O &o) { return o.step; }), "-",
+        hdf5::write_doubles(group, "failure_step", column([](const T &, const O &o) { return o.step; }), "-",
                       "step of the failure point");
-        write_doubles(group, "flow_angle_deg", column([](const T &, const O &o) { return o.flow_angle_deg; }), "deg",
+        hdf5::write_doubles(group, "flow_angle_deg", column([](const T &, const O &o) { return o.flow_angle_deg; }), "deg",
                       "plastic flow angle atan2(du_z, du_x) of the clump just after failure (seed 002)");
-        write_doubles(group, "secant_modulus", column([](const T &, const O &o) { return o.secant_modulus; }), "Pa",
+        hdf5::write_doubles(group, "secant_modulus", column([](const T &, const O &o) { return o.secant_modulus; }), "Pa",
                       "secant modulus to 70 % of the peak base normal stress (seed 000)");
-        write_doubles(group, "softening_ratio", column([](const T &, const O &o) { return o.softening_ratio; }), "-",
+        hdf5::write_doubles(group, "softening_ratio", column([](const T &, const O &o) { return o.softening_ratio; }), "-",
                       "residual / peak base normal stress (seed 000)");
-        write_doubles(group, "peak_q", column([](const T &, const O &o) { return o.peak_q; }), "Pa",
+        hdf5::write_doubles(group, "peak_q", column([](const T &, const O &o) { return o.peak_q; }), "Pa",
                       "largest von Mises stress of the whole test");
-        write_doubles(group, "max_inertial_number", column([](const T &, const O &o) { return o.max_inertial_number; }),
+        hdf5::write_doubles(group, "max_inertial_number", column([](const T &, const O &o) { return o.max_inertial_number; }),
                       "-", "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, seed 002)");
-        write_doubles(group, "solid_fraction", column([](const T &, const O &o) { return o.solid_fraction; }), "-",
+        hdf5::write_doubles(group, "solid_fraction", column([](const T &, const O &o) { return o.solid_fraction; }), "-",
                       "solid volume fraction of the generated sample");
-        write_doubles(group, "coordination", column([](const T &, const O &o) { return o.coordination; }), "-",
+        hdf5::write_doubles(group, "coordination", column([](const T &, const O &o) { return o.coordination; }), "-",
                       "mean coordination number of the generated sample");
-        write_doubles(group, "bonds", column([](const T &, const O &o) { return o.bonds; }), "-",
+        hdf5::write_doubles(group, "bonds", column([](const T &, const O &o) { return o.bonds; }), "-",
                       "parallel bonds of the specimen");
+        hdf5::write_doubles(group, "specimen_height", column([](const T &, const O &o) { return o.specimen_height; }),
+                      "m", "initial height H0 of the tested specimen (strains in the histories are u / H0)");
       };
       {
         const Handle g(H5Gcreate2(f.id, "failure_points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
@@ -626,10 +622,10 @@ namespace anticrack::app
           difference.push_back(relative_difference(outcomes[r->reference_for], outcomes[r->id]));
           base_difference.push_back(base_relative_difference(outcomes[r->reference_for], outcomes[r->id]));
         }
-        write_strings(g.id, "checks", checked, "the campaign test this slower run is the reference of");
-        write_doubles(g.id, "relative_difference", difference, "-",
+        hdf5::write_strings(g.id, "checks", checked, "the campaign test this slower run is the reference of");
+        hdf5::write_doubles(g.id, "relative_difference", difference, "-",
                       "|s - s_ref| / |s_ref| of the failure point s = (p, q) (the checked measure)");
-        write_doubles(g.id, "base_relative_difference", base_difference, "-",
+        hdf5::write_doubles(g.id, "base_relative_difference", base_difference, "-",
                       "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
       }
     }

@@ -754,6 +754,7 @@ namespace anticrack::app
       l["stop_strain"] = loading.stop_strain;
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
+      d["specimen"] = {{"height_m", initial_sample_height_}};
       // The yield point of this test (seed 002's failure criterion) and its companions.
       d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
                                                    scene_.dem.loading.test == parameters::Loading::Test::simple_shear);

@@ -2,6 +2,8 @@
 //
 //   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T]
 //   anticrack check SCENE.prm [--threads T]
+//   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--fe-plane p-q|sigma-tau] [--bootstrap N]
+//                       [--seed S] [--confidence C] [--no-plots] [--overwrite] [--threads T]
 //   anticrack params [--format prm|description|json]
 //   anticrack bench dem --lattice n --steps S --threads T
 //
@@ -9,6 +11,7 @@
 // command line, checkpoint that does not match), 130 interrupted. Bad input is always found before
 // anything is written.
 #include "app/bench.h"
+#include "app/calibrate.h"
 #include "app/dem_run.h"
 #include "app/input_error.h"
 #include "app/scene_parameters.h"
@@ -64,6 +67,37 @@ int main(int argc, char **argv)
   run->add_option("--threads", run_options.threads, "OpenMP threads (0: all available); overrides DEM/Threads")
     ->check(CLI::NonNegativeNumber);
 
+  // --- calibrate
+  CalibrateOptions calibrate_options;
+  bool no_plots = false;
+  auto *calibrate = app.add_subcommand(
+    "calibrate", "Fit the continuum material (cohesive Cam-Clay, elasticity, softening) to a DEM campaign");
+  calibrate->add_option("input", calibrate_options.input,
+                        "campaign.h5 of a campaign run, or a scene (.prm) whose campaign is run first into DIR/campaign")
+    ->required()
+    ->check(CLI::ExistingFile);
+  calibrate->add_option("-o,--output", calibrate_options.output_directory,
+                        "Output directory (material file(s), calibration.h5, summary.json, plots)")
+    ->required();
+  calibrate->add_option("--bootstrap", calibrate_options.bootstrap_samples,
+                        "Bootstrap resamples of the realizations (0: covariance intervals only)")
+    ->check(CLI::Range(0, 100000))
+    ->capture_default_str();
+  calibrate->add_option("--seed", calibrate_options.seed, "Seed of the bootstrap")->capture_default_str();
+  calibrate->add_option("--confidence", calibrate_options.confidence, "Level of every interval")
+    ->check(CLI::Range(0.5, 0.999))
+    ->capture_default_str();
+  std::string fe_plane = "p-q";
+  calibrate->add_option("--fe-plane", fe_plane,
+                        "Plane whose Cam-Clay fit goes into the material file: p-q (Love-Weber invariants) or "
+                        "sigma-tau (base stresses, seed 002)")
+    ->check(CLI::IsMember({"p-q", "sigma-tau"}))
+    ->capture_default_str();
+  calibrate->add_flag("--no-plots", no_plots, "Do not run scripts/plot_calibration.py");
+  calibrate->add_flag("--overwrite", calibrate_options.overwrite, "Replace an earlier calibration in DIR");
+  calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads of a scene's campaign")
+    ->check(CLI::NonNegativeNumber);
+
   // --- check
   std::string check_file;
   int check_threads = -1;
@@ -112,6 +146,13 @@ int main(int argc, char **argv)
     {
       run_options.command_line = join_arguments(argc, argv);
       return run_scene(run_options);
+    }
+    if (*calibrate)
+    {
+      calibrate_options.plots = !no_plots;
+      calibrate_options.fe_plane_base_stresses = fe_plane == "sigma-tau";
+      calibrate_options.command_line = join_arguments(argc, argv);
+      return run_calibration(calibrate_options);
     }
     if (*check)
       return check_scene(check_file, check_threads);

@@ -1,6 +1,6 @@
 #include "app/scene_parameters.h"
 
-#include "app/hashing.h"
+#include "util/sha256.h"
 #include "app/input_error.h"
 #include "dem/sticky_hard_spheres.h"
 
@@ -1225,7 +1225,7 @@ namespace anticrack::app
       json.erase("Output");
       json["DEM"].erase("Steps");
       json["DEM"].erase("Threads");
-      return sha256_hex(json.dump());
+      return util::sha256_hex(json.dump());
     }
   } // namespace
 
@@ -1235,7 +1235,7 @@ namespace anticrack::app
     SceneParameters scene;
     scene.file = file;
     const std::string bytes = read_file_bytes(file);
-    scene.file_sha256 = sha256_hex(bytes);
+    scene.file_sha256 = util::sha256_hex(bytes);
 
     ParameterHandler prm;
     SceneParameters::declare_parameters(prm);
@@ -1279,7 +1279,7 @@ namespace anticrack::app
     std::ostringstream canonical;
     prm.print_parameters(canonical, ParameterHandler::ShortPRM);
     scene.canonical_parameters = canonical.str();
-    scene.parameters_sha256 = sha256_hex(scene.canonical_parameters);
+    scene.parameters_sha256 = util::sha256_hex(scene.canonical_parameters);
     scene.resume_key_sha256 = resume_key(prm);
 
     Problems problems;

@@ -883,6 +883,248 @@ def campaign_resume_and_bad_input(work):
     expect_bad_input(work, bad, "DEM/Loading/Stop strain", "campaign")
 
 
+
+# ----------------------------------------------------------------------------------- calibration
+# A synthetic campaign.h5 (format 2, the layout app/campaign.cpp writes) whose answers are known:
+# failure points on cohesive Cam-Clay ellipses in both planes with 2 % radial noise, associative
+# flow angles, and linear-elastic-brittle histories of a laterally confined specimen with
+# E = 1.5 MPa, nu = 0.25 (K = 1 MPa, G = 0.6 MPa, constrained modulus K + 4G/3 = 1.8 MPa).
+SYNTHETIC = {"sigma_tau": (14e3, 0.55, 1.2), "p_q": (12e3, 0.5, 1.1), "E": 1.5e6, "nu": 0.25,
+             "residual_ratio": 0.25, "peak_strain": 3e-3, "softening_strain": 5e-3}
+
+
+def cam_clay_radius(angle, p0, beta, M):
+    a = (1 + 2 * beta) * math.sin(angle) ** 2 + M * M * math.cos(angle) ** 2
+    b = M * M * p0 * (beta - 1) * math.cos(angle)
+    c = -M * M * beta * p0 * p0
+    return (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
+
+
+def write_synthetic_campaign(path, angles, realizations=3, version="2", noise=0.02, seed=7, microstructures=None):
+    """`microstructures`: list of dicts with phi, z, bond (tensile strength), particle_modulus, E
+    (the continuum's Young's modulus) and sigma_tau (the surface in that plane); default: one with
+    SYNTHETIC's values."""
+    rng = np.random.default_rng(seed)
+    nu = SYNTHETIC["nu"]
+    microstructures = microstructures or [{"phi": 0.3, "z": 2.8, "bond": 1e6, "particle_modulus": 1e9,
+                                           "E": SYNTHETIC["E"], "sigma_tau": SYNTHETIC["sigma_tau"]}]
+    rows = []
+    for m, micro in enumerate(microstructures):
+        E = micro["E"]
+        K, G = E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu))
+        for r in range(realizations):
+            for psi in angles:
+                rows.append(synthetic_row(rng, m, r, psi, micro, K + 4 * G / 3, G, noise))
+    write_campaign_file(path, rows, microstructures, version)
+    return path
+
+
+def synthetic_row(rng, m, r, psi, micro, constrained, G, noise):
+    """One test of the synthetic campaign: failure point, flow angle and history."""
+    psi_rad = math.radians(psi)
+    row = {"test": f"m{m}_r{r}_psi{psi:05.1f}", "microstructure": m, "realization": r, "loading_angle_deg": psi,
+           "solid_fraction": micro["phi"], "coordination": micro["z"], "secant_modulus": constrained}
+    # (sigma, tau): the failure point lies on the loading ray; (p, q): on the ray of a polar angle
+    # spread over 30-130 degrees (the Love stress of the DEM never reaches q = 0).
+    radius = cam_clay_radius(psi_rad, *micro["sigma_tau"]) * (1 + noise * rng.standard_normal())
+    row["sigma"], row["tau"] = radius * math.cos(psi_rad), radius * math.sin(psi_rad)
+    angle_pq = math.radians(30 + psi * 100 / 180)
+    radius = cam_clay_radius(angle_pq, *SYNTHETIC["p_q"]) * (1 + noise * rng.standard_normal())
+    row["p"], row["q"] = radius * math.cos(angle_pq), radius * math.sin(angle_pq)
+    # Associative flow (normal to the (sigma, tau) surface): tan(theta) = d tau / d sigma.
+    s0, beta, M = micro["sigma_tau"]
+    slope = -M * M * (2 * row["sigma"] + (beta - 1) * s0) / (2 * (1 + 2 * beta) * max(row["tau"], 1e-9))
+    row["flow_angle_deg"] = math.degrees(math.atan(slope)) + 2 * rng.standard_normal()
+    # History: linear elastic to the peak at `peak_strain`, a linear drop to R times the peak over
+    # `softening_strain`, then the residual stress to 2.5 % (the last half of the post-peak samples,
+    # where the calibration takes the residual stress, lies on it); psi = 0 and 90 carry the moduli.
+    strain = np.linspace(0, 0.025, 251)
+    peak_strain, drop, R = SYNTHETIC["peak_strain"], SYNTHETIC["softening_strain"], SYNTHETIC["residual_ratio"]
+    shape = np.where(strain <= peak_strain, strain / peak_strain,
+                     np.maximum(R, 1 - (1 - R) * (strain - peak_strain) / drop))
+    zeros = np.zeros_like(strain)
+    sigma = constrained * peak_strain * shape if psi == 0 else row["sigma"] * shape
+    tau = G * peak_strain * shape if psi == 90 else row["tau"] * shape
+    nu = SYNTHETIC["nu"]
+    row["history"] = {
+        "normal_strain": strain if psi != 90 else zeros, "shear_strain": zeros if psi != 90 else strain,
+        "base_normal_stress": sigma, "base_shear_stress": tau,
+        # Uniaxial strain: lateral stress K0 sigma_zz with K0 = nu / (1 - nu); tension positive.
+        "love_stress_zz": -sigma, "love_stress_xx": -nu / (1 - nu) * sigma, "love_stress_yy": -nu / (1 - nu) * sigma}
+    return row
+
+
+def write_campaign_file(path, rows, microstructures, version):
+    """campaign.h5 in the layout app/campaign.cpp writes (format `version`)."""
+    with h5py.File(path, "w") as f:
+        for key, value in {"format": "anticrack-campaign", "format_version": version, "scene_file": "synthetic.prm",
+                           "scene_file_sha256": "0" * 64, "parameters_sha256": "0" * 64,
+                           "anticrack_version": "test", "microstructures": ""}.items():
+            f.attrs[key] = value
+        if version != "1":
+            g = f.create_group("microstructures")
+            g["label"] = np.array([f"synthetic {m}" for m in range(len(microstructures))], dtype=h5py.string_dtype())
+            g["particle_modulus"] = g["contact_modulus"] = g["bond_modulus"] = \
+                np.array([m["particle_modulus"] for m in microstructures])
+            g["bond_tensile_strength"] = g["bond_cohesion"] = np.array([m["bond"] for m in microstructures])
+            g["particle_density"] = np.full(len(microstructures), 917.0)
+            g["laterally_periodic"] = np.ones(len(microstructures))
+        fp = f.create_group("failure_points")
+        n = len(rows)
+        fp["test"] = np.array([row["test"] for row in rows], dtype=h5py.string_dtype())
+        fp["status"] = np.array(["completed"] * n, dtype=h5py.string_dtype())
+        for name in ["microstructure", "realization", "loading_angle_deg", "sigma", "tau", "p", "q", "flow_angle_deg",
+                     "solid_fraction", "coordination", "secant_modulus"]:
+            fp[name] = np.array([row[name] for row in rows], dtype=float)
+        for name, value in {"softening_ratio": SYNTHETIC["residual_ratio"], "specimen_height": 0.01, "bonds": 1000.0,
+                            "peak_q": 0.0, "max_inertial_number": 1e-4, "failure_time": 0.0, "failure_step": 0.0}.items():
+            fp[name] = np.full(n, value)
+        fp["love_stress"] = np.zeros((n, 3, 3))
+        tests = f.create_group("tests")
+        for row in rows:
+            h = tests.create_group(row["test"]).create_group("history")
+            for name, values in row["history"].items():
+                h[name] = values
+
+
+def read_material(path):
+    values = {}
+    for line in open(path):
+        entry = re.match(r"\s*set\s+(.*?)\s*=\s*(.*)$", line)
+        if entry:
+            values[entry.group(1)] = entry.group(2)
+    return values
+
+
+ANGLES = [0, 22.5, 45, 67.5, 90, 112.5, 135, 157.5, 180]
+
+
+@case
+def calibrate_synthetic(work):
+    """`calibrate` on a synthetic campaign recovers the Cam-Clay surface within its intervals, E and
+    nu exactly, xi by its formula; writes material.prm (read back), calibration.h5, summary.json and
+    the plots; a second call is refused without --overwrite."""
+    campaign = write_synthetic_campaign(os.path.join(work, "campaign.h5"), ANGLES)
+    out = os.path.join(work, "calibration")
+    stdout, _ = anticrack("calibrate", campaign, "-o", out, "--bootstrap", "200")
+    check("p0 =" in stdout, f"no result line:\n{stdout}")
+    material = read_material(os.path.join(out, "material.prm"))
+    truth = dict(zip(["Compressive strength p0 [Pa]", "Tensile strength ratio beta", "Critical state slope M"],
+                     SYNTHETIC["p_q"]))
+    for name, value in truth.items():
+        fitted = float(material[name])
+        lower, upper = map(float, material[name.replace(" [Pa]", "") + " interval" + (" [Pa]" if "[Pa]" in name else "")].split(","))
+        check(lower <= value <= upper and lower <= fitted <= upper,
+              f"{name}: truth {value}, fit {fitted}, interval [{lower}, {upper}]")
+    # Secant moduli of exactly linear curves: E and nu come back to the printed digits (%.6g).
+    check(abs(float(material["Young's modulus [Pa]"]) / SYNTHETIC["E"] - 1) < 1e-5, f"E = {material['Young' + chr(39) + 's modulus [Pa]']}")
+    check(abs(float(material["Poisson's ratio"]) - SYNTHETIC["nu"]) < 1e-5, f"nu = {material['Poisson' + chr(39) + 's ratio']}")
+    check(abs(float(material["Residual strength ratio"]) - SYNTHETIC["residual_ratio"]) < 1e-9, "residual ratio")
+    # xi = [asinh(p0/K) - asinh(R p0/K)] / plastic strain, plastic = drop strain - elastic recovery.
+    p0, K = float(material["Compressive strength p0 [Pa]"]), SYNTHETIC["E"] / (3 * (1 - 2 * SYNTHETIC["nu"]))
+    R = SYNTHETIC["residual_ratio"]
+    plastic = SYNTHETIC["softening_strain"] - (1 - R) * SYNTHETIC["peak_strain"]
+    xi = (math.asinh(p0 / K) - math.asinh(R * p0 / K)) / plastic
+    check(abs(float(material["Hardening factor xi"]) / xi - 1) < 1e-4, f"xi = {material['Hardening factor xi']}, expected {xi}")
+    check(material["Campaign sha256"] == hashlib.sha256(open(campaign, "rb").read()).hexdigest(), "campaign hash")
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    m0 = summary["calibration"]["microstructures"][0]
+    check(m0["sigma_tau_plane"]["best_by_aicc"] == "cohesive_cam_clay",
+          f"Cam-Clay data, best model {m0['sigma_tau_plane']['best_by_aicc']}")
+    flow = m0["flow_rule"]
+    check(flow["rms_deviation_from_associative_deg"] < 10 and flow["slope_consistent_with_associative"],
+          f"associative synthetic flow judged non-associative: {flow}")
+    check(abs(flow["transition_angle_observed_deg"] - flow["transition_angle_predicted_deg"]) < 12,
+          f"transition angles {flow}")
+    with h5py.File(os.path.join(out, "calibration.h5"), "r") as f:
+        check(f.attrs["fe_plane"] == "p_q", "fe_plane")
+        fit = f["microstructures/m0/fits/p_q/cohesive_cam_clay"]
+        check(fit.attrs["has_bootstrap"] == 1 and fit["bootstrap_samples"].shape[1] == 3, "bootstrap samples")
+        check(len(f["microstructures/m0/curves"]) == len(ANGLES) * 3, "stress-strain curves")
+    for png in ["yield_surface", "model_comparison", "normalised_yield_surface", "flow_rule", "stress_strain"]:
+        check(os.path.getsize(os.path.join(out, png + ".png")) > 10000, f"{png}.png missing or empty")
+    _, stderr = anticrack("calibrate", campaign, "-o", out, "--no-plots", expect=2)
+    check("--overwrite" in stderr, f"an earlier calibration is not protected: {stderr}")
+
+
+@case
+def calibrate_scaling_laws(work):
+    """Four synthetic microstructures whose surfaces follow seed 002's power laws in nu_c = z phi and
+    whose Young's moduli follow seed 000's Eq. 7 in the particle modulus: `calibrate` recovers the
+    exponents, prefactors and the micro-macro slope, writes one material file per microstructure and
+    the scaling plot."""
+    h, kappa, k, lam = 2.81e-3, 3.59, 1.38e-3, 3.09      # seed 002 Eqs. 2-3
+    beta0, beta1 = 7.3e4, 0.014                          # seed 000 Eq. 7
+    micro = []
+    for phi, z, modulus in [(0.3, 2.5, 2e8), (0.35, 3.5, 5e8), (0.4, 4.5, 1e9), (0.45, 5.5, 2e9)]:
+        nu_c, bond = z * phi, 1e6
+        sigma0 = bond * h * nu_c ** kappa
+        micro.append({"phi": phi, "z": z, "bond": bond, "particle_modulus": modulus, "E": beta0 + beta1 * modulus,
+                      "sigma_tau": (sigma0, bond * k * nu_c ** lam / sigma0, 0.8)})
+    campaign = write_synthetic_campaign(os.path.join(work, "campaign.h5"), ANGLES, noise=0.002, microstructures=micro)
+    out = os.path.join(work, "calibration")
+    anticrack("calibrate", campaign, "-o", out, "--bootstrap", "0")
+    summary = json.load(open(os.path.join(out, "summary.json")))["calibration"]
+    # 0.2 % scatter of the strengths: the power laws come back to ~1 % in the prefactor (a few x the
+    # scatter over nu_c in [0.75, 2.5]) and 0.02 in the exponent.
+    for name, (prefactor, exponent) in {"sigma0_over_bond": (h, kappa), "beta_sigma0_over_bond": (k, lam)}.items():
+        law = summary["scaling"][name]
+        check(abs(law["exponent"] - exponent) < 0.02 and abs(law["prefactor"] / prefactor - 1) < 0.02,
+              f"{name}: {law}, expected prefactor {prefactor}, exponent {exponent}")
+        check(law["exponent_interval"][0] <= exponent <= law["exponent_interval"][1], f"{name} interval {law}")
+    check(abs(summary["scaling"]["M"]["mean"] - 0.8) < 0.01, f"M {summary['scaling']['M']}")
+    # Young's moduli are exact (linear synthetic curves), so the line is too.
+    modulus = summary["micro_macro"]["macro_modulus_vs_particle_modulus"]
+    check(abs(modulus["slope"] / beta1 - 1) < 1e-5 and abs(modulus["intercept"] / beta0 - 1) < 1e-4,
+          f"E_macro = {modulus['intercept']} + {modulus['slope']} E_particle, expected {beta0} + {beta1} E_particle")
+    for m in range(4):
+        check(os.path.exists(os.path.join(out, f"material_m{m}.prm")), f"material_m{m}.prm missing")
+    check(os.path.getsize(os.path.join(out, "scaling.png")) > 10000, "scaling.png missing")
+
+
+@case
+def calibrate_degenerate_input(work):
+    """Degenerate data are refused with a message and nothing written: one loading angle, no tensile
+    point, fewer points than parameters, a format-1 campaign, a file that is not a campaign."""
+    cases = [([45], 4, "1 loading angle"), ([0, 45, 90], 3, "no tensile failure point"),
+             ([0, 90, 180], 1, "at least 4")]
+    for k, (angles, realizations, message) in enumerate(cases):
+        campaign = write_synthetic_campaign(os.path.join(work, f"c{k}.h5"), angles, realizations=realizations)
+        out = os.path.join(work, f"out{k}")
+        _, stderr = anticrack("calibrate", campaign, "-o", out, expect=2)
+        check(message in stderr and f"c{k}.h5" in stderr, f"{angles} x {realizations}: message {stderr}")
+        check(not os.path.exists(out), f"{out} was created for refused input")
+    old = write_synthetic_campaign(os.path.join(work, "old.h5"), ANGLES, version="1")
+    _, stderr = anticrack("calibrate", old, "-o", os.path.join(work, "o"), expect=2)
+    check("format version 1" in stderr and "--resume" in stderr, f"format-1 campaign: {stderr}")
+    with h5py.File(os.path.join(work, "other.h5"), "w") as f:
+        f["x"] = 1
+    _, stderr = anticrack("calibrate", os.path.join(work, "other.h5"), "-o", os.path.join(work, "o"), expect=2)
+    check("not an anticrack campaign file" in stderr, f"foreign file: {stderr}")
+
+
+@case
+def calibrate_scene_small(work):
+    """`calibrate SCENE` runs the scene's campaign (5 angles, N = 256) into DIR/campaign. Its failure
+    points reach only q/p of a confined specimen and do not bend over towards the tips in (p, q): the
+    (p, q) material is refused with the advice to use --fe-plane sigma-tau, which then calibrates a
+    closed surface with the compressive tip beyond the tensile one (seed 002: beta < 1) into a
+    material file the solver reads; the second call only resumes the campaign."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 45, 90, 135, 180"))
+    out = os.path.join(work, "cal")
+    _, stderr = anticrack("calibrate", scene, "-o", out, "--no-plots", "--bootstrap", "0", expect=2)
+    check("p_q plane" in stderr and "--fe-plane sigma-tau" in stderr, f"undetermined (p, q) fit: {stderr}")
+    check(os.path.exists(os.path.join(out, "campaign", "campaign.h5")), "the campaign was not run into DIR/campaign")
+    check(not os.path.exists(os.path.join(out, "material.prm")), "a material file was written for a refused fit")
+    stdout, _ = anticrack("calibrate", scene, "-o", out, "--no-plots", "--bootstrap", "0", "--fe-plane", "sigma-tau")
+    check(stdout.count("completed earlier, skipped") == 5, f"the second call did not resume the campaign:\n{stdout}")
+    material = read_material(os.path.join(out, "material.prm"))
+    p0, beta, M = (float(material[k]) for k in ["Compressive strength p0 [Pa]", "Tensile strength ratio beta",
+                                                "Critical state slope M"])
+    check(p0 > 0 and 0 < beta < 1 and 0.2 < M < 5, f"(p0, beta, M) = ({p0}, {beta}, {M})")
+    check(material["Fit plane"] == "sigma-tau", f"fit plane {material['Fit plane']}")
+    check(float(material["Young's modulus [Pa]"]) > 0 and -1 < float(material["Poisson's ratio"]) < 0.5, "elasticity")
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -1,10 +1,13 @@
-#include "app/hashing.h"
+#include "util/sha256.h"
 
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 
-namespace anticrack::app
+namespace anticrack::util
 {
   namespace
   {
@@ -83,4 +86,14 @@ namespace anticrack::app
       std::snprintf(&hex[8 * i], 9, "%08x", h[i]);
     return hex;
   }
-} // namespace anticrack::app
+
+  std::string sha256_of_file(const std::string &file)
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+      throw std::runtime_error("cannot read " + file + " to hash it");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return sha256_hex(bytes.str());
+  }
+} // namespace anticrack::util

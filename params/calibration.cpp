@@ -1,0 +1,269 @@
+#include "params/calibration.h"
+
+#include "params/calibration_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+namespace anticrack::params
+{
+  namespace
+  {
+    constexpr double pi = 3.14159265358979323846;
+    constexpr double degree = pi / 180.0;
+    constexpr int band_angles = 361;
+
+    double mean_of(const std::vector<CampaignTest> &tests, double CampaignTest::*member)
+    {
+      double sum = 0;
+      for (const auto &t : tests)
+        sum += t.*member;
+      return sum / static_cast<double>(tests.size());
+    }
+
+    /// Refuses what no fit can answer, before any fitting (messages name the file, microstructure,
+    /// what is missing and what would do).
+    void check_microstructure_data(const std::vector<CampaignTest> &tests, const std::string &where)
+    {
+      const std::size_t needed = 4; // three surface parameters + the noise variance
+      if (tests.size() < needed)
+        throw CalibrationError(where + ": " + std::to_string(tests.size()) +
+                               " completed tests, at least 4 are needed to fit the 3 parameters (p0, beta, M) "
+                               "with a residual; run more loading angles or realizations");
+      std::set<double> angles;
+      for (const auto &t : tests)
+        angles.insert(t.loading_angle_deg);
+      if (angles.size() < 3)
+        throw CalibrationError(where + ": all failure points lie at " + std::to_string(angles.size()) +
+                               " loading angle(s); a yield surface needs at least 3 distinct angles between "
+                               "0 (compression) and 180 deg (tension)");
+      const bool tensile = std::any_of(tests.begin(), tests.end(), [](const CampaignTest &t) { return t.sigma < 0; });
+      if (!tensile)
+        throw CalibrationError(where + ": no tensile failure point (every base normal stress sigma >= 0); the "
+                               "tensile tip -beta p0 would be an extrapolation; add loading angles above 90 deg");
+    }
+
+    /// Why the Cam-Clay fit of `c` does not determine the surface, or "" (see calibration.h).
+    std::string undetermined_cam_clay(const PlaneCalibration &c)
+    {
+      double largest = 0, smallest_angle = pi, largest_angle = 0;
+      for (const StressPoint &point : c.points)
+      {
+        largest = std::max(largest, polar_radius(point));
+        smallest_angle = std::min(smallest_angle, polar_angle(point));
+        largest_angle = std::max(largest_angle, polar_angle(point));
+      }
+      const CamClayParameters p = c.cam_clay_parameters();
+      const double limit = tip_extrapolation_limit * largest;
+      std::ostringstream why;
+      why.precision(3);
+      if (!c.cam_clay().identifiable)
+        why << "the covariance of the fit is singular";
+      else if (p.p0 > limit || p.beta * p.p0 > limit)
+        why << "the fitted tips (p0 = " << p.p0 << " Pa, -beta p0 = " << -p.beta * p.p0 << " Pa) lie more than "
+            << tip_extrapolation_limit << " times the largest failure stress (" << largest
+            << " Pa) from the origin: the points (polar angles " << smallest_angle / degree << "-"
+            << largest_angle / degree << " deg) do not bend over towards the tips";
+      return why.str();
+    }
+
+    PlaneCalibration fit_plane(StressPlane plane, const std::vector<CampaignTest> &tests,
+                               const CalibrationOptions &options, const std::string &where)
+    {
+      PlaneCalibration c;
+      c.plane = plane;
+      for (const auto &t : tests)
+      {
+        // Shear is a magnitude in both planes: q >= 0 by definition, τ's sign only says along ±x.
+        c.points.push_back(plane == StressPlane::base_stresses ? StressPoint{t.sigma, std::abs(t.tau)} :
+                                                                 StressPoint{t.p, t.q});
+        c.realizations.push_back(t.realization);
+      }
+      EnvelopeFitOptions fit_options;
+      fit_options.confidence = options.confidence;
+      fit_options.bootstrap_samples = options.bootstrap_samples;
+      fit_options.seed = options.seed;
+      c.models = all_envelope_kinds();
+      for (const EnvelopeKind kind : c.models)
+      {
+        const auto model = make_envelope(kind);
+        check_envelope_data(c.points, model->n_parameters(), where + ", " + plane_id(plane) + " plane");
+        c.fits.push_back(fit_envelope(*model, c.points, c.realizations, fit_options));
+        c.bands.push_back(envelope_band(*model, c.fits.back(), band_angles));
+      }
+      for (std::size_t k = 1; k < c.fits.size(); ++k)
+        if (c.fits[k].aicc < c.fits[c.best_by_aicc].aicc)
+          c.best_by_aicc = k;
+      c.cam_clay_not_determined = undetermined_cam_clay(c);
+      return c;
+    }
+
+    FlowRuleAnalysis analyse_flow_rule(const std::vector<CampaignTest> &tests, const CamClayParameters &surface,
+                                       double confidence)
+    {
+      FlowRuleAnalysis f;
+      for (const auto &t : tests)
+      {
+        const double psi = t.loading_angle_deg * degree, theta = t.flow_angle_deg * degree;
+        const NormalisedStress n = normalise(t.sigma, std::abs(t.tau), surface);
+        f.loading_angle.push_back(psi);
+        f.flow_angle.push_back(theta);
+        f.sigma_star.push_back(n.sigma);
+        f.tau_star.push_back(n.tau);
+        f.psi_star.push_back(normalised_loading_angle(psi, surface));
+        f.theta_star.push_back(normalised_flow_angle(theta, surface));
+      }
+      f.associativity = measure_associativity(f.psi_star, f.theta_star, confidence);
+      f.transition_predicted = transition_loading_angle(surface);
+      try
+      {
+        f.transition_observed = observed_transition_angle(f.loading_angle, f.flow_angle);
+      }
+      catch (const CalibrationError &e)
+      {
+        f.transition_observed_note = e.what();
+      }
+      return f;
+    }
+
+    /// Distinct values (relative tolerance 1e-9), for deciding whether a relation across
+    /// microstructures can be fitted.
+    std::size_t distinct(std::vector<double> values)
+    {
+      std::sort(values.begin(), values.end());
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < values.size(); ++k)
+        if (k == 0 || std::abs(values[k] - values[k - 1]) > 1e-9 * std::abs(values[k]))
+          ++count;
+      return count;
+    }
+  } // namespace
+
+  std::string plane_id(StressPlane plane) { return plane == StressPlane::base_stresses ? "sigma_tau" : "p_q"; }
+
+  const PlaneCalibration &MicrostructureCalibration::plane(StressPlane which) const
+  {
+    return which == StressPlane::base_stresses ? base_plane : invariant_plane;
+  }
+
+  const EnvelopeFit &PlaneCalibration::cam_clay() const
+  {
+    const auto k = std::find(models.begin(), models.end(), EnvelopeKind::cohesive_cam_clay) - models.begin();
+    return fits.at(static_cast<std::size_t>(k));
+  }
+
+  CamClayParameters PlaneCalibration::cam_clay_parameters() const
+  {
+    const auto &p = cam_clay().parameters;
+    return {p[0], p[1], p[2]};
+  }
+
+  Calibration calibrate(const CampaignData &campaign, const CalibrationOptions &options)
+  {
+    if (!(options.confidence > 0 && options.confidence < 1))
+      throw CalibrationError("confidence level " + std::to_string(options.confidence) + " is not in (0, 1)");
+    if (options.bootstrap_samples < 0)
+      throw CalibrationError("bootstrap samples " + std::to_string(options.bootstrap_samples) + " < 0");
+    Calibration result;
+    result.campaign = campaign;
+    result.options = options;
+
+    // Every microstructure's data is checked before anything is fitted.
+    std::vector<std::vector<CampaignTest>> tests_of(campaign.microstructures.size());
+    for (const auto &t : campaign.tests)
+      if (t.completed() && std::isfinite(t.sigma) && std::isfinite(t.p) && std::isfinite(t.q))
+        tests_of[static_cast<std::size_t>(t.microstructure)].push_back(t);
+    for (std::size_t m = 0; m < tests_of.size(); ++m)
+      check_microstructure_data(tests_of[m], campaign.file + ", microstructure " + std::to_string(m) + " (" +
+                                               campaign.microstructures[m].label + ")");
+
+    for (std::size_t m = 0; m < tests_of.size(); ++m)
+    {
+      const std::string where = campaign.file + ", microstructure " + std::to_string(m);
+      MicrostructureCalibration c;
+      c.index = static_cast<int>(m);
+      c.material = campaign.microstructures[m];
+      c.tests = tests_of[m];
+      std::set<int> realizations;
+      for (const auto &t : c.tests)
+        realizations.insert(t.realization);
+      c.realizations.assign(realizations.begin(), realizations.end());
+      c.solid_fraction = mean_of(c.tests, &CampaignTest::solid_fraction);
+      c.coordination = mean_of(c.tests, &CampaignTest::coordination);
+      c.contact_density = c.solid_fraction * c.coordination; // ν_c = z φ (seed 002)
+      c.specimen_height = mean_of(c.tests, &CampaignTest::specimen_height);
+      c.density = c.solid_fraction * c.material.particle_density;
+
+      c.base_plane = fit_plane(StressPlane::base_stresses, c.tests, options, where);
+      c.invariant_plane = fit_plane(StressPlane::invariants, c.tests, options, where);
+      const PlaneCalibration &fe = c.plane(options.fe_plane);
+      if (!fe.cam_clay_not_determined.empty())
+        throw CalibrationError(
+          where + ", " + plane_id(options.fe_plane) + " plane: the cohesive Cam-Clay fit does not determine the "
+          "surface for the material file: " + fe.cam_clay_not_determined + ". " +
+          (options.fe_plane == StressPlane::invariants ?
+             "Laterally confined tests reach only a narrow fan of q/p; take the material from the (sigma, tau) "
+             "fit (--fe-plane sigma-tau), or add stress paths of other q/p (open sides, triaxial tests) or "
+             "more loading angles and realizations" :
+             "Add loading angles near 0 and 180 deg, or realizations"));
+      c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_parameters(), options.confidence);
+      c.elastic = elastic_constants(campaign, c.index, options.confidence);
+      c.softening = collapse_softening(campaign, c.index, fe.cam_clay_parameters().p0,
+                                       c.elastic.bulk_modulus.mean, c.elastic.axial_modulus.mean, options.confidence);
+      result.microstructures.push_back(std::move(c));
+    }
+
+    // Across microstructures.
+    std::vector<double> nu_c;
+    for (const auto &c : result.microstructures)
+      nu_c.push_back(c.contact_density);
+    if (result.microstructures.size() >= 3 && distinct(nu_c) >= 3)
+    {
+      ScalingLaws s;
+      for (const auto &c : result.microstructures)
+      {
+        const CamClayParameters p = c.base_plane.cam_clay_parameters();
+        s.contact_density.push_back(c.contact_density);
+        s.compressive_over_bond.push_back(p.p0 / c.material.bond_tensile_strength);
+        s.tensile_over_bond.push_back(p.beta * p.p0 / c.material.bond_tensile_strength);
+        s.M.push_back(p.M);
+      }
+      s.compressive = fit_power_law(s.contact_density, s.compressive_over_bond, options.confidence,
+                                    "sigma0/sigma_bond against contact density (seed 002 Eq. 2)");
+      s.tensile = fit_power_law(s.contact_density, s.tensile_over_bond, options.confidence,
+                                "beta sigma0/sigma_bond against contact density (seed 002 Eq. 3)");
+      s.M_statistics = describe(s.M, options.confidence, "M across microstructures");
+      result.scaling = s;
+    }
+
+    // Seed 000 Eqs. 5-8: the macro modulus (Young's, from the secant moduli) and the compressive
+    // strength (base sigma at failure at psi = 0) of every microstructure against its micro values.
+    auto &mm = result.micro_macro;
+    double reference_thickness = 0;
+    for (const auto &c : result.microstructures)
+    {
+      double strength = 0;
+      int count = 0;
+      for (const auto &t : c.tests)
+        if (std::abs(t.loading_angle_deg) < 1e-6)
+          strength += t.sigma, ++count;
+      mm.particle_modulus.push_back(c.material.particle_modulus);
+      mm.macro_modulus.push_back(c.elastic.youngs_modulus.mean);
+      mm.bond_strength.push_back(c.material.bond_tensile_strength);
+      mm.macro_strength.push_back(strength / count); // count > 0: elastic_constants needs psi = 0
+      reference_thickness += c.specimen_height / static_cast<double>(result.microstructures.size());
+    }
+    if (distinct(mm.particle_modulus) >= 3)
+      mm.modulus = MicroMacroLaw{fit_line(mm.particle_modulus, mm.macro_modulus, options.confidence,
+                                          "macro modulus against particle modulus (seed 000 Eqs. 5, 7)"),
+                                 reference_thickness};
+    if (distinct(mm.bond_strength) >= 3)
+      mm.strength = MicroMacroLaw{fit_line(mm.bond_strength, mm.macro_strength, options.confidence,
+                                           "macro strength against bond strength (seed 000 Eqs. 6, 8)"),
+                                  reference_thickness};
+    return result;
+  }
+} // namespace anticrack::params

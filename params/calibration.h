@@ -1,0 +1,141 @@
+// The calibration: a DEM campaign (campaign.h5) in, everything a continuum model needs out, with
+// uncertainties. For every microstructure of the campaign:
+//   - the cohesive Cam-Clay surface fitted in both stress planes — the base stresses (σ, τ) of seed
+//     002 and the invariants (p, q) of the Love–Weber stress — with the two alternative envelopes
+//     (Mohr–Coulomb with a cap, seed 001; the quadratic polynomial of seed 000 Eq. 9) and their
+//     information criteria;
+//   - seed 002's flow-rule analysis in the normalised (σ*, τ*) plane;
+//   - elastic constants and the collapse-softening factor ξ (params/elastic_calibration.h).
+// Across microstructures: the power laws of σ0/σ̄_c and βσ0/σ̄_c with the contact density ν_c = zφ
+// (seed 002 Eqs. 2–3), M's mean and spread, and the linear micro-to-macro laws of seed 000 (Eqs. 5–8)
+// when the campaign varies the particle modulus or the bond strength.
+//
+// Which plane the FE solver uses: (p, q) by default (CalibrationOptions::fe_plane). The continuum yield function is a function of the stress
+// tensor's invariants; the Love–Weber stress is the DEM's volume-averaged Cauchy stress, so its
+// (p, q) at failure are the continuum's invariants at yield. The base stresses (σ, τ) are two
+// traction components on one plane: under mixed-mode loading the lateral stresses (σ_xx, σ_yy) are
+// not controlled (periodic sides confine the specimen), so (σ, τ) and (p, q) differ in shape, not only
+// in scale — in compression the lateral stresses put the failure points at q > 0. The (σ, τ) fit is
+// kept for comparison with seed 002 (its σ0, β, M, scaling laws and flow rule are in that plane).
+// Laterally confined tests (periodic sides) reach only a narrow fan of q/p in the invariant plane
+// (failure points at polar angles of roughly 60–120°, the lateral stresses following the axial one),
+// so the tips p0 and −βp0 there are extrapolations: well determined when the points bend over
+// towards the compressive tip, undetermined when they do not (the fit then runs off to an elongated
+// ellipse). Such a fit is refused for the material file with a message; the material can then be
+// taken from the (σ, τ) fit (fe_plane = base_stresses), or the campaign extended by stress paths of
+// other q/p (open sides, triaxial tests).
+#pragma once
+
+#include "params/campaign_data.h"
+#include "params/elastic_calibration.h"
+#include "params/envelope_fit.h"
+#include "params/flow_rule.h"
+#include "params/regression.h"
+#include "params/yield_envelopes.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace anticrack::params
+{
+  enum class StressPlane
+  {
+    base_stresses, ///< (σ, τ) at the fixed base (seed 002)
+    invariants     ///< (p, q) of the Love–Weber stress — the FE solver's plane
+  };
+
+  /// "sigma_tau" or "p_q" (group names in calibration.h5).
+  std::string plane_id(StressPlane plane);
+
+  struct CalibrationOptions
+  {
+    StressPlane fe_plane = StressPlane::invariants; ///< whose Cam-Clay fit the material file carries
+    double confidence = 0.95;
+    int bootstrap_samples = 1000; ///< resamples of the realizations (needs >= 3 realizations)
+    std::uint64_t seed = 1;       ///< of the bootstrap: the calibration is reproducible
+  };
+
+  /// The fits of all envelope models to one microstructure's failure points in one plane.
+  struct PlaneCalibration
+  {
+    StressPlane plane = StressPlane::invariants;
+    std::vector<StressPoint> points;       ///< one per completed test
+    std::vector<int> realizations;         ///< the bootstrap's groups, one per point
+    std::vector<EnvelopeKind> models;      ///< all_envelope_kinds()
+    std::vector<EnvelopeFit> fits;         ///< one per model
+    std::vector<EnvelopeBand> bands;       ///< one per model, for plots
+    std::size_t best_by_aicc = 0;          ///< index into models
+    /// Why the Cam-Clay fit does not determine the surface (empty: it does): a tip extrapolated far
+    /// beyond the data, or a singular covariance.
+    std::string cam_clay_not_determined;
+
+    [[nodiscard]] const EnvelopeFit &cam_clay() const;  ///< the cohesive Cam-Clay fit
+    [[nodiscard]] CamClayParameters cam_clay_parameters() const;
+  };
+
+  /// Seed 002's flow-rule analysis for one microstructure, in the (σ, τ) plane of its Cam-Clay fit.
+  struct FlowRuleAnalysis
+  {
+    std::vector<double> loading_angle, flow_angle;   ///< ψ and θ per test [rad]
+    std::vector<double> sigma_star, tau_star;        ///< normalised failure points (Eqs. 5–6)
+    std::vector<double> psi_star, theta_star;        ///< normalised loading and flow angles [rad]
+    AssociativityMeasure associativity;
+    double transition_predicted = 0;                 ///< ψ± of Eq. 7 [rad]
+    std::optional<double> transition_observed;       ///< where the measured θ changes sign [rad]
+    std::string transition_observed_note;            ///< why it is absent
+  };
+
+  struct MicrostructureCalibration
+  {
+    int index = 0;
+    MicrostructureMaterial material;
+    std::vector<CampaignTest> tests;  ///< the completed tests used
+    std::vector<int> realizations;    ///< distinct realization ids
+    double solid_fraction = 0, coordination = 0, contact_density = 0, specimen_height = 0; ///< means
+    double density = 0;               ///< φ ρ_particle [kg/m³]
+    PlaneCalibration base_plane, invariant_plane;
+    FlowRuleAnalysis flow_rule;
+    ElasticConstants elastic;
+    SofteningEstimate softening;
+
+    [[nodiscard]] const PlaneCalibration &plane(StressPlane which) const;
+  };
+
+  /// Seed 002 Eqs. 2–3 across microstructures (in the (σ, τ) plane, as published).
+  struct ScalingLaws
+  {
+    std::vector<double> contact_density, compressive_over_bond, tensile_over_bond, M; ///< one per microstructure
+    PowerLawFit compressive;          ///< σ0/σ̄_c = h ν_c^κ
+    PowerLawFit tensile;              ///< βσ0/σ̄_c = k ν_c^λ
+    SampleStatistics M_statistics;    ///< M's mean and spread
+  };
+
+  /// Seed 000 Eqs. 5–8 across microstructures, with its thickness scaling (reference = the specimens').
+  struct MicroMacroRelations
+  {
+    std::vector<double> particle_modulus, macro_modulus;   ///< Young's modulus of the continuum
+    std::vector<double> bond_strength, macro_strength;     ///< base σ at failure at ψ = 0
+    std::optional<MicroMacroLaw> modulus, strength;        ///< when >= 3 distinct micro values
+  };
+
+  struct Calibration
+  {
+    CampaignData campaign;
+    CalibrationOptions options;
+    std::vector<MicrostructureCalibration> microstructures;
+    std::optional<ScalingLaws> scaling;       ///< with >= 3 microstructures of distinct ν_c
+    MicroMacroRelations micro_macro;
+  };
+
+  /// How far beyond the data a tip of the Cam-Clay surface may lie and still count as determined:
+  /// p0 and β p0 at most this many times the largest failure-point radius of the plane.
+  constexpr double tip_extrapolation_limit = 5.0;
+
+  /// Calibrates every microstructure of `campaign`. Throws CalibrationError for degenerate data (a
+  /// microstructure with fewer completed tests than 4, fewer than 3 distinct loading angles, or no
+  /// tensile point) before anything is computed, and when the Cam-Clay fit of options.fe_plane does
+  /// not determine the surface, naming the file, the microstructure and what would help.
+  Calibration calibrate(const CampaignData &campaign, const CalibrationOptions &options);
+} // namespace anticrack::params

@@ -1,0 +1,424 @@
+#include "params/calibration_output.h"
+
+#include "util/hdf5_file.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace anticrack::params
+{
+  namespace
+  {
+    using Json = nlohmann::ordered_json;
+    constexpr double degree = 3.14159265358979323846 / 180.0;
+
+    std::vector<double> to_vector(const Eigen::VectorXd &v) { return {v.data(), v.data() + v.size()}; }
+
+    std::vector<double> in_degrees(const std::vector<double> &radians)
+    {
+      std::vector<double> d;
+      for (const double r : radians)
+        d.push_back(r / degree);
+      return d;
+    }
+
+    Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+    Json interval_json(double lower, double upper) { return Json::array({finite_or_null(lower), finite_or_null(upper)}); }
+
+    Json statistics_json(const SampleStatistics &s)
+    {
+      return Json{{"mean", finite_or_null(s.mean)},
+                  {"standard_deviation", s.n > 1 ? finite_or_null(s.standard_deviation) : Json(nullptr)},
+                  {"interval", interval_json(s.mean_ci.lower, s.mean_ci.upper)},
+                  {"samples", s.n}};
+    }
+
+    Json fit_json(const EnvelopeFit &f)
+    {
+      Json parameters = Json::object();
+      for (std::size_t k = 0; k < f.parameter_names.size(); ++k)
+      {
+        const auto i = static_cast<Eigen::Index>(k);
+        Json p{{"value", f.parameters[i]},
+               {"units", f.parameter_units[k]},
+               {"covariance_interval", interval_json(f.ci_lower[i], f.ci_upper[i])}};
+        if (f.has_bootstrap)
+          p["bootstrap_interval"] = interval_json(f.bootstrap_lower[i], f.bootstrap_upper[i]);
+        parameters[f.parameter_names[k]] = p;
+      }
+      return Json{{"parameters", parameters},
+                  {"r_squared", finite_or_null(f.r_squared)},
+                  {"relative_rmse", f.rmse},
+                  {"aicc", finite_or_null(f.aicc)},
+                  {"bic", f.bic},
+                  {"points", f.n_points},
+                  {"identifiable", f.identifiable},
+                  {"starts_at_best", std::to_string(f.starts_at_best) + " of " + std::to_string(f.starts)},
+                  {"bootstrap_resamples", f.has_bootstrap ? Json(f.bootstrap_samples.rows()) : Json(nullptr)}};
+    }
+
+    Json plane_json(const PlaneCalibration &p)
+    {
+      Json models = Json::object();
+      for (std::size_t k = 0; k < p.fits.size(); ++k)
+      {
+        Json j = fit_json(p.fits[k]);
+        j["delta_aicc"] = finite_or_null(p.fits[k].aicc - p.fits[p.best_by_aicc].aicc);
+        models[p.fits[k].model] = j;
+      }
+      Json j{{"best_by_aicc", p.fits[p.best_by_aicc].model}, {"models", models}};
+      if (!p.cam_clay_not_determined.empty())
+        j["cam_clay_not_determined"] = p.cam_clay_not_determined;
+      return j;
+    }
+
+    void write_fit(hid_t parent, const EnvelopeFit &f, const EnvelopeBand &band, double best_aicc)
+    {
+      const hdf5::Handle g = hdf5::create_group(parent, f.model);
+      hdf5::write_strings(g.id, "parameter_names", f.parameter_names, "fitted parameters");
+      hdf5::write_strings(g.id, "parameter_units", f.parameter_units, "their units");
+      hdf5::write_doubles(g.id, "parameters", to_vector(f.parameters), "see parameter_units", "best fit");
+      hdf5::write_doubles(g.id, "ci_lower", to_vector(f.ci_lower), "see parameter_units",
+                          "lower end of the interval from the covariance of the fit (Student t)");
+      hdf5::write_doubles(g.id, "ci_upper", to_vector(f.ci_upper), "see parameter_units",
+                          "upper end of the interval from the covariance of the fit (Student t)");
+      if (f.has_bootstrap)
+      {
+        hdf5::write_doubles(g.id, "bootstrap_lower", to_vector(f.bootstrap_lower), "see parameter_units",
+                            "percentile interval over resampled realizations");
+        hdf5::write_doubles(g.id, "bootstrap_upper", to_vector(f.bootstrap_upper), "see parameter_units",
+                            "percentile interval over resampled realizations");
+        const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> samples = f.bootstrap_samples;
+        hdf5::write_doubles(g.id, "bootstrap_samples", {samples.data(), samples.data() + samples.size()},
+                            "see parameter_units", "fitted parameters of every bootstrap resample [resample][parameter]",
+                            {static_cast<hsize_t>(samples.rows()), static_cast<hsize_t>(samples.cols())});
+      }
+      hdf5::write_doubles(g.id, "residuals", to_vector(f.residuals), "Pa", "radial residuals r_i - R(a_i)");
+      const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> covariance = f.covariance;
+      hdf5::write_doubles(g.id, "covariance", {covariance.data(), covariance.data() + covariance.size()},
+                          "products of parameter_units", "covariance of the parameters (delta method)",
+                          {static_cast<hsize_t>(covariance.rows()), static_cast<hsize_t>(covariance.cols())});
+      hdf5::write_number_attribute(g.id, "r_squared", f.r_squared);
+      hdf5::write_number_attribute(g.id, "rmse", f.rmse);
+      hdf5::write_number_attribute(g.id, "aicc", f.aicc);
+      hdf5::write_number_attribute(g.id, "delta_aicc", f.aicc - best_aicc);
+      hdf5::write_number_attribute(g.id, "bic", f.bic);
+      hdf5::write_number_attribute(g.id, "n_points", static_cast<double>(f.n_points));
+      hdf5::write_number_attribute(g.id, "has_bootstrap", f.has_bootstrap ? 1.0 : 0.0);
+      const hdf5::Handle b = hdf5::create_group(g.id, "band");
+      hdf5::write_doubles(b.id, "angle", band.angle, "rad", "polar angle in the (normal, shear) plane");
+      hdf5::write_doubles(b.id, "radius", band.radius, "Pa", "envelope of the best fit along the ray");
+      hdf5::write_doubles(b.id, "radius_lower", band.lower, "Pa", "lower end of the confidence band");
+      hdf5::write_doubles(b.id, "radius_upper", band.upper, "Pa", "upper end of the confidence band");
+      hdf5::write_string_attribute(b.id, "source", band.from_bootstrap ? "bootstrap" : "delta method");
+    }
+
+    void write_microstructure(hid_t parent, const Calibration &calibration, const MicrostructureCalibration &c)
+    {
+      const hdf5::Handle g = hdf5::create_group(parent, "m" + std::to_string(c.index));
+      hdf5::write_string_attribute(g.id, "label", c.material.label);
+      hdf5::write_number_attribute(g.id, "solid_fraction", c.solid_fraction);
+      hdf5::write_number_attribute(g.id, "coordination", c.coordination);
+      hdf5::write_number_attribute(g.id, "contact_density", c.contact_density);
+      hdf5::write_number_attribute(g.id, "specimen_height", c.specimen_height);
+      hdf5::write_number_attribute(g.id, "bond_tensile_strength", c.material.bond_tensile_strength);
+      hdf5::write_number_attribute(g.id, "particle_modulus", c.material.particle_modulus);
+      {
+        const hdf5::Handle p = hdf5::create_group(g.id, "points");
+        std::vector<std::string> ids;
+        std::vector<double> angle, realization, sigma, tau, pressure, q, flow;
+        for (const auto &t : c.tests)
+        {
+          ids.push_back(t.id), angle.push_back(t.loading_angle_deg), realization.push_back(t.realization);
+          sigma.push_back(t.sigma), tau.push_back(std::abs(t.tau)), pressure.push_back(t.p), q.push_back(t.q);
+          flow.push_back(t.flow_angle_deg);
+        }
+        hdf5::write_strings(p.id, "test", ids, "campaign test id");
+        hdf5::write_doubles(p.id, "loading_angle_deg", angle, "deg", "psi");
+        hdf5::write_doubles(p.id, "realization", realization, "-", "realization");
+        hdf5::write_doubles(p.id, "sigma", sigma, "Pa", "base normal stress at failure, compression positive");
+        hdf5::write_doubles(p.id, "tau", tau, "Pa", "|base shear stress| at failure");
+        hdf5::write_doubles(p.id, "p", pressure, "Pa", "Love-Weber mean pressure at failure, compression positive");
+        hdf5::write_doubles(p.id, "q", q, "Pa", "Love-Weber von Mises stress at failure");
+        hdf5::write_doubles(p.id, "flow_angle_deg", flow, "deg", "atan2(du_z, du_x) after failure");
+      }
+      {
+        const hdf5::Handle fits = hdf5::create_group(g.id, "fits");
+        for (const PlaneCalibration *plane : {&c.base_plane, &c.invariant_plane})
+        {
+          const hdf5::Handle pg = hdf5::create_group(fits.id, plane_id(plane->plane));
+          for (std::size_t k = 0; k < plane->fits.size(); ++k)
+            write_fit(pg.id, plane->fits[k], plane->bands[k], plane->fits[plane->best_by_aicc].aicc);
+        }
+      }
+      {
+        const FlowRuleAnalysis &f = c.flow_rule;
+        const hdf5::Handle fr = hdf5::create_group(g.id, "flow_rule");
+        hdf5::write_doubles(fr.id, "loading_angle_deg", in_degrees(f.loading_angle), "deg", "psi");
+        hdf5::write_doubles(fr.id, "flow_angle_deg", in_degrees(f.flow_angle), "deg", "theta");
+        hdf5::write_doubles(fr.id, "sigma_star", f.sigma_star, "-", "normalised normal stress (seed 002 Eq. 5)");
+        hdf5::write_doubles(fr.id, "tau_star", f.tau_star, "-", "normalised shear stress (seed 002 Eq. 6)");
+        hdf5::write_doubles(fr.id, "psi_star_deg", in_degrees(f.psi_star), "deg", "normalised loading angle");
+        hdf5::write_doubles(fr.id, "theta_star_deg", in_degrees(f.theta_star), "deg",
+                            "normalised flow angle (seed 002 Eq. 18)");
+        const CamClayParameters surface = c.base_plane.cam_clay_parameters();
+        std::vector<double> curve_psi, curve_theta;
+        for (int k = 0; k <= 180; ++k)
+        {
+          curve_psi.push_back(k);
+          curve_theta.push_back(associative_flow_angle(k * degree, surface) / degree);
+        }
+        hdf5::write_doubles(fr.id, "curve_loading_angle_deg", curve_psi, "deg", "psi");
+        hdf5::write_doubles(fr.id, "curve_flow_angle_deg", curve_theta, "deg",
+                            "associative flow angle for the fitted (sigma, tau) surface");
+        const AssociativityMeasure &a = f.associativity;
+        hdf5::write_number_attribute(fr.id, "transition_angle_predicted_deg", f.transition_predicted / degree);
+        hdf5::write_number_attribute(fr.id, "transition_angle_observed_deg",
+                                     f.transition_observed ? *f.transition_observed / degree : std::nan(""));
+        hdf5::write_number_attribute(fr.id, "rms_deviation_deg", a.rms_deviation_deg);
+        hdf5::write_number_attribute(fr.id, "slope", a.line.slope);
+        hdf5::write_number_attribute(fr.id, "intercept_deg", a.line.intercept / degree);
+        hdf5::write_number_attribute(fr.id, "r_squared_associative", a.r_squared_associative);
+      }
+      {
+        const hdf5::Handle curves = hdf5::create_group(g.id, "curves");
+        for (const auto &t : c.tests)
+        {
+          const TestHistory h = calibration.campaign.history(t.id);
+          const hdf5::Handle tg = hdf5::create_group(curves.id, t.id);
+          hdf5::write_doubles(tg.id, "normal_strain", h.normal_strain, "-", "-u_z / H0");
+          hdf5::write_doubles(tg.id, "shear_strain", h.shear_strain, "-", "u_x / H0");
+          hdf5::write_doubles(tg.id, "sigma", h.sigma, "Pa", "base normal stress, compression positive");
+          hdf5::write_doubles(tg.id, "tau", h.tau, "Pa", "base shear stress");
+          hdf5::write_number_attribute(tg.id, "loading_angle_deg", t.loading_angle_deg);
+          hdf5::write_number_attribute(tg.id, "realization", t.realization);
+        }
+      }
+    }
+  } // namespace
+
+  void write_calibration_data(const Calibration &calibration, const std::string &file)
+  {
+    const std::string temporary = file + ".tmp";
+    {
+      const hdf5::Handle f = hdf5::create_file(temporary);
+      hdf5::write_string_attribute(f.id, "format", "anticrack-calibration");
+      hdf5::write_number_attribute(f.id, "format_version", 1);
+      hdf5::write_string_attribute(f.id, "campaign_file", calibration.campaign.file);
+      hdf5::write_string_attribute(f.id, "campaign_sha256", calibration.campaign.sha256);
+      hdf5::write_string_attribute(f.id, "scene_file", calibration.campaign.scene_file);
+      hdf5::write_string_attribute(f.id, "fe_plane", plane_id(calibration.options.fe_plane));
+      hdf5::write_number_attribute(f.id, "confidence", calibration.options.confidence);
+      hdf5::write_string_attribute(f.id, "conventions",
+                                   "sigma and p compression positive; tau, q >= 0; angles in the (normal, shear) "
+                                   "plane from the normal axis; loading angle psi: force (sin psi, 0, -cos psi)");
+      {
+        const hdf5::Handle all = hdf5::create_group(f.id, "microstructures");
+        for (const auto &c : calibration.microstructures)
+          write_microstructure(all.id, calibration, c);
+      }
+      if (calibration.scaling)
+      {
+        const ScalingLaws &s = *calibration.scaling;
+        const hdf5::Handle g = hdf5::create_group(f.id, "scaling");
+        hdf5::write_doubles(g.id, "contact_density", s.contact_density, "-", "nu_c = z phi");
+        hdf5::write_doubles(g.id, "sigma0_over_bond", s.compressive_over_bond, "-", "sigma0 / bond tensile strength");
+        hdf5::write_doubles(g.id, "beta_sigma0_over_bond", s.tensile_over_bond, "-",
+                            "beta sigma0 / bond tensile strength");
+        hdf5::write_doubles(g.id, "M", s.M, "-", "M of the (sigma, tau) fit");
+        hdf5::write_number_attribute(g.id, "sigma0_prefactor", s.compressive.prefactor);
+        hdf5::write_number_attribute(g.id, "sigma0_exponent", s.compressive.exponent);
+        hdf5::write_number_attribute(g.id, "sigma0_r_squared", s.compressive.r_squared_log);
+        hdf5::write_number_attribute(g.id, "tensile_prefactor", s.tensile.prefactor);
+        hdf5::write_number_attribute(g.id, "tensile_exponent", s.tensile.exponent);
+        hdf5::write_number_attribute(g.id, "tensile_r_squared", s.tensile.r_squared_log);
+      }
+      const MicroMacroRelations &mm = calibration.micro_macro;
+      if (mm.modulus || mm.strength)
+      {
+        const hdf5::Handle g = hdf5::create_group(f.id, "micro_macro");
+        hdf5::write_doubles(g.id, "particle_modulus", mm.particle_modulus, "Pa", "micro modulus");
+        hdf5::write_doubles(g.id, "macro_modulus", mm.macro_modulus, "Pa", "Young's modulus of the continuum");
+        hdf5::write_doubles(g.id, "bond_strength", mm.bond_strength, "Pa", "bond tensile strength");
+        hdf5::write_doubles(g.id, "macro_strength", mm.macro_strength, "Pa", "base sigma at failure at psi = 0");
+        for (const auto &[name, law] : {std::pair{"modulus", &mm.modulus}, std::pair{"strength", &mm.strength}})
+          if (*law)
+          {
+            hdf5::write_number_attribute(g.id, std::string(name) + "_intercept", (*law)->fit.intercept);
+            hdf5::write_number_attribute(g.id, std::string(name) + "_slope", (*law)->fit.slope);
+            hdf5::write_number_attribute(g.id, std::string(name) + "_r_squared", (*law)->fit.r_squared);
+          }
+        hdf5::write_number_attribute(g.id, "reference_thickness", mm.modulus ? mm.modulus->reference_thickness :
+                                                                             mm.strength->reference_thickness);
+      }
+    }
+    std::filesystem::rename(temporary, file);
+  }
+
+  namespace
+  {
+    std::string number(double value)
+    {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g", value);
+      return text;
+    }
+
+    std::string interval_text(double lower, double upper) { return number(lower) + ", " + number(upper); }
+  } // namespace
+
+  std::string material_file_text(const Calibration &calibration, std::size_t m, const std::string &tool_version)
+  {
+    const MicrostructureCalibration &c = calibration.microstructures.at(m);
+    const CampaignData &campaign = calibration.campaign;
+    const StressPlane plane = calibration.options.fe_plane;
+    const EnvelopeFit &surface = c.plane(plane).cam_clay();
+    const ElasticConstants &e = c.elastic;
+    const SofteningEstimate &soft = c.softening;
+    const double percent = 100 * calibration.options.confidence;
+    std::ostringstream out;
+    out << "# anticrack material file, written by `anticrack calibrate` (params/, anticrack " << tool_version << ").\n"
+        << "# Source campaign: " << campaign.file << "\n"
+        << "#   sha256 " << campaign.sha256 << "\n"
+        << "#   scene " << campaign.scene_file << " (sha256 " << campaign.scene_file_sha256 << ")\n"
+        << "# Microstructure " << c.index << " (" << c.material.label << "): phi = " << number(c.solid_fraction)
+        << ", z = " << number(c.coordination) << ", nu_c = z phi = " << number(c.contact_density) << ", "
+        << c.realizations.size() << " realization(s), " << c.tests.size() << " failure points.\n"
+        << "# Yield surface: cohesive Cam-Clay (1 + 2 beta) q^2 + M^2 (p + beta p0)(p - p0) = 0, fitted to the\n"
+        << (plane == StressPlane::invariants ?
+              "# failure points in the (p, q) plane of the Love-Weber stress (the invariants the FE solver uses) by\n" :
+              "# failure points in the (sigma, tau) plane of the base stresses (chosen with --fe-plane sigma-tau;\n"
+              "# p0, beta, M of seed 002's plane, used as the FE's invariant-plane parameters) by\n")
+        << "# least squares of the relative radial residuals ln(r/R): R^2 = " << number(surface.r_squared)
+        << ", RMSE = " << number(100 * surface.rmse) << " %.\n"
+        << "# Intervals: " << number(percent) << " % from the covariance of the fit (surface) and over the\n"
+        << "# realizations (elasticity, softening); bootstrap intervals are in calibration.h5 and summary.json.\n"
+        << "# Elasticity: axial secant modulus " << number(e.axial_modulus.mean) << " Pa at psi = 0 ("
+        << (e.laterally_confined ? "laterally confined: constrained modulus" : "open sides: Young's modulus")
+        << "), shear secant modulus " << number(e.shear_modulus.mean) << " Pa at psi = 90 deg; bulk modulus K = "
+        << number(e.bulk_modulus.mean) << " Pa.\n"
+        << "# Softening: p0 = K sinh(xi max(-alpha, 0)), collapse law (every plastic volume change softens);\n"
+        << "# xi from the drop to R p0 over a plastic volumetric strain of "
+        << number(soft.plastic_volumetric_strain.mean) << " at psi = 0.\n"
+        << "subsection Material\n"
+        << "  set Name = " << std::filesystem::path(campaign.scene_file).stem().string() << " m" << c.index << "\n"
+        << "  set Density [kg/m^3] = " << number(c.density) << "\n"
+        << "  set Young's modulus [Pa] = " << number(e.youngs_modulus.mean) << "\n"
+        << "  set Poisson's ratio = " << number(e.poisson_ratio.mean) << "\n"
+        << "  set Compressive strength p0 [Pa] = " << number(surface.parameters[0]) << "\n"
+        << "  set Tensile strength ratio beta = " << number(surface.parameters[1]) << "\n"
+        << "  set Critical state slope M = " << number(surface.parameters[2]) << "\n"
+        << "  set Hardening law = collapse\n"
+        << "  set Hardening factor xi = " << number(soft.hardening_factor.mean) << "\n"
+        << "  set Residual strength ratio = " << number(soft.residual_ratio.mean) << "\n"
+        << "  set Reference thickness [m] = " << number(c.specimen_height) << "\n"
+        << "  subsection Uncertainty\n"
+        << "    set Confidence = " << number(calibration.options.confidence) << "\n"
+        << "    set Compressive strength p0 interval [Pa] = " << interval_text(surface.ci_lower[0], surface.ci_upper[0]) << "\n"
+        << "    set Tensile strength ratio beta interval = " << interval_text(surface.ci_lower[1], surface.ci_upper[1]) << "\n"
+        << "    set Critical state slope M interval = " << interval_text(surface.ci_lower[2], surface.ci_upper[2]) << "\n"
+        << "    set Young's modulus interval [Pa] = "
+        << interval_text(e.youngs_modulus.mean_ci.lower, e.youngs_modulus.mean_ci.upper) << "\n"
+        << "    set Poisson's ratio interval = "
+        << interval_text(e.poisson_ratio.mean_ci.lower, e.poisson_ratio.mean_ci.upper) << "\n"
+        << "    set Hardening factor xi interval = "
+        << interval_text(soft.hardening_factor.mean_ci.lower, soft.hardening_factor.mean_ci.upper) << "\n"
+        << "  end\n"
+        << "  subsection Provenance\n"
+        << "    set Campaign file = " << campaign.file << "\n"
+        << "    set Campaign sha256 = " << campaign.sha256 << "\n"
+        << "    set Scene file = " << campaign.scene_file << "\n"
+        << "    set Scene sha256 = " << campaign.scene_file_sha256 << "\n"
+        << "    set Microstructure = " << c.index << "\n"
+        << "    set Fit plane = " << (plane == StressPlane::invariants ? "p-q" : "sigma-tau") << "\n"
+        << "    set R squared = " << number(surface.r_squared) << "\n"
+        << "  end\n"
+        << "end\n";
+    return out.str();
+  }
+
+  nlohmann::ordered_json calibration_summary(const Calibration &calibration)
+  {
+    Json microstructures = Json::array();
+    for (const auto &c : calibration.microstructures)
+    {
+      const FlowRuleAnalysis &f = c.flow_rule;
+      const AssociativityMeasure &a = f.associativity;
+      Json flow{{"rms_deviation_from_associative_deg", a.rms_deviation_deg},
+                {"max_deviation_deg", a.max_abs_deviation_deg},
+                {"mean_deviation_deg", a.mean_deviation_deg},
+                {"slope", a.line.slope},
+                {"slope_interval", interval_json(a.line.slope_ci.lower, a.line.slope_ci.upper)},
+                {"slope_consistent_with_associative", a.slope_consistent_with_associative},
+                {"r_squared_associative", finite_or_null(a.r_squared_associative)},
+                {"transition_angle_predicted_deg", f.transition_predicted / degree},
+                {"transition_angle_observed_deg",
+                 f.transition_observed ? Json(*f.transition_observed / degree) : Json(nullptr)}};
+      if (!f.transition_observed)
+        flow["transition_angle_observed_note"] = f.transition_observed_note;
+      microstructures.push_back(Json{
+        {"index", c.index},
+        {"label", c.material.label},
+        {"completed_tests", c.tests.size()},
+        {"realizations", c.realizations.size()},
+        {"solid_fraction", c.solid_fraction},
+        {"coordination", c.coordination},
+        {"contact_density", c.contact_density},
+        {"density_kg_per_m3", c.density},
+        {"specimen_height_m", c.specimen_height},
+        {"sigma_tau_plane", plane_json(c.base_plane)},
+        {"p_q_plane", plane_json(c.invariant_plane)},
+        {"flow_rule", flow},
+        {"elastic",
+         Json{{"laterally_confined", c.elastic.laterally_confined},
+              {"axial_secant_modulus_Pa", statistics_json(c.elastic.axial_modulus)},
+              {"shear_modulus_Pa", statistics_json(c.elastic.shear_modulus)},
+              {"youngs_modulus_Pa", statistics_json(c.elastic.youngs_modulus)},
+              {"poisson_ratio", statistics_json(c.elastic.poisson_ratio)},
+              {"bulk_modulus_Pa", statistics_json(c.elastic.bulk_modulus)},
+              {"poisson_ratio_from_K0", c.elastic.k0_poisson_ratio.n > 0 ? statistics_json(c.elastic.k0_poisson_ratio) :
+                                                                            Json(nullptr)}}},
+        {"softening",
+         Json{{"law", "collapse"},
+              {"residual_ratio", statistics_json(c.softening.residual_ratio)},
+              {"plastic_volumetric_strain", statistics_json(c.softening.plastic_volumetric_strain)},
+              {"hardening_factor_xi", statistics_json(c.softening.hardening_factor)},
+              {"tests_not_softening", c.softening.excluded}}}});
+    }
+    Json s{{"confidence", calibration.options.confidence},
+           {"bootstrap_samples", calibration.options.bootstrap_samples},
+           {"bootstrap_seed", calibration.options.seed},
+           {"fe_plane", plane_id(calibration.options.fe_plane)},
+           {"campaign", Json{{"file", calibration.campaign.file},
+                             {"sha256", calibration.campaign.sha256},
+                             {"scene_file", calibration.campaign.scene_file},
+                             {"scene_file_sha256", calibration.campaign.scene_file_sha256}}},
+           {"microstructures", microstructures}};
+    if (calibration.scaling)
+    {
+      auto law = [](const PowerLawFit &p) {
+        return Json{{"prefactor", p.prefactor},
+                    {"prefactor_interval", interval_json(p.prefactor_ci.lower, p.prefactor_ci.upper)},
+                    {"exponent", p.exponent},
+                    {"exponent_interval", interval_json(p.exponent_ci.lower, p.exponent_ci.upper)},
+                    {"r_squared_log", p.r_squared_log}};
+      };
+      s["scaling"] = Json{{"sigma0_over_bond", law(calibration.scaling->compressive)},
+                          {"beta_sigma0_over_bond", law(calibration.scaling->tensile)},
+                          {"M", statistics_json(calibration.scaling->M_statistics)}};
+    }
+    const MicroMacroRelations &mm = calibration.micro_macro;
+    for (const auto &[name, law] : {std::pair{"macro_modulus_vs_particle_modulus", &mm.modulus},
+                                    std::pair{"macro_strength_vs_bond_strength", &mm.strength}})
+      if (*law)
+        s["micro_macro"][name] = Json{{"intercept", (*law)->fit.intercept},
+                                      {"slope", (*law)->fit.slope},
+                                      {"slope_interval", interval_json((*law)->fit.slope_ci.lower, (*law)->fit.slope_ci.upper)},
+                                      {"r_squared", (*law)->fit.r_squared},
+                                      {"reference_thickness_m", (*law)->reference_thickness}};
+    return s;
+  }
+} // namespace anticrack::params

@@ -1,0 +1,67 @@
+// The calibration's input: a DEM campaign file (campaign.h5, written by `anticrack run` for a scene
+// with a Campaign subsection; format in docs/lab.md). Read once, validated, and kept as plain data:
+// the failure-point table, the material of every microstructure, and access to every test's history.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace anticrack::params
+{
+  /// One row of /failure_points: a test at one loading angle of one realization of one microstructure.
+  struct CampaignTest
+  {
+    std::string id;                 ///< m<k>_r<k>_psi<angle>
+    std::string status;             ///< completed, failed, interrupted or missing
+    int microstructure = 0;
+    int realization = 0;
+    double loading_angle_deg = 0;   ///< ψ, clump force along (sin ψ, 0, −cos ψ)
+    double sigma = 0, tau = 0;      ///< base stresses at failure, σ compression positive [Pa]
+    double p = 0, q = 0;            ///< Love–Weber invariants at failure, p compression positive [Pa]
+    std::array<double, 9> love_stress{}; ///< full tensor at failure, tension positive, row-major [Pa]
+    double flow_angle_deg = 0;      ///< atan2(Δu_z, Δu_x) of the clump after failure
+    double secant_modulus = 0;      ///< base σ over normal strain to 70 % of the peak (seed 000) [Pa]
+    double solid_fraction = 0, coordination = 0;
+    double specimen_height = 0;     ///< H0 [m]; strains in the histories are u / H0
+
+    [[nodiscard]] bool completed() const { return status == "completed"; }
+  };
+
+  /// What the campaign's scene says about the material of one microstructure (/microstructures).
+  struct MicrostructureMaterial
+  {
+    std::string label;                ///< the Campaign/Microstructures variant, or "scene sample"
+    double particle_modulus = 0;      ///< bond modulus of bonded samples, else contact modulus [Pa]
+    double bond_tensile_strength = 0; ///< σ̄_c [Pa] (NaN without bonds)
+    double bond_cohesion = 0;         ///< c̄ [Pa]
+    double particle_density = 0;      ///< [kg/m³]
+    bool laterally_periodic = false;  ///< periodic x and y: uniaxial strain at ψ = 0
+  };
+
+  /// The columns of one test's history that the calibration uses.
+  struct TestHistory
+  {
+    std::vector<double> normal_strain;  ///< −u_z / H0, compression positive
+    std::vector<double> shear_strain;   ///< u_x / H0
+    std::vector<double> sigma, tau;     ///< base stresses [Pa]
+    std::vector<double> love_xx, love_yy, love_zz; ///< Love–Weber normal components, tension positive [Pa]
+  };
+
+  struct CampaignData
+  {
+    std::string file;
+    std::string sha256;               ///< of the campaign file itself
+    std::string scene_file, scene_file_sha256, parameters_sha256, anticrack_version;
+    std::vector<MicrostructureMaterial> microstructures;
+    std::vector<CampaignTest> tests;  ///< the campaign proper (quasi-static references apart)
+
+    /// The history of test `id` from /tests/<id>/history; throws CalibrationError naming the file and
+    /// test if it is missing or lacks a column.
+    [[nodiscard]] TestHistory history(const std::string &id) const;
+  };
+
+  /// Reads and validates `file` (format anticrack-campaign, version 2). Throws CalibrationError with
+  /// the file, the object and the reason (missing file, other format, old version, inconsistent table).
+  CampaignData read_campaign(const std::string &file);
+} // namespace anticrack::params

@@ -1,0 +1,165 @@
+#include "params/elastic_calibration.h"
+
+#include "dem/failure_point.h"
+#include "params/calibration_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace anticrack::params
+{
+  namespace
+  {
+    /// The completed tests of microstructure m at loading angle ψ, by realization.
+    std::map<int, const CampaignTest *> tests_at(const CampaignData &campaign, int m, double angle_deg)
+    {
+      std::map<int, const CampaignTest *> found;
+      for (const auto &t : campaign.tests)
+        if (t.microstructure == m && t.completed() && std::abs(t.loading_angle_deg - angle_deg) < 1e-6)
+          found[t.realization] = &t;
+      return found;
+    }
+
+    dem::Index peak_index(const std::vector<double> &values)
+    {
+      return static_cast<dem::Index>(std::max_element(values.begin(), values.end()) - values.begin());
+    }
+
+    /// Statistics of per-realization values; with one realization the interval is the value itself
+    /// (no spread can be estimated, and the caller reports n = 1).
+    SampleStatistics statistics(const std::vector<double> &values, double confidence, const std::string &what)
+    {
+      if (values.size() >= 2)
+        return describe(values, confidence, what);
+      SampleStatistics s;
+      s.mean = s.minimum = s.maximum = values.at(0);
+      s.mean_ci = {values[0], values[0]};
+      s.confidence = confidence;
+      s.n = 1;
+      return s;
+    }
+  } // namespace
+
+  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence)
+  {
+    const auto compression = tests_at(campaign, m, 0.0), shear = tests_at(campaign, m, 90.0);
+    const std::string where = campaign.file + ", microstructure " + std::to_string(m);
+    if (compression.empty() || shear.empty())
+      throw CalibrationError(where + ": the elastic constants need completed tests at loading angles 0 deg "
+                             "(compression) and 90 deg (shear); add them to Campaign/Loading angles [deg]");
+    ElasticConstants c;
+    c.laterally_confined = campaign.microstructures.at(m).laterally_periodic;
+    std::vector<double> axial, shear_moduli, young, poisson, bulk, k0;
+    for (const auto &[r, compression_test] : compression)
+    {
+      const auto s = shear.find(r);
+      if (s == shear.end())
+        continue;
+      const TestHistory h = campaign.history(s->second->id);
+      const double G = dem::secant_modulus(h.shear_strain, h.tau, peak_index(h.tau), 0.7);
+      const double M = compression_test->secant_modulus;
+      double E, nu, K;
+      if (c.laterally_confined)
+      {
+        K = M - 4.0 * G / 3.0;
+        E = 9.0 * K * G / (3.0 * K + G);
+        nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
+      }
+      else
+      {
+        E = M;
+        nu = E / (2.0 * G) - 1.0;
+        K = E / (3.0 * (1.0 - 2.0 * nu));
+      }
+      if (!(K > 0) || !(nu > -1.0 && nu < 0.5) || !(G > 0))
+        throw CalibrationError(where + ", tests " + compression_test->id + " and " + s->second->id +
+                               ": inadmissible elastic constants (axial modulus " + std::to_string(M) +
+                               " Pa, shear modulus " + std::to_string(G) + " Pa give K = " + std::to_string(K) +
+                               " Pa, nu = " + std::to_string(nu) + "; need K > 0 and -1 < nu < 0.5)");
+      axial.push_back(M), shear_moduli.push_back(G), young.push_back(E), poisson.push_back(nu), bulk.push_back(K);
+
+      if (c.laterally_confined)
+      {
+        // K0 in the elastic range: at the first sample where σ reaches 35 % of its peak (half of the
+        // secant modulus' 70 %, well before the bond breakage that precedes the peak).
+        const TestHistory ch = campaign.history(compression_test->id);
+        const double target = 0.35 * ch.sigma[peak_index(ch.sigma)];
+        const auto k = static_cast<std::size_t>(
+          std::find_if(ch.sigma.begin(), ch.sigma.end(), [&](double v) { return v >= target; }) - ch.sigma.begin());
+        const double ratio = 0.5 * (ch.love_xx[k] + ch.love_yy[k]) / ch.love_zz[k];
+        k0.push_back(ratio / (1.0 + ratio));
+      }
+    }
+    if (axial.empty())
+      throw CalibrationError(where + ": no realization has completed tests at both 0 and 90 deg");
+    c.axial_modulus = statistics(axial, confidence, where + " axial modulus");
+    c.shear_modulus = statistics(shear_moduli, confidence, where + " shear modulus");
+    c.youngs_modulus = statistics(young, confidence, where + " Young's modulus");
+    c.poisson_ratio = statistics(poisson, confidence, where + " Poisson's ratio");
+    c.bulk_modulus = statistics(bulk, confidence, where + " bulk modulus");
+    if (!k0.empty())
+      c.k0_poisson_ratio = statistics(k0, confidence, where + " K0 Poisson's ratio");
+    return c;
+  }
+
+  double hardening_factor(double p0, double bulk_modulus, double residual_ratio, double plastic_volumetric_strain)
+  {
+    return (std::asinh(p0 / bulk_modulus) - std::asinh(residual_ratio * p0 / bulk_modulus)) /
+           plastic_volumetric_strain;
+  }
+
+  SofteningEstimate collapse_softening(const CampaignData &campaign, int m, double p0, double bulk_modulus,
+                                       double axial_modulus, double confidence)
+  {
+    const std::string where = campaign.file + ", microstructure " + std::to_string(m);
+    std::vector<double> ratio, strain, xi;
+    std::vector<std::string> excluded;
+    for (const auto &[r, t] : tests_at(campaign, m, 0.0))
+    {
+      const TestHistory h = campaign.history(t->id);
+      const auto peak = static_cast<std::size_t>(peak_index(h.sigma));
+      const std::size_t after_peak = h.sigma.size() - 1 - peak;
+      if (after_peak < 2)
+      {
+        excluded.push_back(t->id + ": the history ends at the peak");
+        continue;
+      }
+      // The residual stress: the mean over the last half of the post-peak samples (seed 000's
+      // brittle-crushing phase at the end of the test). A load-controlled test collapses within a few
+      // samples, so a fixed share of the whole history would reach back to the peak.
+      const double R = dem::softening_ratio(h.sigma, static_cast<dem::Index>(peak),
+                                            0.5 * static_cast<double>(after_peak) / static_cast<double>(h.sigma.size()));
+      const double residual = R * h.sigma[peak];
+      std::size_t k = peak;
+      while (k < h.sigma.size() && h.sigma[k] > residual + 1e-9 * h.sigma[peak]) // round-off of R times the peak
+        ++k;
+      const double plastic = k < h.sigma.size() ? (h.normal_strain[k] - h.normal_strain[peak]) -
+                                                    (h.sigma[peak] - residual) / axial_modulus :
+                                                  0.0;
+      if (!(R > 0 && R < 1) || !(plastic > 0))
+      {
+        excluded.push_back(t->id + ": R = " + std::to_string(R) + ", plastic strain " + std::to_string(plastic) +
+                           (k < h.sigma.size() ? "" : " (never back at the residual stress)"));
+        continue;
+      }
+      ratio.push_back(R), strain.push_back(plastic);
+      xi.push_back(hardening_factor(p0, bulk_modulus, R, plastic));
+    }
+    if (xi.empty())
+    {
+      std::string reasons;
+      for (const auto &e : excluded)
+        reasons += "; " + e;
+      throw CalibrationError(where + ": no compression test (0 deg) softens to a residual stress 0 < R < 1 "
+                             "with a positive plastic strain" + reasons +
+                             "; run the tests further past the peak (DEM/Loading/Stop strain)");
+    }
+    SofteningEstimate s;
+    s.residual_ratio = statistics(ratio, confidence, where + " residual ratio");
+    s.plastic_volumetric_strain = statistics(strain, confidence, where + " plastic volumetric strain");
+    s.hardening_factor = statistics(xi, confidence, where + " hardening factor");
+    s.excluded = excluded;
+    return s;
+  }
+} // namespace anticrack::params

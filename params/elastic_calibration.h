@@ -1,0 +1,64 @@
+// Elastic constants and the collapse-softening law of the continuum from the DEM campaign's
+// compression (ψ = 0) and shear (ψ = 90°) tests, one estimate per realization, then their mean with a
+// t-interval over the realizations.
+//
+// Elasticity. The compression test gives the secant modulus of the base normal stress against the
+// normal strain to 70 % of the peak (seed 000). With periodic sides (seed 002) the specimen is
+// laterally confined, so that modulus is the constrained (P-wave) modulus M = K + 4G/3; with open
+// sides (seed 000) it is Young's modulus E. The shear test gives G as the secant modulus of τ against
+// γ = u_x/H0 to 70 % of its peak (the clump moves along x over a fixed base: simple shear). Then
+//   confined:   K = M − 4G/3,  E = 9KG/(3K + G),  ν = (3K − 2G)/(2(3K + G));
+//   unconfined: ν = E/(2G) − 1,  K = E/(3(1 − 2ν)).
+// Confined specimens also give ν from the lateral stress ratio K0 = σ_xx/σ_zz of the Love stress in
+// the elastic range, ν = K0/(1 + K0) (uniaxial strain), reported as a cross-check.
+//
+// Softening (PHYSICS.md §2). p0 = K sinh(ξ max(−α, 0)) with α the accumulated volumetric plastic
+// strain, starting at α0 = −asinh(p0_init/K)/ξ; under "collapse softening" every plastic volume
+// change, either sign, moves α towards 0, so p0 falls from p0_init to R p0_init after a plastic
+// volumetric strain Δε_p when ξ = [asinh(p0/K) − asinh(R p0/K)] / Δε_p. The compression test gives
+// R (softening ratio, seed 000: residual over peak base stress, the residual being the mean over the
+// last half of the post-peak samples) and Δε_p: the normal strain from the peak to the first sample
+// at the residual stress, less the elastic recovery (σ_peak − σ_res)/M_axial. Under
+// uniaxial strain (confined) the volumetric strain is the normal strain; with open sides the collapse
+// is still a compaction band of zero lateral strain (seed 002 Fig. 1), so the same holds for its
+// plastic part.
+#pragma once
+
+#include "params/campaign_data.h"
+#include "params/regression.h"
+
+namespace anticrack::params
+{
+  struct ElasticConstants
+  {
+    bool laterally_confined = false;
+    SampleStatistics axial_modulus;   ///< M (confined) or E (open sides), secant to 70 % [Pa]
+    SampleStatistics shear_modulus;   ///< G [Pa]
+    SampleStatistics youngs_modulus;  ///< E [Pa]
+    SampleStatistics poisson_ratio;   ///< ν
+    SampleStatistics bulk_modulus;    ///< K [Pa]
+    SampleStatistics k0_poisson_ratio; ///< ν from K0 (confined only; n = 0 otherwise)
+  };
+
+  /// From the ψ = 0 and ψ = 90° tests of microstructure `m` (every completed realization having both).
+  /// Throws CalibrationError if either angle is missing or the constants are not admissible
+  /// (K <= 0, ν outside (−1, 0.5)), naming the test.
+  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence);
+
+  struct SofteningEstimate
+  {
+    SampleStatistics residual_ratio;            ///< R = σ_residual/σ_peak
+    SampleStatistics plastic_volumetric_strain; ///< Δε_p from the peak to the residual stress
+    SampleStatistics hardening_factor;          ///< ξ of p0 = K sinh(ξ max(−α, 0))
+    std::vector<std::string> excluded;          ///< ψ = 0 tests that did not soften, with the reason
+  };
+
+  /// ξ and R from the ψ = 0 tests of microstructure `m`, for the compressive tip p0 and bulk modulus K
+  /// of the calibrated continuum and the axial modulus of the tests. Throws CalibrationError if no
+  /// ψ = 0 test softens (no sample after the peak at the residual stress, or Δε_p <= 0).
+  SofteningEstimate collapse_softening(const CampaignData &campaign, int m, double p0, double bulk_modulus,
+                                       double axial_modulus, double confidence);
+
+  /// ξ of the relation above (the one formula, shared with tests).
+  double hardening_factor(double p0, double bulk_modulus, double residual_ratio, double plastic_volumetric_strain);
+} // namespace anticrack::params
