@@ -323,7 +323,7 @@ namespace anticrack::app
       {
         std::vector<std::pair<std::string, std::string>> overrides;
         for (const auto &[entry, value] : c.microstructures[m])
-          overrides.emplace_back((entry.find('/') == std::string::npos ? "DEM/Sample/" : "DEM/") + entry, value);
+          overrides.emplace_back((split_parameter_path(entry).size() == 1 ? "DEM/Sample/" : "DEM/") + entry, value);
         try
         {
           scenes.push_back(read_scene(scene.file, overrides));

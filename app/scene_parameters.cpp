@@ -1229,6 +1229,23 @@ namespace anticrack::app
     }
   } // namespace
 
+  std::vector<std::string> split_parameter_path(const std::string &path)
+  {
+    std::vector<std::string> parts(1);
+    int bracket_depth = 0;
+    for (const char c : path)
+    {
+      bracket_depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+      if (c == '/' && bracket_depth == 0)
+        parts.emplace_back();
+      else
+        parts.back() += c;
+    }
+    for (std::string &part : parts)
+      part = dealii::Utilities::trim(part);
+    return parts;
+  }
+
   SceneParameters read_scene(const std::string &file,
                              const std::vector<std::pair<std::string, std::string>> &overrides)
   {
@@ -1245,7 +1262,7 @@ namespace anticrack::app
       prm.parse_input(input, file);
       for (const auto &[path, value] : overrides)
       {
-        const std::vector<std::string> parts = dealii::Utilities::split_string_list(path, '/');
+        const std::vector<std::string> parts = split_parameter_path(path);
         for (std::size_t k = 0; k + 1 < parts.size(); ++k)
           prm.enter_subsection(parts[k]);
         try

@@ -25,7 +25,7 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.ticker import FormatStrFormatter  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter, LogFormatter  # noqa: E402
 from matplotlib.transforms import offset_copy  # noqa: E402
 
 KPA = 1e-3
@@ -249,9 +249,13 @@ def panel_power_laws(ax, scaling):
     nu = scaling["contact_density"]
     a = scaling.attrs
     x = np.geomspace(nu.min() / 1.1, nu.max() * 1.1, 50)
+    # Seed 002's published laws (Eqs. 2-3) for comparison: h = 2.81e-3, kappa = 3.59; k = 1.38e-3, lambda = 3.09.
+    published = {"sigma0": (2.81e-3, 3.59), "tensile": (1.38e-3, 3.09)}
     for key, y, symbol, c in [("sigma0", scaling["sigma0_over_bond"], r"\sigma_0", "C0"),
                               ("tensile", scaling["beta_sigma0_over_bond"], r"\beta\sigma_0", "C3")]:
         prefactor, exponent = a[f"{key}_prefactor"], a[f"{key}_exponent"]
+        ax.loglog(x, published[key][0] * x**published[key][1], ":", color=c, lw=1,
+                  label=rf"seed 002: ${published[key][0]:.3g}\,\nu_c^{{{published[key][1]}}}$")
         ax.loglog(nu, y, "o", color=c, mec="k", mew=0.4, label=rf"${symbol}/\sigma_b$")
         ax.loglog(x, prefactor * x**exponent, "-", color=c, lw=1.2,
                   label=rf"${symbol}/\sigma_b = {prefactor:.3g}\,\nu_c^{{{exponent:.2f}}}$"
@@ -261,7 +265,8 @@ def panel_power_laws(ax, scaling):
     ax.set_title("size of the yield surface (seed 002 Eqs. 2, 3)")
     for axis in (ax.xaxis, ax.yaxis):
         axis.set_major_formatter(FormatStrFormatter("%g"))
-        axis.set_minor_formatter(FormatStrFormatter("%g"))
+        # Label only the minor ticks 2 and 5 of each decade: all of them overlap on a long axis.
+        axis.set_minor_formatter(LogFormatter(labelOnlyBase=False, minor_thresholds=(2, 0.4)))
     ax.legend(fontsize=8)
 
 
@@ -310,6 +315,8 @@ def plot_scaling(data, micros):
     for ax, panel in zip(axes.flat, panels):
         panel(ax)
         ax.grid(alpha=0.3, which="both")
+    for ax in axes.flat[len(panels):]:
+        fig.delaxes(ax)
     return fig
 
 

@@ -1110,7 +1110,10 @@ def calibrate_scene_small(work):
     (p, q) material is refused with the advice to use --fe-plane sigma-tau, which then calibrates a
     closed surface with the compressive tip beyond the tensile one (seed 002: beta < 1) into a
     material file the solver reads; the second call only resumes the campaign."""
-    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 45, 90, 135, 180"))
+    # The microstructure variant restates the scene's own force rate through a path whose unit holds
+    # a '/' ([N/s]): overrides split subsections outside brackets only.
+    scene = write(os.path.join(work, "campaign.prm"),
+                  campaign_scene("0, 45, 90, 135, 180", microstructures="Boundary particles/Clump force rate [N/s] = 100"))
     out = os.path.join(work, "cal")
     _, stderr = anticrack("calibrate", scene, "-o", out, "--no-plots", "--bootstrap", "0", expect=2)
     check("p_q plane" in stderr and "--fe-plane sigma-tau" in stderr, f"undetermined (p, q) fit: {stderr}")
