@@ -100,6 +100,10 @@ namespace anticrack::params
         t.solid_fraction = solid[k];
         t.coordination = coordination[k];
         t.specimen_height = height[k];
+        if (t.completed() && !(t.specimen_height > 0))
+          throw CalibrationError(file + ": test " + t.id + " has no specimen height (it was run by an anticrack "
+                                 "older than campaign format 2); delete its directory tests/" + t.id +
+                                 " and resume the campaign to run it again");
         data.tests.push_back(t);
       }
     }

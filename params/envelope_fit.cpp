@@ -489,7 +489,7 @@ namespace anticrack::params
     return fit;
   }
 
-  EnvelopeBand envelope_band(const YieldEnvelope &model, const EnvelopeFit &fit, int n_angles)
+  EnvelopeBand envelope_band(const YieldEnvelope &model, const EnvelopeFit &fit, int n_angles, bool from_bootstrap)
   {
     if (fit.model != model.name())
       throw std::invalid_argument("envelope_band: a fit of " + fit.model + " with the model " + model.name());
@@ -497,13 +497,13 @@ namespace anticrack::params
       throw std::invalid_argument("envelope_band: n_angles = " + std::to_string(n_angles) + " must be >= 2");
 
     EnvelopeBand band;
-    band.from_bootstrap = fit.has_bootstrap;
+    band.from_bootstrap = from_bootstrap && fit.has_bootstrap;
     for (int i = 0; i < n_angles; ++i)
       band.angle.push_back(pi * i / (n_angles - 1));
     const Eigen::VectorXd radius = envelope_radii(model, band.angle, fit.parameters);
     band.radius.assign(radius.data(), radius.data() + radius.size());
 
-    if (fit.has_bootstrap)
+    if (band.from_bootstrap)
     {
       std::vector<Eigen::VectorXd> sample_radii;
       for (Eigen::Index s = 0; s < fit.bootstrap_samples.rows(); ++s)

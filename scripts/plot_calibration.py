@@ -25,7 +25,7 @@ import numpy as np
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.ticker import FormatStrFormatter, LogFormatter  # noqa: E402
+from matplotlib.ticker import FormatStrFormatter, FuncFormatter  # noqa: E402
 from matplotlib.transforms import offset_copy  # noqa: E402
 
 KPA = 1e-3
@@ -107,15 +107,14 @@ def suptitle_above_axes(fig, text):
 
 
 def parameter_text(fit, confidence):
-    """'σ₀ = 14 kPa [13.6, 14.4], β = …' with the bootstrap intervals when the fit has them."""
-    boot = bool(fit.attrs.get("has_bootstrap", 0)) and "bootstrap_lower" in fit
-    lower, upper = (fit["bootstrap_lower"], fit["bootstrap_upper"]) if boot else (fit["ci_lower"], fit["ci_upper"])
+    """'σ₀ = 14 kPa [13.6, 14.4], β = …' with the covariance intervals (those of the material file; the
+    percentile bootstrap over three realizations is too narrow, see params/envelope_fit.h)."""
     parts = []
     for name, unit, value, lo, hi in zip(fit["parameter_names"], fit["parameter_units"], fit["parameters"],
-                                         lower, upper):
+                                         fit["ci_lower"], fit["ci_upper"]):
         scale, unit = (KPA, " kPa") if unit == "Pa" else (1, f" {unit}" if unit else "")
         parts.append(f"{SYMBOLS.get(name, name)} = {value * scale:.3g}{unit} [{lo * scale:.3g}, {hi * scale:.3g}]")
-    return ", ".join(parts) + f"  ({confidence}{' bootstrap' if boot else ''} CI)"
+    return ", ".join(parts) + f"  ({confidence} CI)"
 
 
 def plot_yield_surface(data, micros):
@@ -263,10 +262,13 @@ def panel_power_laws(ax, scaling):
     ax.set_xlabel("contact density ν_c = z φ")
     ax.set_ylabel("strength / bond strength σ_b")
     ax.set_title("size of the yield surface (seed 002 Eqs. 2, 3)")
-    for axis in (ax.xaxis, ax.yaxis):
+    # Plain numbers; the strength axis spans decades, so only its minor ticks 2 and 5 are labelled.
+    def two_and_five(value, _):
+        mantissa = value / 10 ** np.floor(np.log10(value))
+        return f"{value:g}" if round(mantissa) in (2, 5) else ""
+    for axis, minor in ((ax.xaxis, FormatStrFormatter("%g")), (ax.yaxis, FuncFormatter(two_and_five))):
         axis.set_major_formatter(FormatStrFormatter("%g"))
-        # Label only the minor ticks 2 and 5 of each decade: all of them overlap on a long axis.
-        axis.set_minor_formatter(LogFormatter(labelOnlyBase=False, minor_thresholds=(2, 0.4)))
+        axis.set_minor_formatter(minor)
     ax.legend(fontsize=8)
 
 

@@ -617,7 +617,7 @@ TEST(EnvelopeFit, BootstrapReproducibleAndBand)
 
   for (const EnvelopeFit *fit : {&first, &other_seed})
   {
-    const EnvelopeBand band = envelope_band(*model, *fit, 37);
+    const EnvelopeBand band = envelope_band(*model, *fit, 37, true);
     ASSERT_EQ(band.angle.size(), 37u);
     EXPECT_TRUE(band.from_bootstrap);
     EXPECT_EQ(band.angle.front(), 0);
