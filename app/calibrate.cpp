@@ -80,6 +80,7 @@ namespace anticrack::app
     if (campaign_file.empty())
       return exit_code;
 
+    const auto calibration_start = std::chrono::steady_clock::now();
     params::Calibration calibration;
     try
     {
@@ -87,6 +88,8 @@ namespace anticrack::app
       calibration_options.fe_plane =
         options.fe_plane_base_stresses ? params::StressPlane::base_stresses : params::StressPlane::invariants;
       calibration_options.confidence = options.confidence;
+      if (options.poisson_ratio > -1)
+        calibration_options.poisson_ratio = options.poisson_ratio;
       calibration_options.bootstrap_samples = options.bootstrap_samples;
       calibration_options.seed = options.seed;
       calibration = params::calibrate(params::read_campaign(campaign_file), calibration_options);
@@ -121,7 +124,9 @@ namespace anticrack::app
     summary["input"] = options.input;
     summary["calibration"] = params::calibration_summary(calibration);
     summary["outputs"] = Json{{"data", "calibration.h5"}, {"materials", material_names}, {"summary", "summary.json"}};
-    summary["timing"] = Json{{"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+    const auto now = std::chrono::steady_clock::now();
+    summary["timing"] = Json{{"wall_s", std::chrono::duration<double>(now - start).count()},
+                             {"calibration_s", std::chrono::duration<double>(now - calibration_start).count()}};
     summary["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), summary);
 

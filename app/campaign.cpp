@@ -219,7 +219,8 @@ namespace anticrack::app
       double flow_angle_deg = nan, secant_modulus = nan, softening_ratio = nan, peak_q = nan;
       double max_inertial_number = nan; ///< from half the failure stress to the failure point
       double solid_fraction = nan, coordination = nan, bonds = nan;
-      double specimen_height = nan; ///< initial height H0 of the tested layer (strains = u / H0)
+      double specimen_height = nan; ///< initial height H0 of the specimen (history strains = u / H0)
+      double layer_thickness = nan; ///< deformable layer between the base and the clump, h
       double steps = nan, wall_s = nan;
       std::string analysis_error;
     };
@@ -246,6 +247,7 @@ namespace anticrack::app
         o.coordination = number_at(s, "/dem/sample/mean_contacts");
       o.bonds = number_at(s, "/dem/bonds");
       o.specimen_height = number_at(s, "/dem/specimen/height_m");
+      o.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
       const Json::json_pointer analysis("/dem/failure_analysis");
       if (!s.contains(analysis))
         return o;
@@ -603,6 +605,8 @@ namespace anticrack::app
                       "parallel bonds of the specimen");
         hdf5::write_doubles(group, "specimen_height", column([](const T &, const O &o) { return o.specimen_height; }),
                       "m", "initial height H0 of the tested specimen (strains in the histories are u / H0)");
+        hdf5::write_doubles(group, "layer_thickness", column([](const T &, const O &o) { return o.layer_thickness; }),
+                      "m", "deformable layer between the fixed base and the clump (centre to centre), h");
       };
       {
         const Handle g(H5Gcreate2(f.id, "failure_points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,

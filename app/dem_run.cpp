@@ -124,6 +124,9 @@ namespace anticrack::app
     void record_history();
     [[nodiscard]] double inertial_number(const dem::Mat3 &stress) const;
     double initial_sample_height_ = 0; ///< z extent of the spheres at the start [m] (loading strain)
+    /// Thickness of the deformable layer between the fixed base and the clump, at the start [m].
+    [[nodiscard]] double layer_thickness() const;
+    double initial_layer_thickness_ = 0;
     void write_history();
     void write_snapshot();
     void write_checkpoint();
@@ -168,7 +171,23 @@ namespace anticrack::app
     declare_history_columns();
     const auto [low, high] = dem::sphere_extent(system_.particles, 2);
     initial_sample_height_ = high - low;
+    initial_layer_thickness_ = layer_thickness();
     protocol_ = make_lab_protocol(scene_, *model_);
+  }
+
+  double DemRun::layer_thickness() const
+  {
+    // The deformable layer between the two rigid parts: from the highest centre of the fixed base
+    // to the lowest centre of the clump (bonds and contacts act between centres). Without a base
+    // or a clump, the whole sample.
+    if (model_->fixed_particles.empty() || model_->clump < 0)
+      return initial_sample_height_;
+    double base_top = -std::numeric_limits<double>::infinity(), clump_bottom = std::numeric_limits<double>::infinity();
+    for (const Index p : model_->fixed_particles)
+      base_top = std::max(base_top, system_.particles.position[p].z());
+    for (const Index p : system_.clumps[model_->clump].members)
+      clump_bottom = std::min(clump_bottom, system_.particles.position[p].z());
+    return clump_bottom - base_top;
   }
 
   void DemRun::declare_history_columns()
@@ -754,7 +773,7 @@ namespace anticrack::app
       l["stop_strain"] = loading.stop_strain;
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
-      d["specimen"] = {{"height_m", initial_sample_height_}};
+      d["specimen"] = {{"height_m", initial_sample_height_}, {"layer_thickness_m", initial_layer_thickness_}};
       // The yield point of this test (seed 002's failure criterion) and its companions.
       d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
                                                    scene_.dem.loading.test == parameters::Loading::Test::simple_shear);

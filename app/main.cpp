@@ -2,8 +2,9 @@
 //
 //   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T]
 //   anticrack check SCENE.prm [--threads T]
-//   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--fe-plane p-q|sigma-tau] [--bootstrap N]
-//                       [--seed S] [--confidence C] [--no-plots] [--overwrite] [--threads T]
+//   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--fe-plane p-q|sigma-tau] [--poisson-ratio NU]
+//                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
+//                       [--threads T]
 //   anticrack params [--format prm|description|json]
 //   anticrack bench dem --lattice n --steps S --threads T
 //
@@ -93,6 +94,10 @@ int main(int argc, char **argv)
                         "sigma-tau (base stresses, seed 002)")
     ->check(CLI::IsMember({"p-q", "sigma-tau"}))
     ->capture_default_str();
+  calibrate->add_option("--poisson-ratio", calibrate_options.poisson_ratio,
+                        "Poisson's ratio to use instead of the one from the 0 and 90 degree tests (E then comes from "
+                        "the axial modulus alone); for specimens that are not isotropic")
+    ->check(CLI::Range(-0.999, 0.499));
   calibrate->add_flag("--no-plots", no_plots, "Do not run scripts/plot_calibration.py");
   calibrate->add_flag("--overwrite", calibrate_options.overwrite, "Replace an earlier calibration in DIR");
   calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads of a scene's campaign")

@@ -668,8 +668,6 @@ namespace anticrack::dem
     rep.height = top - base;
     if (dom.upper.z() < top)
       dom.upper.z() = top + 1e-9 * rd.mean; // keep every centre strictly inside the domain
-    const double margin = spec.bulk_margin * 2 * rd.mean;
-    rep.bulk_lower = base + margin;
     // The top of the bulk: the mean surface height over lateral bins one mean diameter wide
     // (highest z + R of the spheres centred in each bin), so that the rough active zone of the
     // surface is excluded rather than measured from its highest peak.
@@ -688,6 +686,9 @@ namespace anticrack::dem
       for (const double h : surface)
         mean_surface += h;
       mean_surface /= static_cast<double>(surface.size());
+      // A thin layer (a weak layer of a few diameters) keeps the middle half of its thickness.
+      const double margin = std::min(spec.bulk_margin * 2 * rd.mean, 0.25 * (mean_surface - base));
+      rep.bulk_lower = base + margin;
       rep.bulk_upper = mean_surface - margin;
     }
     double solid = 0;

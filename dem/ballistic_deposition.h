@@ -63,7 +63,7 @@ namespace anticrack::dem
     std::uint64_t seed = 1;
     bool base_layer = true;   ///< the plane z = box_lower.z stops spheres (else they fall through)
     Index max_roll_events = 1000; ///< rolling: events per sphere before the sticky fallback
-    double bulk_margin = 4;   ///< mean diameters excluded at the bottom and top of the bulk slab
+    double bulk_margin = 4;   ///< mean diameters excluded at the bottom and top of the bulk slab (at most a quarter of the thickness each)
     double contact_tolerance = 1e-9; ///< gap <= tolerance * min(R_i, R_j) counts as a contact
   };
 
@@ -78,8 +78,8 @@ namespace anticrack::dem
     double mean_contacts_all = 0;    ///< 2 * contact pairs / particles, whole deposit
     double height = 0;               ///< max(z + R) - base
     /// z of the bulk slab: base + margin .. mean surface height - margin, margin = bulk_margin
-    /// mean diameters; the mean surface height averages the highest z + R over lateral bins one
-    /// mean diameter wide.
+    /// mean diameters, at most a quarter of the mean thickness (a thin layer keeps its middle half);
+    /// the mean surface height averages the highest z + R over lateral bins one mean diameter wide.
     double bulk_lower = 0, bulk_upper = 0;
   };
 

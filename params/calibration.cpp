@@ -193,8 +193,12 @@ namespace anticrack::params
       c.realizations.assign(realizations.begin(), realizations.end());
       c.solid_fraction = mean_of(c.tests, &CampaignTest::solid_fraction);
       c.coordination = mean_of(c.tests, &CampaignTest::coordination);
+      if (!(c.solid_fraction > 0 && c.solid_fraction < 1) || !(c.coordination > 0))
+        throw CalibrationError(where + ": the campaign records solid fraction " + std::to_string(c.solid_fraction) +
+                               " and coordination " + std::to_string(c.coordination) +
+                               " for the samples; the density and the contact density need 0 < phi < 1 and z > 0");
       c.contact_density = c.solid_fraction * c.coordination; // ν_c = z φ (seed 002)
-      c.specimen_height = mean_of(c.tests, &CampaignTest::specimen_height);
+      c.layer_thickness = mean_of(c.tests, &CampaignTest::layer_thickness);
       c.density = c.solid_fraction * c.material.particle_density;
 
       c.base_plane = fit_plane(StressPlane::base_stresses, c.tests, options, where);
@@ -205,12 +209,14 @@ namespace anticrack::params
           where + ", " + plane_id(options.fe_plane) + " plane: the cohesive Cam-Clay fit does not determine the "
           "surface for the material file: " + fe.cam_clay_not_determined + ". " +
           (options.fe_plane == StressPlane::invariants ?
-             "Laterally confined tests reach only a narrow fan of q/p; take the material from the (sigma, tau) "
-             "fit (--fe-plane sigma-tau), or add stress paths of other q/p (open sides, triaxial tests) or "
-             "more loading angles and realizations" :
-             "Add loading angles near 0 and 180 deg, or realizations"));
+             std::string(c.material.laterally_periodic ? "Laterally confined tests reach only a narrow fan of q/p; "
+                                                         "take" :
+                                                         "Take") +
+               " the material from the (sigma, tau) fit (--fe-plane sigma-tau), or add stress paths of "
+               "other q/p (open sides, triaxial tests), loading angles or realizations" :
+             std::string("Add loading angles near 0 and 180 deg, or realizations")));
       c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_parameters(), options.confidence);
-      c.elastic = elastic_constants(campaign, c.index, options.confidence);
+      c.elastic = elastic_constants(campaign, c.index, options.confidence, options.poisson_ratio);
       c.softening = collapse_softening(campaign, c.index, fe.cam_clay_parameters().p0,
                                        c.elastic.bulk_modulus.mean, c.elastic.axial_modulus.mean, options.confidence);
       result.microstructures.push_back(std::move(c));
@@ -254,7 +260,7 @@ namespace anticrack::params
       mm.macro_modulus.push_back(c.elastic.youngs_modulus.mean);
       mm.bond_strength.push_back(c.material.bond_tensile_strength);
       mm.macro_strength.push_back(strength / count); // count > 0: elastic_constants needs psi = 0
-      reference_thickness += c.specimen_height / static_cast<double>(result.microstructures.size());
+      reference_thickness += c.layer_thickness / static_cast<double>(result.microstructures.size());
     }
     if (distinct(mm.particle_modulus) >= 3)
       mm.modulus = MicroMacroLaw{fit_line(mm.particle_modulus, mm.macro_modulus, options.confidence,

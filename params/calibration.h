@@ -55,6 +55,7 @@ namespace anticrack::params
     double confidence = 0.95;
     int bootstrap_samples = 1000; ///< resamples of the realizations (needs >= 3 realizations)
     std::uint64_t seed = 1;       ///< of the bootstrap: the calibration is reproducible
+    std::optional<double> poisson_ratio; ///< given ν for specimens that are not isotropic
   };
 
   /// The fits of all envelope models to one microstructure's failure points in one plane.
@@ -93,7 +94,8 @@ namespace anticrack::params
     MicrostructureMaterial material;
     std::vector<CampaignTest> tests;  ///< the completed tests used
     std::vector<int> realizations;    ///< distinct realization ids
-    double solid_fraction = 0, coordination = 0, contact_density = 0, specimen_height = 0; ///< means
+    double solid_fraction = 0, coordination = 0, contact_density = 0; ///< means over the tests
+    double layer_thickness = 0;       ///< h of the deformable layer [m], the reference thickness
     double density = 0;               ///< φ ρ_particle [kg/m³]
     PlaneCalibration base_plane, invariant_plane;
     FlowRuleAnalysis flow_rule;
@@ -112,7 +114,7 @@ namespace anticrack::params
     SampleStatistics M_statistics;    ///< M's mean and spread
   };
 
-  /// Seed 000 Eqs. 5–8 across microstructures, with its thickness scaling (reference = the specimens').
+  /// Seed 000 Eqs. 5–8 across microstructures, with its thickness scaling (reference = the layers' h).
   struct MicroMacroRelations
   {
     std::vector<double> particle_modulus, macro_modulus;   ///< Young's modulus of the continuum

@@ -123,7 +123,7 @@ namespace anticrack::params
       hdf5::write_number_attribute(g.id, "solid_fraction", c.solid_fraction);
       hdf5::write_number_attribute(g.id, "coordination", c.coordination);
       hdf5::write_number_attribute(g.id, "contact_density", c.contact_density);
-      hdf5::write_number_attribute(g.id, "specimen_height", c.specimen_height);
+      hdf5::write_number_attribute(g.id, "layer_thickness", c.layer_thickness);
       hdf5::write_number_attribute(g.id, "bond_tensile_strength", c.material.bond_tensile_strength);
       hdf5::write_number_attribute(g.id, "particle_modulus", c.material.particle_modulus);
       {
@@ -187,7 +187,7 @@ namespace anticrack::params
         const hdf5::Handle curves = hdf5::create_group(g.id, "curves");
         for (const auto &t : c.tests)
         {
-          const TestHistory h = calibration.campaign.history(t.id);
+          const TestHistory h = calibration.campaign.history(t);
           const hdf5::Handle tg = hdf5::create_group(curves.id, t.id);
           hdf5::write_doubles(tg.id, "normal_strain", h.normal_strain, "-", "-u_z / H0");
           hdf5::write_doubles(tg.id, "shear_strain", h.shear_strain, "-", "u_x / H0");
@@ -298,7 +298,8 @@ namespace anticrack::params
         << "# realizations (elasticity, softening); bootstrap intervals are in calibration.h5 and summary.json.\n"
         << "# Elasticity: axial secant modulus " << number(e.axial_modulus.mean) << " Pa at psi = 0 ("
         << (e.laterally_confined ? "laterally confined: constrained modulus" : "open sides: Young's modulus")
-        << "), shear secant modulus " << number(e.shear_modulus.mean) << " Pa at psi = 90 deg; bulk modulus K = "
+        << "), shear secant modulus " << number(e.shear_modulus.mean) << " Pa at psi = 90 deg"
+        << (e.poisson_ratio_given ? " (not used: Poisson's ratio given)" : "") << "; bulk modulus K = "
         << number(e.bulk_modulus.mean) << " Pa.\n"
         << "# Softening: p0 = K sinh(xi max(-alpha, 0)), collapse law (every plastic volume change softens);\n"
         << "# xi from the drop to R p0 over a plastic volumetric strain of "
@@ -314,7 +315,7 @@ namespace anticrack::params
         << "  set Hardening law = collapse\n"
         << "  set Hardening factor xi = " << number(soft.hardening_factor.mean) << "\n"
         << "  set Residual strength ratio = " << number(soft.residual_ratio.mean) << "\n"
-        << "  set Reference thickness [m] = " << number(c.specimen_height) << "\n"
+        << "  set Reference thickness [m] = " << number(c.layer_thickness) << "\n"
         << "  subsection Uncertainty\n"
         << "    set Confidence = " << number(calibration.options.confidence) << "\n"
         << "    set Compressive strength p0 interval [Pa] = " << interval_text(surface.ci_lower[0], surface.ci_upper[0]) << "\n"
@@ -368,12 +369,13 @@ namespace anticrack::params
         {"coordination", c.coordination},
         {"contact_density", c.contact_density},
         {"density_kg_per_m3", c.density},
-        {"specimen_height_m", c.specimen_height},
+        {"layer_thickness_m", c.layer_thickness},
         {"sigma_tau_plane", plane_json(c.base_plane)},
         {"p_q_plane", plane_json(c.invariant_plane)},
         {"flow_rule", flow},
         {"elastic",
          Json{{"laterally_confined", c.elastic.laterally_confined},
+              {"poisson_ratio_given", c.elastic.poisson_ratio_given},
               {"axial_secant_modulus_Pa", statistics_json(c.elastic.axial_modulus)},
               {"shear_modulus_Pa", statistics_json(c.elastic.shear_modulus)},
               {"youngs_modulus_Pa", statistics_json(c.elastic.youngs_modulus)},

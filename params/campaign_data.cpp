@@ -73,10 +73,10 @@ namespace anticrack::params
       const auto sigma = column(g.id, "sigma", n, file), tau = column(g.id, "tau", n, file);
       const auto p = column(g.id, "p", n, file), q = column(g.id, "q", n, file);
       const auto flow = column(g.id, "flow_angle_deg", n, file);
-      const auto secant = column(g.id, "secant_modulus", n, file);
       const auto solid = column(g.id, "solid_fraction", n, file);
       const auto coordination = column(g.id, "coordination", n, file);
       const auto height = column(g.id, "specimen_height", n, file);
+      const auto thickness = column(g.id, "layer_thickness", n, file);
       const auto love = hdf5::read_doubles(g.id, "love_stress");
       if (love.size() != 9 * n)
         throw CalibrationError(file + ": /failure_points/love_stress is not n x 3 x 3");
@@ -96,12 +96,13 @@ namespace anticrack::params
         for (int c = 0; c < 9; ++c)
           t.love_stress[c] = love[9 * k + c];
         t.flow_angle_deg = flow[k];
-        t.secant_modulus = secant[k];
         t.solid_fraction = solid[k];
         t.coordination = coordination[k];
         t.specimen_height = height[k];
-        if (t.completed() && !(t.specimen_height > 0))
-          throw CalibrationError(file + ": test " + t.id + " has no specimen height (it was run by an anticrack "
+        t.layer_thickness = thickness[k];
+        if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
+          throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
+                                 "run by an anticrack "
                                  "older than campaign format 2); delete its directory tests/" + t.id +
                                  " and resume the campaign to run it again");
         data.tests.push_back(t);
@@ -119,8 +120,9 @@ namespace anticrack::params
     return data;
   }
 
-  TestHistory CampaignData::history(const std::string &id) const
+  TestHistory CampaignData::history(const CampaignTest &test) const
   {
+    const std::string &id = test.id;
     try
     {
       const hdf5::Handle f = hdf5::open_file_read_only(file);
@@ -129,6 +131,10 @@ namespace anticrack::params
       TestHistory h;
       h.normal_strain = hdf5::read_doubles(g.id, "normal_strain");
       h.shear_strain = hdf5::read_doubles(g.id, "shear_strain");
+      const double layer_strain_per_history_strain = test.specimen_height / test.layer_thickness;
+      for (auto *strain : {&h.normal_strain, &h.shear_strain})
+        for (double &value : *strain)
+          value *= layer_strain_per_history_strain;
       h.sigma = hdf5::read_doubles(g.id, "base_normal_stress");
       h.tau = hdf5::read_doubles(g.id, "base_shear_stress");
       h.love_xx = hdf5::read_doubles(g.id, "love_stress_xx");

@@ -21,9 +21,9 @@ namespace anticrack::params
     double p = 0, q = 0;            ///< Love–Weber invariants at failure, p compression positive [Pa]
     std::array<double, 9> love_stress{}; ///< full tensor at failure, tension positive, row-major [Pa]
     double flow_angle_deg = 0;      ///< atan2(Δu_z, Δu_x) of the clump after failure
-    double secant_modulus = 0;      ///< base σ over normal strain to 70 % of the peak (seed 000) [Pa]
     double solid_fraction = 0, coordination = 0;
-    double specimen_height = 0;     ///< H0 [m]; strains in the histories are u / H0
+    double specimen_height = 0;     ///< H0 [m], the whole specimen (rigid base and clump included)
+    double layer_thickness = 0;     ///< h [m], the deformable layer between base and clump
 
     [[nodiscard]] bool completed() const { return status == "completed"; }
   };
@@ -39,11 +39,14 @@ namespace anticrack::params
     bool laterally_periodic = false;  ///< periodic x and y: uniaxial strain at ψ = 0
   };
 
-  /// The columns of one test's history that the calibration uses.
+  /// The columns of one test's history that the calibration uses. The strains are those of the
+  /// deformable layer, u/h: the histories store u/H0 over the whole specimen, whose rigid base and
+  /// clump do not deform, so they are rescaled by H0/h on reading (for seed 000's weak layer under
+  /// its actuator layer H0/h is about 2.5).
   struct TestHistory
   {
-    std::vector<double> normal_strain;  ///< −u_z / H0, compression positive
-    std::vector<double> shear_strain;   ///< u_x / H0
+    std::vector<double> normal_strain;  ///< −u_z / h, compression positive
+    std::vector<double> shear_strain;   ///< u_x / h
     std::vector<double> sigma, tau;     ///< base stresses [Pa]
     std::vector<double> love_xx, love_yy, love_zz; ///< Love–Weber normal components, tension positive [Pa]
   };
@@ -56,9 +59,9 @@ namespace anticrack::params
     std::vector<MicrostructureMaterial> microstructures;
     std::vector<CampaignTest> tests;  ///< the campaign proper (quasi-static references apart)
 
-    /// The history of test `id` from /tests/<id>/history; throws CalibrationError naming the file and
-    /// test if it is missing or lacks a column.
-    [[nodiscard]] TestHistory history(const std::string &id) const;
+    /// The history of `test` from /tests/<id>/history, strains per layer thickness; throws
+    /// CalibrationError naming the file and test if it is missing or lacks a column.
+    [[nodiscard]] TestHistory history(const CampaignTest &test) const;
   };
 
   /// Reads and validates `file` (format anticrack-campaign, version 2). Throws CalibrationError with

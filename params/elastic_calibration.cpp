@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace anticrack::params
 {
@@ -41,7 +42,8 @@ namespace anticrack::params
     }
   } // namespace
 
-  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence)
+  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence,
+                                     std::optional<double> given_poisson_ratio)
   {
     const auto compression = tests_at(campaign, m, 0.0), shear = tests_at(campaign, m, 90.0);
     const std::string where = campaign.file + ", microstructure " + std::to_string(m);
@@ -50,17 +52,29 @@ namespace anticrack::params
                              "(compression) and 90 deg (shear); add them to Campaign/Loading angles [deg]");
     ElasticConstants c;
     c.laterally_confined = campaign.microstructures.at(m).laterally_periodic;
+    c.poisson_ratio_given = given_poisson_ratio.has_value();
+    if (given_poisson_ratio && !(*given_poisson_ratio > -1 && *given_poisson_ratio < 0.5))
+      throw CalibrationError("the given Poisson's ratio " + std::to_string(*given_poisson_ratio) +
+                             " is not in (-1, 0.5)");
     std::vector<double> axial, shear_moduli, young, poisson, bulk, k0;
     for (const auto &[r, compression_test] : compression)
     {
       const auto s = shear.find(r);
       if (s == shear.end())
         continue;
-      const TestHistory h = campaign.history(s->second->id);
+      const TestHistory h = campaign.history(*s->second);
       const double G = dem::secant_modulus(h.shear_strain, h.tau, peak_index(h.tau), 0.7);
-      const double M = compression_test->secant_modulus;
+      const TestHistory ch = campaign.history(*compression_test);
+      const double M = dem::secant_modulus(ch.normal_strain, ch.sigma, peak_index(ch.sigma), 0.7);
       double E, nu, K;
-      if (c.laterally_confined)
+      if (given_poisson_ratio)
+      {
+        // nu given: E from the axial modulus alone (M = E (1 - nu)/((1 + nu)(1 - 2 nu)) if confined).
+        nu = *given_poisson_ratio;
+        E = c.laterally_confined ? M * (1 + nu) * (1 - 2 * nu) / (1 - nu) : M;
+        K = E / (3.0 * (1.0 - 2.0 * nu));
+      }
+      else if (c.laterally_confined)
       {
         K = M - 4.0 * G / 3.0;
         E = 9.0 * K * G / (3.0 * K + G);
@@ -76,14 +90,16 @@ namespace anticrack::params
         throw CalibrationError(where + ", tests " + compression_test->id + " and " + s->second->id +
                                ": inadmissible elastic constants (axial modulus " + std::to_string(M) +
                                " Pa, shear modulus " + std::to_string(G) + " Pa give K = " + std::to_string(K) +
-                               " Pa, nu = " + std::to_string(nu) + "; need K > 0 and -1 < nu < 0.5)");
+                               " Pa, nu = " + std::to_string(nu) + "; need K > 0 and -1 < nu < 0.5): the "
+                               "specimen does not respond like an isotropic solid (e.g. the columns of a "
+                               "ballistic deposit, stiff in compression, soft in shear); give the Poisson's "
+                               "ratio (--poisson-ratio) to take E from the axial modulus alone");
       axial.push_back(M), shear_moduli.push_back(G), young.push_back(E), poisson.push_back(nu), bulk.push_back(K);
 
       if (c.laterally_confined)
       {
         // K0 in the elastic range: at the first sample where σ reaches 35 % of its peak (half of the
         // secant modulus' 70 %, well before the bond breakage that precedes the peak).
-        const TestHistory ch = campaign.history(compression_test->id);
         const double target = 0.35 * ch.sigma[peak_index(ch.sigma)];
         const auto k = static_cast<std::size_t>(
           std::find_if(ch.sigma.begin(), ch.sigma.end(), [&](double v) { return v >= target; }) - ch.sigma.begin());
@@ -117,7 +133,7 @@ namespace anticrack::params
     std::vector<std::string> excluded;
     for (const auto &[r, t] : tests_at(campaign, m, 0.0))
     {
-      const TestHistory h = campaign.history(t->id);
+      const TestHistory h = campaign.history(*t);
       const auto peak = static_cast<std::size_t>(peak_index(h.sigma));
       const std::size_t after_peak = h.sigma.size() - 1 - peak;
       if (after_peak < 2)

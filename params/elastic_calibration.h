@@ -3,7 +3,7 @@
 // t-interval over the realizations.
 //
 // Elasticity. The compression test gives the secant modulus of the base normal stress against the
-// normal strain to 70 % of the peak (seed 000). With periodic sides (seed 002) the specimen is
+// normal strain of the deformable layer to 70 % of the peak (seed 000; strains u/h, campaign_data.h). With periodic sides (seed 002) the specimen is
 // laterally confined, so that modulus is the constrained (P-wave) modulus M = K + 4G/3; with open
 // sides (seed 000) it is Young's modulus E. The shear test gives G as the secant modulus of τ against
 // γ = u_x/H0 to 70 % of its peak (the clump moves along x over a fixed base: simple shear). Then
@@ -27,13 +27,16 @@
 #include "params/campaign_data.h"
 #include "params/regression.h"
 
+#include <optional>
+
 namespace anticrack::params
 {
   struct ElasticConstants
   {
     bool laterally_confined = false;
+    bool poisson_ratio_given = false; ///< ν from the user, E from the axial modulus alone
     SampleStatistics axial_modulus;   ///< M (confined) or E (open sides), secant to 70 % [Pa]
-    SampleStatistics shear_modulus;   ///< G [Pa]
+    SampleStatistics shear_modulus;   ///< G [Pa], measured
     SampleStatistics youngs_modulus;  ///< E [Pa]
     SampleStatistics poisson_ratio;   ///< ν
     SampleStatistics bulk_modulus;    ///< K [Pa]
@@ -41,9 +44,12 @@ namespace anticrack::params
   };
 
   /// From the ψ = 0 and ψ = 90° tests of microstructure `m` (every completed realization having both).
-  /// Throws CalibrationError if either angle is missing or the constants are not admissible
-  /// (K <= 0, ν outside (−1, 0.5)), naming the test.
-  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence);
+  /// With `given_poisson_ratio`, E comes from the axial modulus and that ν alone (the shear modulus
+  /// is still measured and reported): for specimens that are not isotropic. Throws CalibrationError
+  /// if either angle is missing or the constants are not admissible (K <= 0, ν outside (−1, 0.5)),
+  /// naming the tests.
+  ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence,
+                                     std::optional<double> given_poisson_ratio = std::nullopt);
 
   struct SofteningEstimate
   {

@@ -946,8 +946,11 @@ def synthetic_row(rng, m, r, psi, micro, constrained, G, noise):
     sigma = constrained * peak_strain * shape if psi == 0 else row["sigma"] * shape
     tau = G * peak_strain * shape if psi == 90 else row["tau"] * shape
     nu = SYNTHETIC["nu"]
+    # The histories store u / H0 over the whole specimen (H0 = 10 mm); the layer between base and
+    # clump (h = 8 mm) carries the strain: u / H0 = strain h / H0.
+    stored = strain * 0.008 / 0.01
     row["history"] = {
-        "normal_strain": strain if psi != 90 else zeros, "shear_strain": zeros if psi != 90 else strain,
+        "normal_strain": stored if psi != 90 else zeros, "shear_strain": zeros if psi != 90 else stored,
         "base_normal_stress": sigma, "base_shear_stress": tau,
         # Uniaxial strain: lateral stress K0 sigma_zz with K0 = nu / (1 - nu); tension positive.
         "love_stress_zz": -sigma, "love_stress_xx": -nu / (1 - nu) * sigma, "love_stress_yy": -nu / (1 - nu) * sigma}
@@ -976,7 +979,8 @@ def write_campaign_file(path, rows, microstructures, version):
         for name in ["microstructure", "realization", "loading_angle_deg", "sigma", "tau", "p", "q", "flow_angle_deg",
                      "solid_fraction", "coordination", "secant_modulus"]:
             fp[name] = np.array([row[name] for row in rows], dtype=float)
-        for name, value in {"softening_ratio": SYNTHETIC["residual_ratio"], "specimen_height": 0.01, "bonds": 1000.0,
+        for name, value in {"softening_ratio": SYNTHETIC["residual_ratio"], "specimen_height": 0.01,
+                            "layer_thickness": 0.008, "bonds": 1000.0,
                             "peak_q": 0.0, "max_inertial_number": 1e-4, "failure_time": 0.0, "failure_step": 0.0}.items():
             fp[name] = np.full(n, value)
         fp["love_stress"] = np.zeros((n, 3, 3))
@@ -1045,6 +1049,11 @@ def calibrate_synthetic(work):
         check(os.path.getsize(os.path.join(out, png + ".png")) > 10000, f"{png}.png missing or empty")
     _, stderr = anticrack("calibrate", campaign, "-o", out, "--no-plots", expect=2)
     check("--overwrite" in stderr, f"an earlier calibration is not protected: {stderr}")
+    # A given Poisson's ratio (for anisotropic specimens) takes E from the constrained modulus alone:
+    # with the true nu it is the same E.
+    anticrack("calibrate", campaign, "-o", out, "--no-plots", "--overwrite", "--poisson-ratio", str(SYNTHETIC["nu"]))
+    material = read_material(os.path.join(out, "material.prm"))
+    check(abs(float(material["Young's modulus [Pa]"]) / SYNTHETIC["E"] - 1) < 1e-5, "E with a given nu")
 
 
 @case

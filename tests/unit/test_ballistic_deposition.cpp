@@ -124,6 +124,23 @@ namespace anticrack::dem
     EXPECT_GE(s.domain.upper.z(), rep.height);
   }
 
+  // A thin layer (seed 000's weak layer is ~6 diameters thick) is thinner than the two default
+  // margins of 4 diameters: its bulk slab must still exist (the middle half of the thickness) and
+  // measure the sticky solid fraction, not report 0.
+  TEST(BallisticDeposition, ThinLayerKeepsItsMiddleHalfAsBulk)
+  {
+    DemSystem s = make_system();
+    const DepositionReport rep = add_ballistic_deposit(s, make_spec(DepositionRule::sticky, 20, 450));
+    // The slab is the middle half: bulk_lower = thickness / 4 above the base (z = 0), and the mean
+    // thickness, twice the slab, is below the 2 x 4 diameters of the default margins.
+    ASSERT_GT(rep.bulk_upper, rep.bulk_lower);
+    const double thickness = 2 * (rep.bulk_upper - rep.bulk_lower);
+    EXPECT_LT(thickness, 16 * R0);
+    EXPECT_NEAR(rep.bulk_lower, thickness / 4, 1e-12);
+    EXPECT_GT(rep.solid_fraction_bulk, 0.1);
+    EXPECT_LT(rep.solid_fraction_bulk, 0.25);
+  }
+
   TEST(BallisticDeposition, RollingSolidFractionAndThreePointRest)
   {
     DemSystem s = make_system();
