@@ -11,6 +11,8 @@
 // underlying integer, Quat -> 4 doubles (w, x, y, z).
 #include "dem/io_hdf5.h"
 
+#include "util/hdf5_file.h"
+
 #include <hdf5.h>
 
 #include <array>
@@ -68,25 +70,6 @@ namespace anticrack::dem::io
       }
       return status;
     }
-
-    /// Turns HDF5's automatic error printing off while it lives: errors are reported through our
-    /// exceptions, which carry HDF5's own description.
-    class QuietHdf5Errors
-    {
-    public:
-      QuietHdf5Errors()
-      {
-        H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-      }
-      ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-      QuietHdf5Errors(const QuietHdf5Errors &) = delete;
-      QuietHdf5Errors &operator=(const QuietHdf5Errors &) = delete;
-
-    private:
-      H5E_auto2_t function_ = nullptr;
-      void *data_ = nullptr;
-    };
 
     // ------------------------------------------------------------------------------------------
     // RAII handles
@@ -813,7 +796,7 @@ namespace anticrack::dem::io
     template <class Content>
     void write_atomically(const std::string &file, bool durable, Content &&content)
     {
-      const QuietHdf5Errors quiet;
+      const hdf5::QuietErrors quiet; // errors are reported through our exceptions
       const std::string temporary = file + ".tmp";
       try
       {
@@ -894,7 +877,7 @@ namespace anticrack::dem::io
 
   ExternalSample read_sample(const std::string &file)
   {
-    const QuietHdf5Errors quiet;
+    const hdf5::QuietErrors quiet; // errors are reported through our exceptions
     const Node root = Node::open_file(file);
     ExternalSample sample;
     const Node particles = root.open_group("particles");
@@ -945,7 +928,7 @@ namespace anticrack::dem::io
 
   void read_checkpoint(const std::string &file, DemSystem &system)
   {
-    const QuietHdf5Errors quiet;
+    const hdf5::QuietErrors quiet; // errors are reported through our exceptions
     const Node root = Node::open_file(file);
     require_format(root, checkpoint_format);
 

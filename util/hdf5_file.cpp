@@ -40,24 +40,6 @@ namespace anticrack::hdf5
       return type;
     }
 
-    /// Silences HDF5's own error stack printing while a lookup that may fail runs.
-    class QuietErrors
-    {
-    public:
-      QuietErrors()
-      {
-        H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-      }
-      ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-      QuietErrors(const QuietErrors &) = delete;
-      QuietErrors &operator=(const QuietErrors &) = delete;
-
-    private:
-      H5E_auto2_t function_ = nullptr;
-      void *data_ = nullptr;
-    };
-
     Handle open_dataset(hid_t group, const std::string &name)
     {
       if (!exists(group, name))

@@ -24,6 +24,25 @@ namespace anticrack::hdf5
     Handle(Handle &&other) noexcept;
   };
 
+  /// Turns HDF5's automatic error printing off while it lives (lookups that may fail, readers that
+  /// report errors through their own exceptions), and restores it afterwards.
+  class QuietErrors
+  {
+  public:
+    QuietErrors()
+    {
+      H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    }
+    ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+    QuietErrors(const QuietErrors &) = delete;
+    QuietErrors &operator=(const QuietErrors &) = delete;
+
+  private:
+    H5E_auto2_t function_ = nullptr;
+    void *data_ = nullptr;
+  };
+
   /// "file.h5:/group/name" of an open object (for error messages).
   std::string location(hid_t object, const std::string &name = "");
 
