@@ -2,7 +2,7 @@
 
 #include "app/dem_run.h"
 #include "app/input_error.h"
-#include "app/material_parameters.h"
+#include "fem/material_file.h"
 #include "app/summary.h"
 #include "params/calibration_error.h"
 #include "params/calibration_output.h"
@@ -107,7 +107,7 @@ namespace anticrack::app
     {
       material_names.push_back(material_file_name(m, calibration.microstructures.size()));
       material_texts.push_back(params::material_file_text(calibration, m, version));
-      read_material_text(material_texts.back(), material_names.back());
+      fem::read_material_text(material_texts.back(), material_names.back());
     }
     fs::create_directories(directory);
     for (std::size_t m = 0; m < material_names.size(); ++m)

@@ -3,16 +3,11 @@
 // started give exit code 1).
 #pragma once
 
-#include <stdexcept>
-#include <string>
+#include "util/input_error.h"
 
 namespace anticrack::app
 {
-  class InputError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
+  using anticrack::InputError;
 
   /// Exit codes of the `anticrack` executable.
   enum ExitCode : int

@@ -14,6 +14,8 @@
 #include "app/bench.h"
 #include "app/calibrate.h"
 #include "app/dem_run.h"
+#include "app/fem_run.h"
+#include "fem/snowpack_scene.h"
 #include "app/input_error.h"
 #include "app/scene_parameters.h"
 #include "dem/types.h"
@@ -150,6 +152,8 @@ int main(int argc, char **argv)
     if (*run)
     {
       run_options.command_line = join_arguments(argc, argv);
+      if (anticrack::fem::is_snowpack_scene(run_options.scene_file))
+        return run_snowpack_scene(run_options);
       return run_scene(run_options);
     }
     if (*calibrate)
@@ -160,7 +164,8 @@ int main(int argc, char **argv)
       return run_calibration(calibrate_options);
     }
     if (*check)
-      return check_scene(check_file, check_threads);
+      return anticrack::fem::is_snowpack_scene(check_file) ? check_snowpack_scene(check_file)
+                                                           : check_scene(check_file, check_threads);
     if (*params)
     {
       print_parameter_documentation(std::cout, format == "json"        ? ParameterFormat::json :

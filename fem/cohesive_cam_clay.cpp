@@ -90,6 +90,31 @@ namespace anticrack::fem
       return {p0, -m.hardening_factor * m.bulk_modulus * std::cosh(argument), false};
     }
 
+    /// The lock-up at a total strain: p_d = K_d ⟨−tr ε − ε_d⟩ and whether it is engaged (−tr ε > ε_d,
+    /// so that the tangent K_d I⊗I is that of the locked side strictly beyond ε_d). The only place
+    /// the formula is written: the update, its tangent, densification_pressure() and
+    /// p_wave_modulus() all call it.
+    struct LockUp
+    {
+      double pressure = 0;
+      bool engaged = false;
+    };
+
+    LockUp lock_up(const CamClayParameters &m, const SymmetricTensor<2, 3> &total_strain)
+    {
+      LockUp l;
+      if (m.densification_strain > 0)
+        {
+          const double excess = -dealii::trace(total_strain) - m.densification_strain;
+          if (excess > 0)
+            {
+              l.pressure = m.densification_modulus * excess;
+              l.engaged = true;
+            }
+        }
+      return l;
+    }
+
     /// Projection of the trial point (p_tr, q_tr) on the surface of a fixed p0.
     struct Projection
     {
@@ -528,6 +553,19 @@ namespace anticrack::fem
             throw ReturnMappingError(describe("no convergence with " + std::to_string(n) + " sub-steps"));
           n *= 2;
         }
+      // The lock-up acts in parallel with the Cam-Clay part and has no history: it is added once,
+      // at the final total strain, after the return (which never sees it).
+      const LockUp lock = lock_up(m, total_strain);
+      if (lock.engaged)
+        {
+          const SymmetricTensor<2, 3> I = dealii::unit_symmetric_tensor<3>();
+          result.stress -= lock.pressure * I;
+          result.densification_pressure = lock.pressure;
+          if (chain) // + K_d I⊗I: the nine components (i i j j)
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                chain->dstress[i][i][j][j] += m.densification_modulus;
+        }
       if (chain && !finite(chain->dstress))
         throw ReturnMappingError(describe("singular local Jacobian, the consistent tangent is undefined"));
       return result;
@@ -557,8 +595,25 @@ namespace anticrack::fem
             p0_initial, "<= K sinh(max_sinh_argument) when hardening_factor > 0 [Pa]");
     require(law == HardeningLaw::signed_volumetric || law == HardeningLaw::collapse, "law", static_cast<int>(law),
             "signed_volumetric (0) or collapse (1)");
+    require(std::isfinite(densification_strain) && densification_strain >= 0 && densification_strain < 1,
+            "densification_strain", densification_strain,
+            "in [0, 1) (the compaction -tr(strain) at lock-up; 0: no lock-up)");
+    require(std::isfinite(densification_modulus) && densification_modulus >= 0, "densification_modulus",
+            densification_modulus, ">= 0 [Pa]");
+    require(densification_strain == 0 || densification_modulus > 0, "densification_modulus", densification_modulus,
+            "> 0 [Pa] when densification_strain > 0");
+    require(densification_strain > 0 || densification_modulus == 0, "densification_modulus", densification_modulus,
+            "0 when densification_strain = 0 (lock-up off; set densification_strain to use it)");
     require(max_iterations >= 1, "max_iterations", max_iterations, ">= 1");
     require(max_substeps >= 1, "max_substeps", max_substeps, ">= 1");
+  }
+
+  double residual_p0_floor(double p0_initial, double residual_strength_ratio)
+  {
+    require(std::isfinite(p0_initial) && p0_initial > 0, "p0_initial", p0_initial, "> 0 [Pa]");
+    require(std::isfinite(residual_strength_ratio) && residual_strength_ratio >= 0 && residual_strength_ratio <= 1,
+            "residual strength ratio", residual_strength_ratio, "in [0, 1]");
+    return std::max(residual_strength_ratio, min_residual_strength_ratio) * p0_initial;
   }
 
   CamClayState CamClayState::initial(const CamClayParameters &parameters)
@@ -588,6 +643,18 @@ namespace anticrack::fem
     result.update = run(parameters, previous, total_strain, &chain);
     result.tangent = chain.dstress;
     return result;
+  }
+
+  double densification_pressure(const CamClayParameters &parameters,
+                                const dealii::SymmetricTensor<2, 3> &total_strain)
+  {
+    return lock_up(parameters, total_strain).pressure;
+  }
+
+  double p_wave_modulus(const CamClayParameters &parameters, const dealii::SymmetricTensor<2, 3> &total_strain)
+  {
+    const double elastic = parameters.bulk_modulus + 4 * parameters.shear_modulus / 3;
+    return lock_up(parameters, total_strain).engaged ? elastic + parameters.densification_modulus : elastic;
   }
 
   double mean_pressure(const dealii::SymmetricTensor<2, 3> &stress)

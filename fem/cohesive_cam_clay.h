@@ -19,6 +19,36 @@
 //                  Under hydrostatic compaction the collapse law snaps back when ξ cosh(ξ α) > 1
 //                  (so for ξ > 1 when p0 ≪ K): softening outruns the elastic unloading and the
 //                  backward-Euler step lands on the floor at once (a jump, not a path).
+//   densification  σ = σ_cc − p_d I,   p_d = K_d ⟨−tr ε − ε_d⟩,   ⟨x⟩ = max(x, 0),
+//                  σ_cc the Cam-Clay stress above, ε the TOTAL strain; off when ε_d = 0.
+//
+// Residual response after collapse (PHYSICS.md §2: a collapsed weak layer must not invert
+// elements). Two pieces act together:
+//  * the floor p0_floor is the residual strength: once the layer has collapsed (collapse law) p0
+//    sits there, and the Cam-Clay part keeps flowing plastically at the small stress of the floor
+//    surface (p <= p0_floor in compaction); residual_p0_floor() sets it from the material file's
+//    "Residual strength ratio";
+//  * the lock-up: when the compaction −tr ε exceeds ε_d the collapsed pores are closed and the
+//    grains are in contact; a compaction spring K_d in parallel with the Cam-Clay stress then
+//    carries the load. Under hydrostatic compaction past the collapse
+//        p = p_cc + K_d ⟨−tr ε − ε_d⟩,   p_cc = p0_floor,
+//    so a load p needs −tr ε = ε_d + (p − p0_floor)/K_d: with K_d of the order of the slab's
+//    modulus (MPa) and p = 1–10 kPa, ε_d + 1e-3 … 1e-2. For snow weak layers the collapse height is
+//    3–5 mm of 10–30 mm, ε_d ≈ 0.15–0.3.
+//    The spring is linear, so it keeps −tr ε < 1 (the small-strain image of det F > 0) for every
+//    mean stress p < p0_floor + K_d (1 − ε_d), not for an unbounded load; with K_d = 1 MPa and
+//    ε_d = 0.2 that is 0.8 MPa, ~100 times the weight of a 3 m slab (ρ g D ≈ 7 kPa). It bounds the
+//    volumetric compaction only: distortion at the residual strength is not bounded by it.
+//    K_d also enters the explicit time step (p_wave_modulus()): K_d ≫ K + 4G/3 of the layer shrinks
+//    the stable step of the locked elements by sqrt((K + 4G/3 + K_d)/(K + 4G/3)).
+// The lock-up is a nonlinear elastic (history-free, conservative: energy K_d ⟨·⟩²/2) spring. It does
+// NOT enter the yield function: the return mapping sees only σ_cc, and p_d only adds to the stress
+// and K_d I⊗I to the tangent (where −tr ε > ε_d). Reasons: it models a second load path (closed
+// pores, grain contacts) in parallel with the broken bond skeleton rather than a change of the
+// skeleton's strength; it keeps the Cam-Clay history (ε_p, α, p0) identical with and without it,
+// so the return mapping, its brackets and its tangent are untouched (bit-for-bit when off). The
+// price: the shear strength of a densified layer stays at the residual surface q_max(p0_floor)
+// whatever the confinement (no pressure-dependent friction of the compacted grains).
 //
 // Return mapping (backward Euler, closest point in the energy norm). With the trial state (p_tr, q_tr)
 // and c = 2 K M² Δγ, d = 1 + 6 G (1 + 2β) Δγ, PHYSICS.md §2 gives
@@ -66,6 +96,13 @@ namespace anticrack::fem
     double hardening_factor = 0; ///< ξ of p0 = K sinh(ξ max(−α, 0)), >= 0; 0: no hardening
     double p0_floor = 0;         ///< lower bound of p0 [Pa], > 0
     HardeningLaw law = HardeningLaw::signed_volumetric;
+    /// ε_d: the compaction −tr ε (of the TOTAL strain) at which the collapsed pores are closed and
+    /// the lock-up spring engages (header); in [0, 1); 0: no lock-up. Weak layers: ≈ 0.15–0.3.
+    double densification_strain = 0;
+    /// K_d [Pa]: modulus of the lock-up, p_d = K_d ⟨−tr ε − ε_d⟩; > 0 when densification_strain
+    /// > 0 and 0 when it is 0 (a modulus without a strain is refused rather than ignored).
+    /// Of the order of the densified layer's or the slab's modulus (MPa).
+    double densification_modulus = 0;
     /// Iterations allowed to each scalar solve of the return mapping (the projection for fixed p0
     /// and the hardening solve); when exceeded the strain increment is sub-stepped.
     unsigned int max_iterations = 60;
@@ -80,6 +117,19 @@ namespace anticrack::fem
     /// p0_initial <= K sinh(max_sinh_argument) when ξ > 0, and every value finite).
     void check() const;
   };
+
+  /// Smallest residual strength ratio residual_p0_floor() uses: p0_floor >= this × p0_initial.
+  inline constexpr double min_residual_strength_ratio = 1e-3;
+
+  /// p0_floor from the material file's "Residual strength ratio" R (residual / peak strength,
+  /// params/): max(R, min_residual_strength_ratio) · p0_initial [Pa].
+  /// The floor must stay positive even for R = 0: at p0 = 0 the surface shrinks to the point
+  /// p = q = 0 (no elastic range; the projection divides by M a ∝ p0, and check() requires
+  /// p0_floor > 0), and the return mapping is well conditioned and tested down to p0_floor =
+  /// 1e-3 p0 (p_tr/p0_floor ~ 1e3 in the projection). A thousandth of the peak is "no strength" for
+  /// the structure: the residual ratios the DEM measures are of order 0.1.
+  /// Throws std::invalid_argument unless p0_initial > 0 and 0 <= R <= 1 (both finite).
+  double residual_p0_floor(double p0_initial, double residual_strength_ratio);
 
   /// History of a material point. p0 is stored with α so that the state describes its own surface.
   struct CamClayState
@@ -105,13 +155,17 @@ namespace anticrack::fem
     /// summed over the sub-steps); 0 for an elastic step.
     unsigned int iterations = 0;
     unsigned int substeps = 1;       ///< number of sub-steps of the accepted integration
+    /// p_d = K_d ⟨−tr ε − ε_d⟩ [Pa] of the lock-up, already in `stress` (σ = σ_cc − p_d I): the
+    /// Cam-Clay part is stress + p_d I. 0 when the lock-up is off or not engaged.
+    double densification_pressure = 0;
   };
 
   /// The update and its algorithmic tangent.
   struct CamClayTangentUpdate
   {
     CamClayUpdate update;
-    /// dσ_{n+1}/dε_{n+1} of exactly the same update (sub-steps included). SymmetricTensor<4,3> stores
+    /// dσ_{n+1}/dε_{n+1} of exactly the same update (sub-steps included; plus K_d I⊗I where the
+    /// lock-up is engaged, −tr ε > ε_d; at −tr ε = ε_d the unlocked side). SymmetricTensor<4,3> stores
     /// all 6×6 components, so it holds the tangent without major symmetry (with hardening
     /// C_ijkl ≠ C_klij); only the minor symmetries, which any stress–strain tangent has, are used.
     dealii::SymmetricTensor<4, 3> tangent;
@@ -128,7 +182,8 @@ namespace anticrack::fem
   /// follows from d, 1 + c lying between 1 + k_min Δγ and 1 + k_max Δγ). ξ = 0, or the collapse law
   /// at the floor, fix p0 and need no hardening iterations. If a solve exceeds max_iterations or
   /// gives a non-finite value, the increment ε − ε_n is split into 2, 4, ... max_substeps equal
-  /// sub-steps; then ReturnMappingError. Never returns NaN.
+  /// sub-steps; then ReturnMappingError. Never returns NaN. The lock-up pressure of the final
+  /// total strain is added to the stress after the return (header; it is history-free).
   /// Precondition: parameters.check() passed (CamClayState::initial() calls it).
   CamClayUpdate update_stress(const CamClayParameters &parameters,
                               const CamClayState &previous,
@@ -141,6 +196,20 @@ namespace anticrack::fem
   CamClayTangentUpdate update_stress_and_tangent(const CamClayParameters &parameters,
                                                  const CamClayState &previous,
                                                  const dealii::SymmetricTensor<2, 3> &total_strain);
+
+  /// p_d = K_d ⟨−tr ε − ε_d⟩ [Pa] of the lock-up at total strain `total_strain` (0 when off). The
+  /// stress of update_stress() at that strain includes −p_d I.
+  double densification_pressure(const CamClayParameters &parameters,
+                                const dealii::SymmetricTensor<2, 3> &total_strain);
+
+  /// K + 4G/3, plus K_d where the lock-up is engaged (−tr ε > ε_d) [Pa]: for the explicit solver's
+  /// time step Δt <= h / sqrt(modulus/ρ). An upper bound of the elastic wave modulus at the point:
+  /// K + 4G/3 is the largest eigenvalue of the acoustic tensor of the elastic tangent, the lock-up
+  /// adds K_d I⊗I (longitudinal waves only), plastic loading is softer (unless the softening snaps
+  /// back, where no stable step exists) and unloading is elastic. It jumps by K_d at ε_d:
+  /// re-evaluate it as the strain changes, and keep a safety factor for points that reach ε_d
+  /// within a step.
+  double p_wave_modulus(const CamClayParameters &parameters, const dealii::SymmetricTensor<2, 3> &total_strain);
 
   /// p = −tr σ / 3 (compression positive).
   double mean_pressure(const dealii::SymmetricTensor<2, 3> &stress);

@@ -1,0 +1,325 @@
+// Physics tests of the FE solver on whole snowpack models (fem/snowpack_model, quasi_static,
+// explicit_dynamics, snowpack_run): patch test, gravity equilibrium against ρ g h, the energy
+// release rate of a saw cut against the beam on an elastic foundation, the P-wave arrival time, and
+// small dynamic PSTs in which the crack runs through and in which it arrests. Serial (1 rank);
+// 1 vs 2 ranks is an app test (tests/app, fem_mpi_equals_serial).
+#include "fem/closed_forms.h"
+#include "fem/explicit_dynamics.h"
+#include "fem/quasi_static.h"
+#include "fem/snowpack_model.h"
+#include "fem/snowpack_run.h"
+#include "fem/snowpack_scene.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace
+{
+  using namespace anticrack::fem;
+  using dealii::Point;
+  using dealii::SymmetricTensor;
+
+  /// A snowpack scene from the text of its subsections (the defaults fill the rest).
+  SnowpackScene scene_from(const std::string &text)
+  {
+    return read_snowpack_scene_text(text, "test.prm");
+  }
+
+  std::string layer(const std::string &section, double thickness, double density, double E, double nu,
+                    const std::string &extra = "")
+  {
+    std::ostringstream out;
+    out << "  subsection " << section << "\n    set Thickness [m] = " << thickness
+        << "\n    set Density [kg/m^3] = " << density << "\n    set Young's modulus [Pa] = " << E
+        << "\n    set Poisson's ratio = " << nu << "\n" << extra << "  end\n";
+    return out.str();
+  }
+
+  std::string elastic_weak_layer(double thickness, double density, double E, double nu)
+  {
+    return layer("Weak layer", thickness, density, E, nu, "    set Model = elastic\n");
+  }
+
+  std::string temporary_directory(const std::string &name)
+  {
+    const auto dir = std::filesystem::temp_directory_path() / ("anticrack_fem_solver_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+  }
+
+  /// Plane-strain isotropic stress of a 2D strain (σ_zz from ε_zz = 0).
+  SymmetricTensor<2, 3> elastic_stress(double E, double nu, const SymmetricTensor<2, 3> &strain)
+  {
+    const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+    return lambda * dealii::trace(strain) * dealii::unit_symmetric_tensor<3>() + 2 * mu * strain;
+  }
+
+  // ------------------------------------------------------------------------------------------
+  // Patch test: a linear displacement field on the graded, layered mesh (element heights 2.5 cm
+  // in the substratum, 5 mm in the weak layer, 4 cm in the slab; Q1 and Q2) gives the exact constant
+  // stress at every quadrature point and no internal force at any node off the boundary. Equal
+  // materials in all layers, so that the exact solution has one stress. The tolerance is round-off:
+  // forces relative to a typical nodal force E ε h.
+  void patch_test(unsigned int degree)
+  {
+    const double E = 2e6, nu = 0.3;
+    const SnowpackScene scene = scene_from("subsection Snowpack\n" + layer("Slab layer 1", 0.2, 200, E, nu) +
+                                           elastic_weak_layer(0.02, 200, E, nu) +
+                                           layer("Substratum", 0.05, 200, E, nu) +
+                                           "end\nsubsection PST\n  set Column length [m] = 0.4\n  set Cut length [m] = 0.1\n"
+                                           "end\nsubsection Mesh\n  set Polynomial degree = " +
+                                           std::to_string(degree) +
+                                           "\n  set Element length [m] = 0.03\n  set Slab element height [m] = 0.04\n"
+                                           "  set Substratum element height [m] = 0.025\nend\n"
+                                           "subsection Analysis\n  set Type = energy release rate\nend\n");
+    SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+    // u = A x with a full (non-symmetric) gradient: ε = sym A, rotation ignored by the stress.
+    const double A[2][2] = {{1e-3, -4e-4}, {7e-4, -2e-3}};
+    struct Linear : dealii::Function<2>
+    {
+      const double (*a)[2];
+      Linear(const double (*a_)[2]) : dealii::Function<2>(2), a(a_) {}
+      double value(const Point<2> &p, unsigned int c) const override { return a[c][0] * p[0] + a[c][1] * p[1]; }
+    } linear(A);
+    SnowpackModel<2>::VectorType u, force;
+    model.initialize_vector(u);
+    model.initialize_vector(force);
+    dealii::VectorTools::interpolate(model.dof_handler(), linear, u);
+    u.update_ghost_values();
+    model.evaluate(u, force, {});
+    model.commit();
+
+    SymmetricTensor<2, 3> strain;
+    strain[0][0] = A[0][0];
+    strain[1][1] = A[1][1];
+    strain[0][1] = 0.5 * (A[0][1] + A[1][0]);
+    const SymmetricTensor<2, 3> exact = elastic_stress(E, nu, strain);
+    for (const auto &cell : model.cell_summaries())
+      EXPECT_LT((cell.stress - exact).norm(), 1e-10 * exact.norm()) << "cell at " << cell.center;
+
+    // Interior nodes: not on the outer boundary of the column.
+    const dealii::MappingQ1<2> mapping;
+    std::map<dealii::types::global_dof_index, Point<2>> support_points;
+    dealii::DoFTools::map_dofs_to_support_points(mapping, model.dof_handler(), support_points);
+    const double L = 0.4, H = 0.27, typical = E * 2e-3 * 0.03;
+    unsigned int interior = 0;
+    for (const auto &[dof, point] : support_points)
+    {
+      if (!model.locally_owned_dofs().is_element(dof))
+        continue;
+      const bool boundary = point[0] < 1e-9 || point[0] > L - 1e-9 || point[1] < 1e-9 || point[1] > H - 1e-9;
+      if (boundary)
+        continue;
+      ++interior;
+      EXPECT_LT(std::abs(force(dof)), 1e-10 * typical) << "dof " << dof << " at " << point;
+    }
+    EXPECT_GT(interior, 100u);
+  }
+
+  TEST(FemPatch, LinearDisplacementGivesExactConstantStressQ1) { patch_test(1); }
+  TEST(FemPatch, LinearDisplacementGivesExactConstantStressQ2) { patch_test(2); }
+
+  // ------------------------------------------------------------------------------------------
+  // Gravity equilibrium of a layered column: far from the free ends of a long column the stress is
+  // that of a laterally confined column, σ_nn(z) = −g ∫_z^top ρ dz (equilibrium alone fixes it,
+  // whatever the lateral stress). A Q1 element's mean stress is the exact value at its centre
+  // (the 1D solution is quadratic in z, its nodal values are exact and the mean of a linear stress
+  // over the two Gauss points is the centre value). The free ends perturb the middle through the
+  // differential Poisson expansion of the layers, coupled by the weak layer's shear over the
+  // shear-lag length 1/μ = sqrt(E' H h / G_wl) ≈ 0.64 m: at 9 m from the ends e^{−14} ≈ 1e-6 of an
+  // effect of ~200 Pa (a 6 m column missed by 0.1 %), far below the 1e-6 relative tolerance.
+  TEST(FemGravity, LayeredColumnCarriesItsWeight)
+  {
+    const SnowpackScene scene = scene_from(
+      "subsection Snowpack\n  set Number of slab layers = 2\n" + layer("Slab layer 1", 0.1, 120, 1e6, 0.2) +
+      layer("Slab layer 2", 0.3, 300, 8e6, 0.25) +
+      layer("Weak layer", 0.02, 150, 3e5, 0.2,
+            "    set Compressive strength p0 [Pa] = 2e4\n    set Hardening factor xi = 0\n") +
+      layer("Substratum", 0.2, 350, 2e7, 0.3) +
+      "end\nsubsection PST\n  set Column length [m] = 20\n  set Cut length [m] = 0.1\nend\n"
+      "subsection Mesh\n  set Element length [m] = 0.2\n  set Slab element height [m] = 0.05\n"
+      "  set Substratum element height [m] = 0.05\nend\nsubsection Analysis\n  set Type = quasi-static\nend\n");
+    SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+    QuasiStaticSolver<2> solver(model);
+    SnowpackModel<2>::VectorType u;
+    model.initialize_vector(u);
+    solver.apply_gravity(u, 1);
+
+    // Overburden at height z: Σ ρ g × (part of each layer above z); layers as (bottom, top, ρ).
+    const double g = 9.81;
+    const double layers[4][3] = {{0, 0.2, 350}, {0.2, 0.22, 150}, {0.22, 0.52, 300}, {0.52, 0.62, 120}};
+    auto overburden = [&](double z) {
+      double sigma = 0;
+      for (const auto &l : layers)
+        sigma += l[2] * g * std::max(0., l[1] - std::max(l[0], z));
+      return sigma;
+    };
+    unsigned int checked = 0;
+    for (const auto &cell : model.cell_summaries())
+      if (std::abs(cell.center[0] - 10.0) < 1.0)
+      {
+        const double expected = -overburden(cell.center[1]);
+        EXPECT_NEAR(cell.stress[1][1], expected, 1e-6 * 0.62 * 300 * g) << "cell at " << cell.center;
+        ++checked;
+      }
+    EXPECT_GT(checked, 50u);
+    // The weak layer stayed elastic (p0 = 20 kPa ≫ 1.2 kPa of overburden).
+  }
+
+  // ------------------------------------------------------------------------------------------
+  // Energy release rate of a saw cut: the FE's −ΔΠ/Δa against the beam on an elastic foundation
+  // (fem/closed_forms.h, docs/fem_closed_forms.md) for the parameters where the beam model's own
+  // error estimate is 1.3 % (λH = 0.2, ν_wl = 0: shear deformation 0.5 %, slab rotation 0.75 %,
+  // weak-layer thickness 0.03 %). Q2 elements (0.1 m along the slope, 4 rows in the slab: bending
+  // without locking); the difference quotient of Π over one element length is second-order accurate
+  // at the midpoint (error Δa² G''/24 < 0.1 %). Tolerance 3 %: the model estimate plus the
+  // discretisation, with margin; a cut of the wrong length (one element more or less) would be
+  // 10–20 % off, wrong stiffness of the foundation a factor.
+  TEST(FemEnergyReleaseRate, SawCutMatchesBeamOnElasticFoundation)
+  {
+    const SnowpackScene scene =
+      scene_from("subsection Snowpack\n" + layer("Slab layer 1", 0.4, 250, 1e9, 0.25) +
+                 elastic_weak_layer(0.02, 1e-3, 28.4e3, 0) + layer("Substratum", 0, 300, 1e7, 0.25) +
+                 "end\nsubsection PST\n  set Column length [m] = 26\n  set Cut length [m] = 0.6\nend\n"
+                 "subsection Mesh\n  set Polynomial degree = 2\n  set Element length [m] = 0.1\n"
+                 "  set Weak layer elements = 2\n  set Slab element height [m] = 0.1\nend\n"
+                 "subsection Analysis\n  set Type = energy release rate\nend\n");
+    SnowpackRunOptions options;
+    options.output_directory = temporary_directory("err");
+    const Json results = run_snowpack(scene, options, MPI_COMM_WORLD);
+    const auto &cuts = results["energy_release_rate"]["cut_length_m"];
+    const auto &fe = results["energy_release_rate"]["fe_J_per_m2"];
+    const auto &beam = results["energy_release_rate"]["beam_on_elastic_foundation_J_per_m2"];
+    ASSERT_EQ(cuts.size(), 6u);
+    for (std::size_t k = 0; k < cuts.size(); ++k)
+    {
+      const double g_fe = fe[k], g_beam = beam[k];
+      EXPECT_NEAR(g_fe / g_beam, 1.0, 0.03) << "a = " << double(cuts[k]) << " m: FE " << g_fe << ", beam " << g_beam;
+    }
+    // The growth of G over the cuts (the slab's bending) and not only its level: ratio of the
+    // last to the first within the same tolerance.
+    EXPECT_NEAR((double(fe[5]) / double(fe[0])) / (double(beam[5]) / double(beam[0])), 1.0, 0.03);
+    // Cut length for G_c = 0.5 J/m² (the scene's default): closed form 0.2 m.
+    closed_forms::SlabOnFoundation beam_model{0.4, 1e9, 0.25, 250, 0.02, 28.4e3, 0};
+    EXPECT_NEAR(double(results["critical_cut_length_m"]),
+                closed_forms::cut_length_for_fracture_energy(beam_model, 0.5), 0.03);
+  }
+
+  // ------------------------------------------------------------------------------------------
+  // P-wave arrival: a long column released under gravity from rest with a fixed base. Every point
+  // falls freely, v = −g t, until the wave from the base arrives at t = z / c_p, c_p =
+  // sqrt((K + 4G/3)/ρ) (uniaxial strain, PHYSICS.md §0), after which v = −g z / c_p stays constant
+  // (d'Alembert). The arrival is taken where |v| first falls 1 % below g t; the discrete front
+  // rises over a few elements, which delays it by about 2 h / c_p, within the 4 % tolerance at 80
+  // elements over the height (a wrong modulus, e.g. E instead of K + 4G/3 at ν = 0.3, is 35 % off).
+  TEST(FemExplicit, PWaveArrivesAtTheElasticWaveSpeed)
+  {
+    const double E = 1e6, nu = 0.3, rho = 200, H = 1.0;
+    SnowpackScene scene = scene_from(
+      "subsection Snowpack\n" + layer("Slab layer 1", 0.9, rho, E, nu) + elastic_weak_layer(0.05, rho, E, nu) +
+      layer("Substratum", 0.05, rho, E, nu) +
+      "end\nsubsection PST\n  set Column length [m] = 12\n  set Cut length [m] = 0.3\nend\n"
+      "subsection Mesh\n  set Element length [m] = 0.1\n  set Weak layer elements = 4\n"
+      "  set Slab element height [m] = 0.0125\n  set Substratum element height [m] = 0.0125\nend\n"
+      "subsection Analysis\n  set Type = energy release rate\n  subsection Explicit\n"
+      "    set Linear bulk viscosity = 0\n    set Quadratic bulk viscosity = 0\n  end\nend\n");
+    SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+    SnowpackModel<2>::VectorType u0;
+    model.initialize_vector(u0);
+    ExplicitDynamics<2> dynamics(model, u0, 0);
+    const double c_p = closed_forms::p_wave_speed(E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)), rho);
+
+    // Sensors at mid-column, heights 0.5 and 1.0 (top).
+    const dealii::MappingQ1<2> mapping;
+    std::map<dealii::types::global_dof_index, Point<2>> support_points;
+    dealii::DoFTools::map_dofs_to_support_points(mapping, model.dof_handler(), support_points);
+    const dealii::IndexSet vertical = dealii::DoFTools::extract_dofs(model.dof_handler(), dealii::ComponentMask(std::vector<bool>{false, true}));
+    std::map<double, dealii::types::global_dof_index> sensors; // height -> vertical dof
+    for (const auto &[dof, point] : support_points)
+      if (std::abs(point[0] - 6.0) < 1e-9 && vertical.is_element(dof))
+        for (double z : {0.5, 1.0})
+          if (std::abs(point[1] - z) < 1e-9)
+            sensors[z] = dof;
+    ASSERT_EQ(sensors.size(), 2u);
+    std::map<double, double> arrival;
+    while (dynamics.time() < 1.5 * H / c_p)
+    {
+      dynamics.step();
+      for (const auto &[z, dof] : sensors)
+      {
+        // Leapfrog velocities live at half steps: v_{n+½} belongs to t − Δt/2.
+        const double v = dynamics.velocity()(dof), free_fall = 9.81 * (dynamics.time() - dynamics.time_step() / 2);
+        if (dynamics.steps() == 3)
+          ASSERT_NEAR(-v, free_fall, 0.02 * free_fall) << "the sensor at z = " << z << " does not fall freely";
+        if (!arrival.count(z) && dynamics.steps() > 3 && -v < 0.99 * free_fall)
+          arrival[z] = dynamics.time() - dynamics.time_step() / 2;
+      }
+    }
+    for (double z : {0.5, 1.0})
+    {
+      ASSERT_TRUE(arrival.count(z)) << "no arrival at z = " << z;
+      EXPECT_NEAR(arrival[z] / (z / c_p), 1.0, 0.04) << "z = " << z << ": arrival " << arrival[z] << " s, z/c_p "
+                                                      << z / c_p << " s";
+      std::cout << "P-wave arrival at z = " << z << " m: " << arrival[z] << " s, z/c_p = " << z / c_p << " s\n";
+    }
+  }
+
+  // ------------------------------------------------------------------------------------------
+  // Small dynamic PSTs (1 m column, 2 cm elements, fixed cut made at once after the gravity
+  // equilibrium). The weak layer (p0 = 5 kPa) fails at the tip of a 0.45 m cut; whether the crack
+  // then runs through depends on the energy the slab releases by falling through the collapse
+  // height, ρ g H h_c per unit area, against the energy the weak layer dissipates (softening plus
+  // residual flow, about 0.5–1 J/m² here). With h_c = 3 mm the slab releases ~3 J/m²: the crack
+  // reaches the end (so it does from h_c = 1 mm up). With h_c = 0.5 mm (0.5 J/m²) it runs 0.2 m
+  // ahead of the cut and stops: arrest.
+  std::string small_pst(double collapse_height, double cut)
+  {
+    std::ostringstream weak;
+    weak << "    set Compressive strength p0 [Pa] = 5000\n    set Tensile strength ratio beta = 0.5\n"
+         << "    set Critical state slope M = 1\n    set Hardening law = collapse\n"
+         << "    set Hardening factor xi = 4\n    set Residual strength ratio = 0.1\n"
+         << "    set Reference thickness [m] = 0.02\n    set Collapse height [m] = " << collapse_height
+         << "\n    set Densification modulus [Pa] = 1e6\n";
+    std::ostringstream text;
+    text << "subsection Snowpack\n" << layer("Slab layer 1", 0.4, 250, 5e6, 0.25)
+         << layer("Weak layer", 0.02, 150, 2e5, 0.2, weak.str()) << layer("Substratum", 0.04, 300, 1e7, 0.25)
+         << "end\nsubsection PST\n  set Column length [m] = 1.0\n  set Saw = fixed\n  set Cut length [m] = " << cut
+         << "\nend\nsubsection Mesh\n  set Element length [m] = 0.02\n  set Weak layer elements = 2\n"
+            "  set Slab element height [m] = 0.08\n  set Substratum element height [m] = 0.04\nend\n"
+            "subsection Analysis\n  set Type = explicit dynamics\n  subsection Explicit\n    set End time [s] = 0.25\n"
+            "    set Self-propagation lead [m] = 0.1\n  end\nend\n"
+            "subsection Output\n  set Field interval [s] = 0\n  set Progress interval = 0\nend\n";
+    return text.str();
+  }
+
+  TEST(FemExplicit, CrackRunsThroughTheColumn)
+  {
+    SnowpackRunOptions options;
+    options.output_directory = temporary_directory("pst_through");
+    const Json r = run_snowpack(scene_from(small_pst(0.003, 0.45)), options, MPI_COMM_WORLD);
+    EXPECT_EQ(r["crack"], "reached the column end") << r.dump(1);
+    EXPECT_TRUE(r["propagation_speed_m_per_s"].is_number()) << r.dump(1);
+    EXPECT_LT(double(r["energies_per_width"]["balance_error_relative"]), 0.02) << r.dump(1);
+  }
+
+  TEST(FemExplicit, CrackArrestsWhenTheCollapseReleasesTooLittleEnergy)
+  {
+    SnowpackRunOptions options;
+    options.output_directory = temporary_directory("pst_arrest");
+    const Json r = run_snowpack(scene_from(small_pst(0.0005, 0.45)), options, MPI_COMM_WORLD);
+    EXPECT_EQ(r["crack"], "arrested") << r.dump(1);
+    EXPECT_GT(double(r["arrest_position_m"]), 0.45 + 0.1) << r.dump(1);
+    EXPECT_LT(double(r["arrest_position_m"]), 0.95) << r.dump(1);
+    EXPECT_LT(double(r["energies_per_width"]["balance_error_relative"]), 0.02) << r.dump(1);
+  }
+} // namespace
