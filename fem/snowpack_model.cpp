@@ -208,7 +208,7 @@ namespace anticrack::fem
       const Layer &layer = layers_[id];
       CamClayParameters parameters;
       if (layer.model == Layer::Model::cohesive_cam_clay)
-        parameters = cam_clay_parameters(layer, element_height(scene_, id));
+        parameters = cam_clay_parameters(layer, band_height(scene_, id));
       else
         parameters.set_elastic_moduli(layer.material.youngs_modulus, layer.material.poisson_ratio);
       cell_parameters_.push_back(parameters);

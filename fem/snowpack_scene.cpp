@@ -94,7 +94,7 @@ namespace anticrack::fem
     }
 
     void check_layer(const Layer &layer, const std::string &section, bool thickness_may_be_zero,
-                     double element_height, Problems &problems)
+                     double band_height, Problems &problems)
     {
       if (!thickness_may_be_zero && !(layer.thickness > 0))
         problems.add(section + "/Thickness [m]", "must be > 0 (is " + number(layer.thickness) + ")");
@@ -103,16 +103,16 @@ namespace anticrack::fem
       if (layer.collapse_height > 0 && !(layer.densification_modulus > 0))
         problems.add(section + "/Densification modulus [Pa]",
                      "must be > 0 when a collapse height is given (is " + number(layer.densification_modulus) + ")");
-      if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * element_height))
+      if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
         problems.add(section + "/Collapse height [m]",
                      "the crack band (one element row) must be able to close by the collapse height: it must be "
-                     "< 0.9 element heights, " + number(0.9 * element_height) + " m (is " +
+                     "< 0.9 element heights, " + number(0.9 * band_height) + " m (is " +
                        number(layer.collapse_height) + "); use fewer elements through the layer");
-      if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height < 0.9 * element_height)
+      if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height < 0.9 * band_height)
       {
         try
         {
-          cam_clay_parameters(layer, element_height);
+          cam_clay_parameters(layer, band_height);
         }
         catch (const std::exception &e)
         {
@@ -134,7 +134,7 @@ namespace anticrack::fem
 
   double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }
 
-  CamClayParameters cam_clay_parameters(const Layer &layer, double element_height)
+  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height)
   {
     const ContinuumMaterial &m = layer.material;
     CamClayParameters parameters;
@@ -144,12 +144,12 @@ namespace anticrack::fem
     parameters.p0_initial = m.p0;
     parameters.hardening_factor = m.hardening_factor;
     if (m.reference_thickness > 0)
-      parameters.hardening_factor *= element_height / m.reference_thickness;
+      parameters.hardening_factor *= band_height / m.reference_thickness;
     parameters.law = m.hardening_law == "signed" ? HardeningLaw::signed_volumetric : HardeningLaw::collapse;
     parameters.p0_floor = residual_p0_floor(m.p0, m.residual_strength_ratio);
     if (layer.collapse_height > 0)
     {
-      parameters.densification_strain = layer.collapse_height / element_height;
+      parameters.densification_strain = layer.collapse_height / band_height;
       parameters.densification_modulus = layer.densification_modulus;
     }
     parameters.check();
@@ -169,6 +169,16 @@ namespace anticrack::fem
       return s.weak_layer.thickness / m.weak_layer_elements;
     const Layer &slab = s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)];
     return slab.thickness / rows(slab.thickness, m.slab_element_height);
+  }
+
+  double band_height(const SnowpackScene &scene, unsigned int layer_id)
+  {
+    if (scene.analysis.crack_band)
+      return element_height(scene, layer_id);
+    const Snowpack &s = scene.snowpack;
+    return layer_id == 0 ? s.substratum.thickness
+                         : layer_id == 1 ? s.weak_layer.thickness
+                                         : s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)].thickness;
   }
 
   bool is_snowpack_scene(const std::string &file)
@@ -241,6 +251,9 @@ namespace anticrack::fem
                       "`PST/Cut length`; quasi-static: gravity, then saw steps with Newton until equilibrium "
                       "is lost; explicit dynamics: gravity equilibrium, then saw and crack propagation in time");
     prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0), "G_c of the weak layer (energy release rate analysis)");
+    prm.declare_entry("Crack band regularisation", "true", Bool(),
+                      "true: softening layers soften and collapse in one element row with the energy and the "
+                      "collapse height of the calibrated layer (mesh-independent); false: the local model");
     prm.enter_subsection("Newton");
     prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2), "on |residual| / |external force|");
     prm.declare_entry("Maximum iterations", "25", Integer(2, 500), "per load step");
@@ -342,6 +355,7 @@ namespace anticrack::fem
                     : type == "quasi-static"      ? Analysis::Type::quasi_static
                                                   : Analysis::Type::explicit_dynamics;
     analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
+    analysis.crack_band = prm.get_bool("Crack band regularisation");
     prm.enter_subsection("Newton");
     analysis.newton_tolerance = prm.get_double("Tolerance");
     analysis.newton_max_iterations = prm.get_integer("Maximum iterations");
@@ -372,10 +386,10 @@ namespace anticrack::fem
     Problems problems(file);
     for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
       check_layer(s.slab_layers[k], "Snowpack/" + slab_layer_section(k), false,
-                  element_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
-    check_layer(s.weak_layer, "Snowpack/Weak layer", false, element_height(scene, 1), problems);
+                  band_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
+    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, 1), problems);
     if (s.substratum.thickness > 0)
-      check_layer(s.substratum, "Snowpack/Substratum", true, element_height(scene, 0), problems);
+      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, 0), problems);
     if (!(pst.column_length > 0))
       problems.add("PST/Column length [m]", "must be > 0 (is " + number(pst.column_length) + ")");
     if (mesh.dimension == 3 && !(pst.column_width > 0))
