@@ -310,6 +310,11 @@ namespace anticrack::fem
       double cut = 0, step = nominal_step;
       std::optional<double> critical;
       std::string reason;
+      // External work: the ramp's is what it stored and dissipated (quasi-static), then the
+      // constant weight's f_g · Δu over the saw steps.
+      const Energies after_gravity = model.energies();
+      double external_work = after_gravity.elastic + after_gravity.dissipated;
+      typename SnowpackModel<dim>::VectorType previous = u;
       while (cut < scene.pst.cut_length - 1e-12)
       {
         const double next = std::min(cut + step, scene.pst.cut_length);
@@ -328,6 +333,9 @@ namespace anticrack::fem
           continue;
         }
         cut = next;
+        previous.sadd(-1., 1., u);
+        external_work += model.gravity_force() * previous;
+        previous = u;
         const CrackFronts fronts = model.crack_fronts(scene.analysis.failure_fraction);
         const Energies e = model.energies();
         series.add_row({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)result.iterations});
@@ -351,7 +359,9 @@ namespace anticrack::fem
       results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
       results["critical_cut_length_reason"] =
         critical ? reason : "equilibrium holds up to the longest cut " + format(scene.pst.cut_length) + " m";
-      results["energies"] = energies_json(model.energies());
+      Energies energies = model.energies();
+      energies.external_work = external_work;
+      results["energies_per_width"] = energies_json(energies);
       results["newton_iterations"] = solver.total_iterations();
       return results;
     }

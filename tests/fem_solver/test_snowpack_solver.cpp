@@ -205,6 +205,7 @@ namespace
     {
       const double g_fe = fe[k], g_beam = beam[k];
       EXPECT_NEAR(g_fe / g_beam, 1.0, 0.03) << "a = " << double(cuts[k]) << " m: FE " << g_fe << ", beam " << g_beam;
+      std::cout << "G(" << double(cuts[k]) << " m): FE " << g_fe << " J/m^2, beam " << g_beam << " J/m^2\n";
     }
     // The growth of G over the cuts (the slab's bending) and not only its level: ratio of the
     // last to the first within the same tolerance.
