@@ -22,6 +22,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -35,6 +36,9 @@ namespace
 
   void print_framed_error(const std::string &title, const std::string &message)
   {
+    // Under mpirun every rank finds the same bad input: rank 0 reports it.
+    if (const char *rank = std::getenv("OMPI_COMM_WORLD_RANK"); rank && std::string(rank) != "0")
+      return;
     const std::string rule(78, '-');
     std::cerr << "\n" << rule << "\n" << title << "\n\n" << message << "\n" << rule << "\n";
   }
@@ -60,14 +64,17 @@ int main(int argc, char **argv)
   auto *run = app.add_subcommand("run", "Run a scene and write its results into a directory");
   run->add_option("scene", run_options.scene_file, "Scene file (.prm)")->required()->check(CLI::ExistingFile);
   run->add_option("-o,--output", run_options.output_directory,
-                  "Output directory (summary.json, history.h5, snapshots/, paraview/, checkpoint.h5)")
+                  "Output directory (DEM: summary.json, history.h5, snapshots/, paraview/, checkpoint.h5; "
+                  "snowpack: summary.json, series.h5 or energy_release_rate.h5, fields/)")
     ->required();
   auto *resume_flag = run->add_flag("--resume", run_options.resume,
                 "Continue from DIR/checkpoint.h5 up to DEM/Steps (the scene must match the checkpoint)");
   run->add_flag("--overwrite", run_options.overwrite,
                 "Replace the outputs of an earlier run in DIR (otherwise such a directory is refused)")
     ->excludes(resume_flag);
-  run->add_option("--threads", run_options.threads, "OpenMP threads (0: all available); overrides DEM/Threads")
+  run->add_option("--threads", run_options.threads,
+                  "OpenMP threads of a DEM scene (0: all available); overrides DEM/Threads (snowpack scenes use MPI "
+                  "ranks only)")
     ->check(CLI::NonNegativeNumber);
 
   // --- calibrate

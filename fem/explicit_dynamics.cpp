@@ -25,6 +25,7 @@ namespace anticrack::fem
     typename SnowpackModel<dim>::Request request;
     request.velocity = &v_;
     stable_dt_ = model.evaluate(u_, internal_force_, request);
+    dt_ = model.scene().analysis.cfl_safety * stable_dt_; // the first step's, reported before it
     model.commit();
   }
 

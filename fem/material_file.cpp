@@ -89,7 +89,14 @@ namespace anticrack::fem
     declare_material_file(prm);
     try
     {
-      prm.parse_input_from_string(text, "", false);
+      std::istringstream input(text);
+      prm.parse_input(input, name);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info; // deal.II's text names the line and the entry; no stack trace
+      e.print_info(info);
+      throw InputError("material file " + name + ":\n" + info.str());
     }
     catch (const std::exception &e)
     {

@@ -435,9 +435,13 @@ namespace anticrack::fem
         }
         else
         {
-          tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
+          // σ = K tr ε I + 2 G dev ε, without forming the 4th-order tensor unless it is needed
+          // (the explicit loop spends most of its time in elastic slab cells).
           state.material.strain = strain;
-          state.stress = tangent * strain;
+          state.stress = 2 * parameters.shear_modulus * deviator(strain) +
+                         parameters.bulk_modulus * trace(strain) * unit_symmetric_tensor<3>();
+          if (request.tangent)
+            tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
         }
         const bool locked = state.lock_up_pressure > 0;
         SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);

@@ -409,7 +409,7 @@ namespace anticrack::fem
       const auto wall_start = std::chrono::steady_clock::now();
       std::optional<double> critical_cut, critical_time, end_time;
       double cut = scene.pst.saw == SawTest::Saw::fixed ? scene.pst.cut_length : 0;
-      double next_series = 0, next_field = analysis.end_time > 0 ? scene.output.field_interval : 0;
+      double next_series = scene.output.series_interval, next_field = scene.output.field_interval;
       CrackFronts fronts;
       bool reached_end = false;
       auto record = [&]() {
@@ -474,8 +474,11 @@ namespace anticrack::fem
                    format(dynamics.time_step(), 3), " s, cut ", format(cut), " m, crack tip ", format(fronts.crack_tip),
                    " m, E_kin = ", format(dynamics.energies().kinetic, 3), " J");
       }
-      fronts = model.crack_fronts(analysis.failure_fraction);
-      record();
+      if (!reached_end) // otherwise the row of the step that reached the end is the last one
+      {
+        fronts = model.crack_fronts(analysis.failure_fraction);
+        record();
+      }
       fields.write(model, dynamics.displacement(), dynamics.time());
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
       series.write(options.output_directory + "/series.h5",

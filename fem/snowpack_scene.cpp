@@ -42,8 +42,10 @@ namespace anticrack::fem
       declare_material_entries(prm);
     }
 
-    Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::filesystem::path &scene_directory)
+    Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::string &section,
+                      const std::string &scene_file)
     {
+      const std::filesystem::path scene_directory = std::filesystem::path(scene_file).parent_path();
       Layer layer;
       layer.label = label;
       layer.thickness = prm.get_double("Thickness [m]");
@@ -56,7 +58,15 @@ namespace anticrack::fem
       {
         const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : scene_directory / file;
         layer.material_file = path.lexically_normal().string();
-        layer.material = read_material_file(layer.material_file);
+        try
+        {
+          layer.material = read_material_file(layer.material_file);
+        }
+        catch (const InputError &e)
+        {
+          throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/Material file = " + file +
+                           ":\n" + e.what());
+        }
       }
       if (layer.material.name.empty())
         layer.material.name = label;
@@ -76,8 +86,8 @@ namespace anticrack::fem
       void throw_if_any() const
       {
         if (count_ > 0)
-          throw InputError("scene " + file_ + ": " + std::to_string(count_) + " problem" + (count_ > 1 ? "s" : "") +
-                           text_.str());
+          throw InputError("Invalid scene file <" + file_ + ">: " + std::to_string(count_) + " problem" +
+                           (count_ > 1 ? "s" : "") + text_.str());
       }
 
     private:
@@ -299,13 +309,20 @@ namespace anticrack::fem
     declare_snowpack_scene(prm);
     try
     {
-      prm.parse_input_from_string(text, file, false);
+      std::istringstream input(text);
+      prm.parse_input(input, file);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's text names the line, the entry and the pattern; drop its stack trace.
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
     }
     catch (const std::exception &e)
     {
-      throw InputError("scene " + file + ": " + e.what());
+      throw InputError("Invalid scene file <" + file + ">: " + e.what());
     }
-    const std::filesystem::path directory = std::filesystem::path(file).parent_path();
 
     SnowpackScene scene;
     scene.file = file;
@@ -317,14 +334,15 @@ namespace anticrack::fem
     for (unsigned int k = 0; k < n_slab; ++k)
     {
       prm.enter_subsection(slab_layer_section(k));
-      s.slab_layers.push_back(parse_layer(prm, "slab layer " + std::to_string(k + 1), directory));
+      s.slab_layers.push_back(
+        parse_layer(prm, "slab layer " + std::to_string(k + 1), "Snowpack/" + slab_layer_section(k), file));
       prm.leave_subsection();
     }
     prm.enter_subsection("Weak layer");
-    s.weak_layer = parse_layer(prm, "weak layer", directory);
+    s.weak_layer = parse_layer(prm, "weak layer", "Snowpack/Weak layer", file);
     prm.leave_subsection();
     prm.enter_subsection("Substratum");
-    s.substratum = parse_layer(prm, "substratum", directory);
+    s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file);
     prm.leave_subsection();
     prm.leave_subsection();
 
