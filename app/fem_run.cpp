@@ -32,7 +32,8 @@ namespace anticrack::app
     }
 
     /// Output files of a snowpack run (an earlier run's are refused without --overwrite).
-    const std::vector<std::string> run_files{"summary.json", "series.h5", "energy_release_rate.h5", "fields"};
+    const std::vector<std::string> run_files{"summary.json", "series.h5",        "energy_release_rate.h5",
+                                             "fields",       "checkpoint.json", "checkpoint"};
   } // namespace
 
   int check_snowpack_scene(const std::string &scene_file)
@@ -64,16 +65,26 @@ namespace anticrack::app
     if (fs::exists(dir, error) && !fs::is_directory(dir, error))
       throw InputError("The output path <" + dir.string() + "> exists and is not a directory.");
     if (options.resume)
-      throw InputError("--resume: snowpack runs restart from the gravity equilibrium; run again with --overwrite.");
-    for (const std::string &file : run_files)
-      if (fs::exists(dir / file, error) && !options.overwrite)
-        throw InputError("The output directory <" + dir.string() + "> already holds a run (" + file +
-                         "). Use --overwrite to replace its outputs, or another directory.");
-    if (root)
     {
-      fs::create_directories(dir);
+      if (scene.analysis.type != fem::Analysis::Type::explicit_dynamics)
+        throw InputError("--resume: only dynamic PSTs (Analysis/Type = explicit dynamics) write checkpoints");
+      if (!fs::exists(dir / "checkpoint.json", error))
+        throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json (set Output/Checkpoint "
+                         "interval, or run without --resume).");
+    }
+    else
+    {
       for (const std::string &file : run_files)
-        fs::remove_all(dir / file, error);
+        if (fs::exists(dir / file, error) && !options.overwrite)
+          throw InputError("The output directory <" + dir.string() + "> already holds a run (" + file +
+                           "). Use --resume to continue it, --overwrite to replace its outputs, or another "
+                           "directory.");
+      if (root)
+      {
+        fs::create_directories(dir);
+        for (const std::string &file : run_files)
+          fs::remove_all(dir / file, error);
+      }
     }
     MPI_Barrier(comm);
 
@@ -92,6 +103,7 @@ namespace anticrack::app
     fem::SnowpackRunOptions run;
     run.output_directory = dir.string();
     run.log = options.quiet ? nullptr : &std::cout;
+    run.resume = options.resume;
     int code = exit_success;
     try
     {

@@ -1,6 +1,8 @@
 // Central differences on the snowpack model (see the header). Explicitly instantiated for 2, 3.
 #include "fem/explicit_dynamics.h"
 
+#include "fem/checkpoint.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
@@ -27,6 +29,19 @@ namespace anticrack::fem
     stable_dt_ = model.evaluate(u_, internal_force_, request);
     dt_ = model.scene().analysis.cfl_safety * stable_dt_; // the first step's, reported before it
     model.commit();
+  }
+
+  template <int dim>
+  ExplicitDynamics<dim>::ExplicitDynamics(SnowpackModel<dim> &model, const VectorType &u0,
+                                          double initial_external_work, bool)
+    : model_(model)
+    , external_work_(initial_external_work)
+  {
+    model.initialize_vector(u_);
+    model.initialize_vector(v_);
+    model.initialize_vector(internal_force_);
+    model.initialize_vector(acceleration_);
+    u_ = u0;
   }
 
   template <int dim>
@@ -87,6 +102,34 @@ namespace anticrack::fem
     energies.viscous = viscous_work_;
     energies.external_work = external_work_;
     return energies;
+  }
+
+  template <int dim>
+  void ExplicitDynamics<dim>::save(std::ostream &out) const
+  {
+    for (const double value : {time_, dt_, stable_dt_, external_work_, viscous_work_, kinetic_})
+      checkpoint::write(out, value);
+    checkpoint::write(out, std::uint64_t(steps_));
+    for (const VectorType *vector : {&u_, &v_, &internal_force_})
+      checkpoint::write_vector(out, std::vector<double>(vector->begin(), vector->end()));
+  }
+
+  template <int dim>
+  void ExplicitDynamics<dim>::load(std::istream &in)
+  {
+    for (double *value : {&time_, &dt_, &stable_dt_, &external_work_, &viscous_work_, &kinetic_})
+      checkpoint::read(in, *value);
+    std::uint64_t steps = 0;
+    checkpoint::read(in, steps);
+    steps_ = steps;
+    std::vector<double> values;
+    for (VectorType *vector : {&u_, &v_, &internal_force_})
+    {
+      checkpoint::read_vector(in, values, vector->locally_owned_size(), "displacement, velocity, force");
+      std::copy(values.begin(), values.end(), vector->begin());
+    }
+    u_.update_ghost_values();
+    v_.update_ghost_values();
   }
 
   template <int dim>

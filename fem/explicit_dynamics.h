@@ -28,6 +28,9 @@ namespace anticrack::fem
     /// f_g·u0 minus nothing dissipated dynamically), so that the balance holds from t = 0.
     ExplicitDynamics(SnowpackModel<dim> &model, const VectorType &u0, double initial_external_work);
 
+    /// An integrator whose state load() sets (resuming from a checkpoint): nothing is evaluated.
+    ExplicitDynamics(SnowpackModel<dim> &model, const VectorType &u0, double initial_external_work, bool for_load);
+
     /// One step. The model throws ReturnMappingError when a return mapping fails; non-finite
     /// values are found by finite(), which the caller checks at its output intervals.
     void step();
@@ -43,6 +46,12 @@ namespace anticrack::fem
 
     /// Energies: the model's plus kinetic, viscous (bulk viscosity and damping) and external work.
     Energies energies() const;
+
+    /// Writes / reads the integrator of this rank (time, step, the vectors, the energy ledger); the
+    /// model's history is saved separately (SnowpackModel::save). A resumed run continues the same
+    /// steps bit for bit.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
 
     /// True when every displacement and velocity is finite (over all ranks).
     bool finite() const;

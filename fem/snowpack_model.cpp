@@ -2,6 +2,8 @@
 // energies, fronts and field output. Explicitly instantiated for dim = 2 and 3.
 #include "fem/snowpack_model.h"
 
+#include "fem/checkpoint.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -591,6 +593,28 @@ namespace anticrack::fem
     }
     fronts.failed_anywhere = std::any_of(failed.begin(), failed.end(), [](int f) { return f != 0; });
     return fronts;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::save(std::ostream &out) const
+  {
+    static_assert(std::is_trivially_copyable_v<QuadraturePointState>);
+    checkpoint::write(out, cut_length_);
+    checkpoint::write(out, removed_by_saw_);
+    checkpoint::write_vector(out, committed_);
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::load(std::istream &in)
+  {
+    double cut = 0, removed = 0;
+    checkpoint::read(in, cut);
+    checkpoint::read(in, removed);
+    std::vector<QuadraturePointState> states;
+    checkpoint::read_vector(in, states, committed_.size(), "quadrature-point states");
+    committed_ = trial_ = states;
+    set_cut(cut);
+    removed_by_saw_ = removed;
   }
 
   template <int dim>

@@ -173,6 +173,11 @@ namespace anticrack::fem
     std::string write_fields(const VectorType &u, const std::string &directory, const std::string &stem,
                              unsigned int index) const;
 
+    /// Writes / reads the history of this rank (committed states, cut, saw energy). load() needs a
+    /// model of the same scene on the same number of ranks; throws checkpoint::Mismatch otherwise.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
+
     /// The committed state of every locally owned cell.
     std::vector<CellSummary<dim>> cell_summaries() const;
 

@@ -21,6 +21,9 @@ namespace anticrack::fem
   {
     std::string output_directory; ///< exists; outputs go directly into it
     std::ostream *log = nullptr;  ///< progress lines (rank 0), nullptr: quiet
+    /// Continue a dynamic PST from DIR/checkpoint.json (same scene but for the end time and the
+    /// output, same number of ranks); throws anticrack::InputError if that is not possible.
+    bool resume = false;
   };
 
   /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that

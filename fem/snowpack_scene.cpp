@@ -1,8 +1,11 @@
 #include "fem/snowpack_scene.h"
 
 #include "util/input_error.h"
+#include "util/sha256.h"
 
 #include <deal.II/base/parameter_handler.h>
+
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -290,6 +293,9 @@ namespace anticrack::fem
     prm.declare_entry("Field interval [s]", "0.01", Double(0), "simulated time between field outputs; 0: none");
     prm.declare_entry("Series interval [s]", "1e-3", Double(0), "simulated time between time-series rows");
     prm.declare_entry("Progress interval", "1000", Integer(0), "steps between progress lines; 0: quiet");
+    prm.declare_entry("Checkpoint interval", "10000", Integer(0),
+                      "explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
+                      "`anticrack run --resume` continues; 0: none");
     prm.leave_subsection();
   }
 
@@ -398,7 +404,26 @@ namespace anticrack::fem
     output.field_interval = prm.get_double("Field interval [s]");
     output.series_interval = prm.get_double("Series interval [s]");
     output.progress_interval = prm.get_integer("Progress interval");
+    output.checkpoint_interval = prm.get_integer("Checkpoint interval");
     prm.leave_subsection();
+
+    {
+      std::ostringstream json_text;
+      prm.print_parameters(json_text, ParameterHandler::ShortJSON);
+      auto json = nlohmann::json::parse(json_text.str());
+      json.erase("Output");
+      auto &explicit_entries = json["Analysis"]["Explicit"];
+      for (auto entry = explicit_entries.begin(); entry != explicit_entries.end();)
+        entry = entry.key().rfind("End time", 0) == 0 ? explicit_entries.erase(entry) : std::next(entry);
+      std::string key = json.dump();
+      for (const Layer *layer : {&s.weak_layer, &s.substratum})
+        if (!layer->material_file.empty())
+          key += util::sha256_of_file(layer->material_file);
+      for (const Layer &layer : s.slab_layers)
+        if (!layer.material_file.empty())
+          key += util::sha256_of_file(layer.material_file);
+      scene.resume_key_sha256 = util::sha256_hex(key);
+    }
 
     // --- what single patterns cannot check
     Problems problems(file);

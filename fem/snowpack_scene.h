@@ -142,11 +142,15 @@ namespace anticrack::fem
     double field_interval = 0.01;        ///< [s] between field outputs (explicit), 0 = none
     double series_interval = 1e-3;       ///< [s] between time-series rows (explicit)
     unsigned int progress_interval = 1000; ///< steps between progress lines, 0 = quiet
+    unsigned int checkpoint_interval = 10000; ///< explicit steps between checkpoints, 0 = none
   };
 
   struct SnowpackScene
   {
     std::string file;   ///< where it was read from
+    /// SHA-256 of every entry except Output and Analysis/Explicit/End time, and of the material
+    /// files: a checkpoint resumes only a scene with the same key (the end time may be extended).
+    std::string resume_key_sha256;
     Snowpack snowpack;
     SawTest pst;
     MeshParameters mesh;

@@ -1465,6 +1465,44 @@ def fem_material_file(work):
           f"summary.json records {files['weak layer']}, expected {material} with sha256 {sha256}")
 
 
+@case
+def fem_resume(work):
+    """A dynamic PST stopped at 0.03 s (with checkpoints every 300 steps and at its end) and resumed
+    with the full end time gives exactly the straight run's series.h5 and results (bit for bit: the
+    checkpoint holds the integrator's vectors, the history and the run's bookkeeping). A resume of
+    a changed scene, on another number of ranks, or without a checkpoint is refused (exit 2)."""
+    checkpoints = {"Output": ["set Checkpoint interval = 300"]}
+    full = write(os.path.join(work, "full.prm"), pst_scene(insert=checkpoints))
+    part = write(os.path.join(work, "part.prm"),
+                 pst_scene({"Analysis/Explicit/End time [s]": "0.03"}, insert=checkpoints))
+    straight, resumed = os.path.join(work, "straight"), os.path.join(work, "resumed")
+    anticrack("run", full, "-o", straight)
+    stdout, _ = anticrack("run", part, "-o", resumed)
+    check("checkpoint at step" in stdout, f"no checkpoint was written:\n{stdout}")
+    check(fem_summary(resumed)["results"]["crack"] != "reached the column end", "the first part ran to the end")
+    stdout, _ = anticrack("run", full, "-o", resumed, "--resume")
+    check("resumed at step" in stdout, f"the run did not resume:\n{stdout}")
+    a, b = fem_summary(straight)["results"], fem_summary(resumed)["results"]
+    for key in a:
+        if "wall" not in key and "per_s" not in key:
+            check(a[key] == b[key], f"{key}: straight {a[key]!r}, resumed {b[key]!r}")
+    series = [{name: v for name, (v, _) in read_columns(os.path.join(out, "series.h5")).items()}
+              for out in (straight, resumed)]
+    compare_exactly(*series, "series.h5, straight vs resumed")
+
+    changed = write(os.path.join(work, "changed.prm"),
+                    pst_scene({"PST/Cut length [m]": "0.5"}, insert=checkpoints))
+    _, stderr = anticrack("run", changed, "-o", resumed, "--resume", expect=2)
+    check("another scene" in stderr, f"a changed scene was not refused clearly:\n{stderr}")
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    result = subprocess.run(["mpirun", "--oversubscribe", "-np", "2", ANTICRACK, "run", full, "-o", resumed,
+                             "--resume"], capture_output=True, text=True, env=environment, timeout=300)
+    check(result.returncode == 2 and "rank" in result.stderr,
+          f"a resume on 2 ranks of a 1-rank checkpoint: exit {result.returncode}\n{result.stderr}")
+    _, stderr = anticrack("run", full, "-o", os.path.join(work, "nothing"), "--resume", expect=2)
+    check("checkpoint.json" in stderr, f"a resume without a checkpoint was not refused clearly:\n{stderr}")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
