@@ -14,14 +14,8 @@ namespace anticrack::fem
   template <int dim>
   ExplicitDynamics<dim>::ExplicitDynamics(SnowpackModel<dim> &model, const VectorType &u0,
                                           double initial_external_work)
-    : model_(model)
-    , external_work_(initial_external_work)
+    : ExplicitDynamics(model, u0, initial_external_work, true)
   {
-    model.initialize_vector(u_);
-    model.initialize_vector(v_);
-    model.initialize_vector(internal_force_);
-    model.initialize_vector(acceleration_);
-    u_ = u0;
     u_.update_ghost_values();
     v_.update_ghost_values();
     typename SnowpackModel<dim>::Request request;
@@ -40,7 +34,6 @@ namespace anticrack::fem
     model.initialize_vector(u_);
     model.initialize_vector(v_);
     model.initialize_vector(internal_force_);
-    model.initialize_vector(acceleration_);
     u_ = u0;
   }
 

@@ -61,7 +61,7 @@ namespace anticrack::fem
 
   private:
     SnowpackModel<dim> &model_;
-    VectorType u_, v_, internal_force_, acceleration_;
+    VectorType u_, v_, internal_force_;
     double time_ = 0, dt_ = 0, stable_dt_ = 0;
     unsigned long steps_ = 0;
     double external_work_ = 0, viscous_work_ = 0, kinetic_ = 0;

@@ -97,9 +97,12 @@ namespace anticrack::fem
         MPI_Barrier(communicator);
       }
 
+      /// Writes the fields at `time`, unless that time was written last already.
       template <int dim>
       void write(const SnowpackModel<dim> &model, const typename SnowpackModel<dim>::VectorType &u, double time)
       {
+        if (!entries_.empty() && entries_.back().first == time)
+          return;
         const std::string pvtu = model.write_fields(u, directory_, "fields", entries_.size());
         entries_.emplace_back(time, pvtu);
         if (Utilities::MPI::this_mpi_process(communicator_) == 0)
@@ -170,6 +173,16 @@ namespace anticrack::fem
     double result_width(const SnowpackScene &scene)
     {
       return dim == 2 ? 1. : scene.pst.column_width;
+    }
+
+    /// Energies per metre of column width in 3D (2D already counts them per metre).
+    template <int dim>
+    Energies per_width(Energies e, const SnowpackScene &scene)
+    {
+      const double width = result_width<dim>(scene);
+      for (double *value : {&e.elastic, &e.kinetic, &e.dissipated, &e.viscous, &e.external_work, &e.removed_by_saw})
+        *value /= width;
+      return e;
     }
 
     Json energies_json(const Energies &e)
@@ -343,8 +356,8 @@ namespace anticrack::fem
       TimeSeries series({{"cut_length", "m", "saw cut length a", {}},
                          {"crack_tip", "m", "far end of the failed weak layer from the cut end", {}},
                          {"touchdown_front", "m", "far end of the locked-up weak layer from the cut end", {}},
-                         {"elastic_energy", "J", "stored elastic energy", {}},
-                         {"dissipated_energy", "J", "plastic dissipation", {}},
+                         {"elastic_energy", "J/m", "stored elastic energy", {}},
+                         {"dissipated_energy", "J/m", "plastic dissipation", {}},
                          {"newton_iterations", "1", "Newton iterations of the step", {}}});
       double cut = 0, step = nominal_step;
       std::optional<double> critical;
@@ -376,7 +389,7 @@ namespace anticrack::fem
         external_work += model.gravity_force() * previous;
         previous = u;
         const CrackFronts fronts = model.crack_fronts(scene.analysis.failure_fraction);
-        const Energies e = model.energies();
+        const Energies e = per_width<dim>(model.energies(), scene);
         series.add_row({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)result.iterations});
         log.line("[fem] cut ", format(cut), " m: crack tip ", format(fronts.crack_tip), " m, ", result.iterations,
                  " Newton iterations");
@@ -400,13 +413,14 @@ namespace anticrack::fem
         critical ? reason : "equilibrium holds up to the longest cut " + format(scene.pst.cut_length) + " m";
       Energies energies = model.energies();
       energies.external_work = external_work;
+      energies = per_width<dim>(energies, scene);
       Json energy = energies_json(energies);
       // Each saw step is a sudden change solved statically: gravity's work f_g·Δu goes half into
       // elastic energy (linear response) and half into what would have been the step's vibration,
       // which a static solve drops. So the balance does not close here; what it misses is reported.
       energy.erase("balance_error_relative");
       energy["not_stored_in_static_steps_J"] =
-        external_work - (energies.elastic + energies.dissipated + energies.removed_by_saw);
+        energies.external_work - (energies.elastic + energies.dissipated + energies.removed_by_saw);
       results["energies_per_width"] = energy;
       results["newton_iterations"] = solver.total_iterations();
       return results;
@@ -430,12 +444,12 @@ namespace anticrack::fem
                    {"cut_length", "m", "saw cut length", {}},
                    {"crack_tip", "m", "far end of the failed weak layer from the cut end", {}},
                    {"touchdown_front", "m", "far end of the locked-up (collapsed and closed) weak layer", {}},
-                   {"elastic_energy", "J", "stored elastic energy (per m of width in 2D)", {}},
-                   {"kinetic_energy", "J", "kinetic energy", {}},
-                   {"dissipated_energy", "J", "plastic dissipation", {}},
-                   {"viscous_energy", "J", "bulk viscosity and damping", {}},
-                   {"removed_by_saw", "J", "elastic energy of the material the saw removed", {}},
-                   {"external_work", "J", "work of gravity", {}},
+                   {"elastic_energy", "J/m", "stored elastic energy (per m of column width)", {}},
+                   {"kinetic_energy", "J/m", "kinetic energy", {}},
+                   {"dissipated_energy", "J/m", "plastic dissipation", {}},
+                   {"viscous_energy", "J/m", "bulk viscosity and damping", {}},
+                   {"removed_by_saw", "J/m", "elastic energy of the material the saw removed", {}},
+                   {"external_work", "J/m", "work of gravity", {}},
                    {"time_step", "s", "explicit time step", {}}})
       {}
 
@@ -565,7 +579,7 @@ namespace anticrack::fem
           throw NumericalFailure("dynamic PST: non-finite displacement or velocity at t = " +
                                  format(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
                                  ", dt = " + format(dynamics.time_step(), 3) + " s)");
-        const Energies e = dynamics.energies();
+        const Energies e = per_width<dim>(dynamics.energies(), scene_);
         series_.add_row({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
                          e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});
       }
@@ -573,7 +587,7 @@ namespace anticrack::fem
       void write_series() const
       {
         series_.write(options_.output_directory + "/series.h5",
-                      "dynamic PST time series (energies per m of column width in 2D)", comm_);
+                      "dynamic PST time series (energies per m of column width)", comm_);
       }
 
       // --- checkpoints: DIR/checkpoint/step_S_rank_R.bin per rank, then DIR/checkpoint.json (rank 0)
@@ -739,7 +753,7 @@ namespace anticrack::fem
         r["simulated_time_s"] = dynamics.time();
         r["time_steps"] = dynamics.steps();
         r["last_time_step_s"] = dynamics.time_step();
-        r["energies_per_width"] = energies_json(dynamics.energies());
+        r["energies_per_width"] = energies_json(per_width<dim>(dynamics.energies(), scene_));
         r["width_m"] = result_width<dim>(scene_);
         r["explicit_wall_time_s"] = wall_;
         r["quadrature_point_updates_per_s_per_rank"] =

@@ -1155,9 +1155,9 @@ WEAK_LAYER_MATERIAL = {
 PST_COLUMN_LENGTH, PST_CUT = 1.0, 0.45
 PST_CELLS = 50 * (5 + 2 + 1)          # 50 columns x (slab 0.4 / 0.08, weak layer 2, substratum 1) rows
 PST_DOFS = 2 * 51 * (5 + 2 + 1 + 1)    # Q1: 2 components x 51 x 9 vertices
-SERIES_UNITS = {"time": "s", "cut_length": "m", "crack_tip": "m", "touchdown_front": "m", "elastic_energy": "J",
-                "kinetic_energy": "J", "dissipated_energy": "J", "viscous_energy": "J", "removed_by_saw": "J",
-                "external_work": "J", "time_step": "s"}
+SERIES_UNITS = {"time": "s", "cut_length": "m", "crack_tip": "m", "touchdown_front": "m", "elastic_energy": "J/m",
+                "kinetic_energy": "J/m", "dissipated_energy": "J/m", "viscous_energy": "J/m", "removed_by_saw": "J/m",
+                "external_work": "J/m", "time_step": "s"}
 ERR_UNITS = {"cut_length": "m", "potential_energy": "J/m", "midpoint_cut_length": "m",
              "energy_release_rate": "J/m^2", "energy_release_rate_beam": "J/m^2"}
 
