@@ -368,6 +368,7 @@ namespace anticrack::fem
     internal_force = 0;
     double max_rate2 = 0; // max over cells of c_p² Σ (p/h_i)²
     double viscous_power = 0;
+    std::string failure; // the first failed return mapping of this rank
 
     for (CellData &data : cells_)
     {
@@ -384,6 +385,7 @@ namespace anticrack::fem
       if (request.tangent)
         cell_matrix = 0;
       double cell_modulus = 0; // largest P-wave modulus of the cell's points, as they are loaded
+      bool cell_failed = false;
 
       for (unsigned int q = 0; q < n_q; ++q)
       {
@@ -429,10 +431,16 @@ namespace anticrack::fem
           }
           catch (const ReturnMappingError &e)
           {
-            std::ostringstream where;
-            where << "in the " << layers_[data.layer].label << " at cell centre " << data.cell->center()
-                  << ", quadrature point " << q << ": " << e.what();
-            throw ReturnMappingError(where.str());
+            // Finish the loop (and the collective compress below) on every rank, then throw on all.
+            if (failure.empty())
+            {
+              std::ostringstream where;
+              where << "in the " << layers_[data.layer].label << " at cell centre " << data.cell->center()
+                    << ", quadrature point " << q << ": " << e.what();
+              failure = where.str();
+            }
+            cell_failed = true;
+            break;
           }
         }
         else
@@ -503,6 +511,8 @@ namespace anticrack::fem
             }
           }
       }
+      if (cell_failed)
+        continue;
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         internal_force.local_element(data.local_dofs[i]) += f_local[i];
       if (request.tangent)
@@ -513,6 +523,8 @@ namespace anticrack::fem
     zero_fixed(internal_force);
     if (request.tangent)
       request.tangent->compress(VectorOperation::add);
+    if (Utilities::MPI::logical_or(!failure.empty(), communicator_))
+      throw ReturnMappingError(failure.empty() ? std::string("the return mapping failed on another rank") : failure);
     viscous_power_ = Utilities::MPI::sum(viscous_power, communicator_);
     max_rate2 = Utilities::MPI::max(max_rate2, communicator_);
     // Central differences are stable for Δt ≤ 2/ω_max; ω_max ≤ c sqrt(Σ (2/h_i)²) for Q1 with a
