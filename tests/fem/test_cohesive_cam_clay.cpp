@@ -7,6 +7,7 @@
 // Units: K = 1 MPa, G = 0.6 MPa (E = 1.5 MPa, ν = 0.25), p0 = 10 kPa, so the elastic range of strain
 // is p0/K = 1e-2. Stresses are compared relative to p0 (or M² p0² for y).
 #include "fem/cohesive_cam_clay.h"
+#include "tests/fem/cam_clay_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 namespace
 {
   using namespace anticrack::fem;
+  using namespace anticrack::fem::test_support;
   using dealii::SymmetricTensor;
 
   /// Round-off tolerance for stresses relative to p0 after a few dozen operations and a local solve
@@ -42,10 +44,6 @@ namespace
     return m;
   }
 
-  SymmetricTensor<2, 3> hydrostatic(double volumetric_strain)
-  {
-    return (volumetric_strain / 3) * dealii::unit_symmetric_tensor<3>();
-  }
 
   double q_max(const CamClayParameters &m, double p0)
   {
@@ -68,16 +66,6 @@ namespace
     return true;
   }
 
-  /// A random symmetric tensor with N(0, scale²) components, reproducible from the engine.
-  SymmetricTensor<2, 3> random_tensor(std::mt19937_64 &engine, double scale)
-  {
-    std::normal_distribution<double> normal(0, scale);
-    SymmetricTensor<2, 3> t;
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = i; j < 3; ++j)
-        t[i][j] = normal(engine);
-    return t;
-  }
 
   /// Q t Qᵀ for a rotation Q.
   SymmetricTensor<2, 3> rotate(const SymmetricTensor<2, 3> &t, const dealii::Tensor<2, 3> &Q)
@@ -121,19 +109,6 @@ namespace
     return updates;
   }
 
-  /// The message of the std::invalid_argument that `f` throws ("" if none).
-  std::string invalid_argument_message(const std::function<void()> &f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const std::invalid_argument &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 
   // ---------------------------------------------------------------------------------------------
   // Parameters

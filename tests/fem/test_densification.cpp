@@ -8,6 +8,7 @@
 // Units: the weak layer has K = 0.5 MPa, G = 0.3 MPa, p0 = 1 kPa (elastic range p0/K = 2e-3), the
 // residual floor 0.2 p0 = 200 Pa, ε_d = 0.2 and K_d = 1 MPa (of the order of a slab's modulus).
 #include "fem/cohesive_cam_clay.h"
+#include "tests/fem/cam_clay_test_support.h"
 
 #include <gtest/gtest.h>
 
@@ -21,6 +22,7 @@
 namespace
 {
   using namespace anticrack::fem;
+  using namespace anticrack::fem::test_support;
   using dealii::SymmetricTensor;
 
   /// Round-off tolerance for stresses relative to the largest stress in play: a few dozen operations
@@ -64,20 +66,7 @@ namespace
     return m;
   }
 
-  SymmetricTensor<2, 3> hydrostatic(double volumetric_strain)
-  {
-    return (volumetric_strain / 3) * dealii::unit_symmetric_tensor<3>();
-  }
 
-  SymmetricTensor<2, 3> random_tensor(std::mt19937_64 &engine, double scale)
-  {
-    std::normal_distribution<double> normal(0, scale);
-    SymmetricTensor<2, 3> t;
-    for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = i; j < 3; ++j)
-        t[i][j] = normal(engine);
-    return t;
-  }
 
   /// Bitwise equality of all components.
   bool identical(const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
@@ -143,18 +132,6 @@ namespace
     return std::sqrt(difference / reference);
   }
 
-  std::string invalid_argument_message(const std::function<void()> &f)
-  {
-    try
-      {
-        f();
-      }
-    catch (const std::invalid_argument &e)
-      {
-        return e.what();
-      }
-    return "";
-  }
 
   // ---------------------------------------------------------------------------------------------
   // The residual response under hydrostatic compaction
