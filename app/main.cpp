@@ -5,7 +5,7 @@
 //   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--fe-plane p-q|sigma-tau] [--poisson-ratio NU]
 //                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
 //                       [--threads T]
-//   anticrack params [--format prm|description|json]
+//   anticrack params [--snowpack] [--format prm|description|json]
 //   anticrack bench dem --lattice n --steps S --threads T
 //
 // Exit codes: 0 success, 1 numerical failure of a run that has started, 2 bad input (scene,
@@ -124,6 +124,8 @@ int main(int argc, char **argv)
   std::string format = "prm";
   auto *params = app.add_subcommand("params", "Print every scene parameter with its default, pattern and "
                                               "documentation");
+  bool snowpack_parameters = false;
+  params->add_flag("--snowpack", snowpack_parameters, "The entries of a snowpack (FE) scene instead of a DEM scene");
   params->add_option("--format", format, "prm (a complete scene with comments), description, or json")
     ->check(CLI::IsMember({"prm", "description", "json"}))
     ->capture_default_str();
@@ -177,7 +179,8 @@ int main(int argc, char **argv)
     {
       print_parameter_documentation(std::cout, format == "json"        ? ParameterFormat::json :
                                                format == "description" ? ParameterFormat::description :
-                                                                         ParameterFormat::prm);
+                                                                         ParameterFormat::prm,
+                                   snowpack_parameters);
       return exit_success;
     }
     if (*bench_dem_command)

@@ -1,5 +1,7 @@
 #include "app/scene_parameters.h"
 
+#include "fem/snowpack_scene.h"
+
 #include "util/sha256.h"
 #include "app/input_error.h"
 #include "dem/sticky_hard_spheres.h"
@@ -1348,17 +1350,21 @@ namespace anticrack::app
     }
   } // namespace
 
-  void print_parameter_documentation(std::ostream &out, const ParameterFormat format)
+  void print_parameter_documentation(std::ostream &out, const ParameterFormat format, const bool snowpack)
   {
     ParameterHandler prm;
-    SceneParameters::declare_parameters(prm);
+    if (snowpack)
+      fem::declare_snowpack_scene(prm);
+    else
+      SceneParameters::declare_parameters(prm);
     switch (format)
     {
       case ParameterFormat::prm:
       {
         std::ostringstream json;
         prm.print_parameters(json, ParameterHandler::JSON | ParameterHandler::KeepDeclarationOrder);
-        out << "# Every anticrack scene parameter with its documentation, allowed values and default.\n"
+        out << "# Every anticrack " << (snowpack ? "snowpack (FE) " : "DEM ")
+            << "scene parameter with its documentation, allowed values and default.\n"
             << "# SI units unless the name says otherwise. This listing is itself a valid scene.\n\n";
         print_documented_prm(out, nlohmann::ordered_json::parse(json.str()), "");
         break;

@@ -307,7 +307,8 @@ namespace anticrack::app
     json
   };
   /// Prints every declared entry with its default, pattern and documentation.
-  void print_parameter_documentation(std::ostream &out, ParameterFormat format);
+  /// Every entry of a DEM scene, or with `snowpack` of a snowpack (FE) scene.
+  void print_parameter_documentation(std::ostream &out, ParameterFormat format, bool snowpack = false);
 
   /// Numbers and vectors for messages: 6 significant digits, "a, b, c".
   std::string format_number(double x);

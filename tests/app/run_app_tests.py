@@ -1503,6 +1503,21 @@ def fem_resume(work):
     check("checkpoint.json" in stderr, f"a resume without a checkpoint was not refused clearly:\n{stderr}")
 
 
+@case
+def fem_params(work):
+    """`params --snowpack` lists every snowpack entry with its documentation, and the listing is a
+    valid snowpack scene for `check` (exit 0, nothing written)."""
+    stdout, _ = anticrack("params", "--snowpack")
+    for needle in ("subsection Snowpack", "subsection Weak layer", "set Collapse height [m]", "subsection PST",
+                   "set Checkpoint interval", "allowed:"):
+        check(needle in stdout, f"`params --snowpack` does not list {needle!r}")
+    scene = write(os.path.join(work, "listing.prm"), stdout)
+    before = set(os.listdir(work))
+    out, _ = anticrack("check", scene, cwd=work)
+    check("The scene is valid" in out, f"the listing is not a valid scene:\n{out}")
+    check(set(os.listdir(work)) == before, "check wrote files")
+
+
 def main():
     global ANTICRACK, SOURCE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
