@@ -1,7 +1,11 @@
 // Helpers shared by the material-point tests (test_cohesive_cam_clay.cpp, test_densification.cpp).
 #pragma once
 
+#include "fem/cohesive_cam_clay.h"
+
 #include <deal.II/base/symmetric_tensor.h>
+
+#include <cmath>
 
 #include <functional>
 #include <random>
@@ -39,5 +43,29 @@ namespace anticrack::fem::test_support
       return e.what();
     }
     return "";
+  }
+
+  /// ‖C_fd − C‖ / ‖C‖ over the 6×6 components of `tangent`, C_fd by central differences of
+  /// update_stress from `previous` at `strain` with step h (direction [k][l] also sets [l][k]: the
+  /// column compared is C : direction).
+  inline double central_difference_error(const CamClayParameters &m, const CamClayState &previous,
+                                         const dealii::SymmetricTensor<2, 3> &strain,
+                                         const dealii::SymmetricTensor<4, 3> &tangent, double h)
+  {
+    double difference = 0, reference = 0;
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int l = k; l < 3; ++l)
+      {
+        dealii::SymmetricTensor<2, 3> direction;
+        direction[k][l] = 1;
+        const dealii::SymmetricTensor<2, 3> fd =
+          (update_stress(m, previous, strain + h * direction).stress -
+           update_stress(m, previous, strain - h * direction).stress) /
+          (2 * h);
+        const dealii::SymmetricTensor<2, 3> analytic = tangent * direction;
+        difference += std::pow((fd - analytic).norm(), 2);
+        reference += std::pow(analytic.norm(), 2);
+      }
+    return std::sqrt(difference / reference);
   }
 } // namespace anticrack::fem::test_support
