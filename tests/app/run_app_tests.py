@@ -25,6 +25,9 @@ import xml.etree.ElementTree as ElementTree
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_edit import edit_scene  # noqa: E402  (tests/scene_edit.py)
+
 ANTICRACK = SOURCE = None  # set by main()
 CASES = {}
 
@@ -50,31 +53,6 @@ def check(condition, message):
 
 
 # --------------------------------------------------------------------------------------- scenes
-def edit_scene(text, changes, insert=None):
-    """Sets `changes` {"DEM/Sample/Lattice size": "4, 3, 5", ...} in a .prm text; every entry must
-    exist. `insert` {"DEM/Material": ["set X = 1"]} adds lines right after a subsection opens."""
-    lines, path, done = [], [], set()
-    for line in text.splitlines():
-        stripped = line.strip()
-        opening = re.match(r"subsection\s+(.*\S)\s*$", stripped)
-        if opening:
-            path.append(opening.group(1))
-        elif stripped == "end":
-            path.pop()
-        entry = re.match(r"(\s*)set\s+(.*?)\s*=\s*(.*)$", line)
-        if entry and "/".join(path + [entry.group(2)]) in changes:
-            key = "/".join(path + [entry.group(2)])
-            line = f"{entry.group(1)}set {entry.group(2)} = {changes[key]}"
-            done.add(key)
-        lines.append(line)
-        if opening and insert and "/".join(path) in insert:
-            lines += ["  " * len(path) + extra for extra in insert["/".join(path)]]
-            done.add("/".join(path))
-    missing = (set(changes) | set(insert or {})) - done
-    check(not missing, f"the example scene no longer has {sorted(missing)}; update run_app_tests.py")
-    return "\n".join(lines) + "\n"
-
-
 def walls_scene(steps, checkpoint=0, snapshot=None, history=50, velocity="10", insert=None, **changes):
     """scenes/uniaxial_compression.prm on the tiny lattice. At 10 m/s the top wall breaks every bond
     between steps ~500 and ~600 (a symmetric lattice fails layer by layer)."""
