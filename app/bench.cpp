@@ -1,9 +1,9 @@
 #include "app/bench.h"
 
-#include "app/dem_scene.h"
-#include "app/input_error.h"
-#include "dem/lattice.h"
-#include "dem/system.h"
+#include "dem/scene/model.h"
+#include "util/input_error.h"
+#include "dem/sample/lattice.h"
+#include "dem/core/system.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,12 +16,12 @@ namespace anticrack::app
   {
     if (options.lattice < 1 || options.steps < 1 || options.threads < 0)
       throw InputError("bench dem: --lattice and --steps must be positive, --threads >= 0");
-    const int threads = apply_thread_count(options.threads);
+    const int threads = dem::apply_thread_count(options.threads);
 
     const double radius = 1e-3, spacing = 2e-3;
     dem::DemSystem system;
-    system.domain.lower = Vec3::Zero();
-    system.domain.upper = Vec3::Constant(spacing * options.lattice);
+    system.domain.lower = dem::Vec3::Zero();
+    system.domain.upper = dem::Vec3::Constant(spacing * options.lattice);
     system.domain.periodic = {true, true, true};
 
     dem::Material material;
@@ -52,7 +52,7 @@ namespace anticrack::app
     system.settings.local_damping = 0.7;
     system.settings.time_step = 0;
     system.initialise();
-    const Index bonds = system.bonds.count_intact();
+    const dem::Index bonds = system.bonds.count_intact();
 
     const auto start = std::chrono::steady_clock::now();
     system.run(options.steps);

@@ -12,17 +12,15 @@
 // command line, checkpoint that does not match), 130 interrupted. Bad input is always found before
 // anything is written.
 #include "app/bench.h"
-#include "app/calibrate.h"
-#include "app/dem_run.h"
-#include "app/fem_run.h"
-#include "fem/snowpack_scene.h"
-#include "app/input_error.h"
-#include "app/scene_parameters.h"
-#include "dem/types.h"
+#include "app/scenes.h"
+#include "coupling/calibrate.h"
+#include "dem/core/types.h"
+#include "util/input_error.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <iterator>
 #include <iostream>
 #include <string>
 
@@ -32,7 +30,9 @@
 
 namespace
 {
+  using namespace anticrack;
   using namespace anticrack::app;
+  using anticrack::coupling::CalibrateOptions;
 
   void print_framed_error(const std::string &title, const std::string &message)
   {
@@ -41,6 +41,36 @@ namespace
       return;
     const std::string rule(78, '-');
     std::cerr << "\n" << rule << "\n" << title << "\n\n" << message << "\n" << rule << "\n";
+  }
+
+  /// The one table from the modules' error types to the exit code and the title of the message;
+  /// the first row whose type the error has wins.
+  struct ErrorKind
+  {
+    bool (*matches)(const std::exception &);
+    const char *title;
+    int exit_code;
+  };
+
+  template <class Error>
+  bool is(const std::exception &e)
+  {
+    return dynamic_cast<const Error *>(&e) != nullptr;
+  }
+
+  const ErrorKind error_kinds[] = {
+    {is<InputError>, "anticrack: invalid input (nothing was written)", exit_bad_input},
+    {is<dem::SetupError>, "anticrack: invalid set-up", exit_bad_input},
+    {is<dem::NumericalError>, "anticrack: numerical failure", exit_numerical_failure},
+    {is<std::exception>, "anticrack: error", exit_numerical_failure},
+  };
+
+  const ErrorKind &kind_of_error(const std::exception &e)
+  {
+    for (const ErrorKind &kind : error_kinds)
+      if (kind.matches(e))
+        return kind;
+    return error_kinds[std::size(error_kinds) - 1];
   }
 
   std::string join_arguments(int argc, char **argv)
@@ -161,8 +191,6 @@ int main(int argc, char **argv)
     if (*run)
     {
       run_options.command_line = join_arguments(argc, argv);
-      if (anticrack::fem::is_snowpack_scene(run_options.scene_file))
-        return run_snowpack_scene(run_options);
       return run_scene(run_options);
     }
     if (*calibrate)
@@ -170,41 +198,26 @@ int main(int argc, char **argv)
       calibrate_options.plots = !no_plots;
       calibrate_options.fe_plane_base_stresses = fe_plane == "sigma-tau";
       calibrate_options.command_line = join_arguments(argc, argv);
-      return run_calibration(calibrate_options);
+      return coupling::run_calibration(calibrate_options);
     }
     if (*check)
-      return anticrack::fem::is_snowpack_scene(check_file) ? check_snowpack_scene(check_file)
-                                                           : check_scene(check_file, check_threads);
+      return check_scene(check_file, check_threads);
     if (*params)
     {
-      print_parameter_documentation(std::cout, format == "json"        ? ParameterFormat::json :
-                                               format == "description" ? ParameterFormat::description :
-                                                                         ParameterFormat::prm,
-                                   snowpack_parameters);
+      print_scene_parameters(std::cout, format == "json"        ? ParameterFormat::json :
+                                        format == "description" ? ParameterFormat::description :
+                                                                  ParameterFormat::prm,
+                             snowpack_parameters ? "snowpack" : "dem");
       return exit_success;
     }
     if (*bench_dem_command)
       return bench_dem(bench_options);
   }
-  catch (const InputError &e)
-  {
-    print_framed_error("anticrack: invalid input (nothing was written)", e.what());
-    return exit_bad_input;
-  }
-  catch (const anticrack::dem::SetupError &e)
-  {
-    print_framed_error("anticrack: invalid set-up", e.what());
-    return exit_bad_input;
-  }
-  catch (const anticrack::dem::NumericalError &e)
-  {
-    print_framed_error("anticrack: numerical failure", e.what());
-    return exit_numerical_failure;
-  }
   catch (const std::exception &e)
   {
-    print_framed_error("anticrack: error", e.what());
-    return exit_numerical_failure;
+    const ErrorKind &kind = kind_of_error(e);
+    print_framed_error(kind.title, e.what());
+    return kind.exit_code;
   }
   return exit_success;
 }

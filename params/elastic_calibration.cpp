@@ -1,6 +1,6 @@
 #include "params/elastic_calibration.h"
 
-#include "dem/failure_point.h"
+#include "dem/lab/failure_point.h"
 #include "params/calibration_error.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // campaign.h5, calibration.h5): handles that close themselves, groups, 1-D/N-D double datasets
 // and variable-length UTF-8 string datasets and attributes, each dataset with `units` and
 // `description` attributes. Errors throw std::runtime_error naming the file and the object path.
-// The DEM library keeps its own reader/writer for snapshots and checkpoints (dem/io_hdf5.h).
+// The DEM library keeps its own reader/writer for snapshots and checkpoints (dem/io/state_hdf5.h).
 #pragma once
 
 #include <hdf5.h>

@@ -864,7 +864,7 @@ def campaign_resume_and_bad_input(work):
 
 
 # ----------------------------------------------------------------------------------- calibration
-# A synthetic campaign.h5 (format 2, the layout app/campaign.cpp writes) whose answers are known:
+# A synthetic campaign.h5 (format 2, the layout dem/campaign/campaign.cpp writes) whose answers are known:
 # failure points on cohesive Cam-Clay ellipses in both planes with 2 % radial noise, associative
 # flow angles, and linear-elastic-brittle histories of a laterally confined specimen with
 # E = 1.5 MPa, nu = 0.25 (K = 1 MPa, G = 0.6 MPa, constrained modulus K + 4G/3 = 1.8 MPa).
@@ -937,7 +937,7 @@ def synthetic_row(rng, m, r, psi, micro, constrained, G, noise):
 
 
 def write_campaign_file(path, rows, microstructures, version):
-    """campaign.h5 in the layout app/campaign.cpp writes (format `version`)."""
+    """campaign.h5 in the layout dem/campaign/campaign.cpp writes (format `version`)."""
     with h5py.File(path, "w") as f:
         for key, value in {"format": "anticrack-campaign", "format_version": version, "scene_file": "synthetic.prm",
                            "scene_file_sha256": "0" * 64, "parameters_sha256": "0" * 64,
@@ -1283,7 +1283,7 @@ def fem_outputs(work):
     rows = len(s["time"])
     check(rows > 10 and all(v.shape == (rows,) for v in s.values()), {n: v.shape for n, v in s.items()})
     # The run writes a row when the crack reaches the end and then the final row of the same state
-    # again (fem/snowpack_run.cpp): tolerated as an exact repeat of the row before.
+    # again (fem/analysis/snowpack_run.cpp): tolerated as an exact repeat of the row before.
     if rows > 1 and all(v[-1] == v[-2] for v in s.values()):
         s = {name: v[:-1] for name, v in s.items()}
     check(s["time"][0] == 0 and np.all(np.diff(s["time"]) > 0), f"series.h5 time does not increase: {s['time']}")

@@ -1,7 +1,7 @@
 // Helpers shared by the material-point tests (test_cohesive_cam_clay.cpp, test_densification.cpp).
 #pragma once
 
-#include "fem/cohesive_cam_clay.h"
+#include "fem/material/cohesive_cam_clay.h"
 
 #include <deal.II/base/symmetric_tensor.h>
 

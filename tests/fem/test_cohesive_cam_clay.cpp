@@ -6,7 +6,7 @@
 //
 // Units: K = 1 MPa, G = 0.6 MPa (E = 1.5 MPa, ν = 0.25), p0 = 10 kPa, so the elastic range of strain
 // is p0/K = 1e-2. Stresses are compared relative to p0 (or M² p0² for y).
-#include "fem/cohesive_cam_clay.h"
+#include "fem/material/cohesive_cam_clay.h"
 #include "tests/fem/cam_clay_test_support.h"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 //
 // Units: the weak layer has K = 0.5 MPa, G = 0.3 MPa, p0 = 1 kPa (elastic range p0/K = 2e-3), the
 // residual floor 0.2 p0 = 200 Pa, ε_d = 0.2 and K_d = 1 MPa (of the order of a slab's modulus).
-#include "fem/cohesive_cam_clay.h"
+#include "fem/material/cohesive_cam_clay.h"
 #include "tests/fem/cam_clay_test_support.h"
 
 #include <gtest/gtest.h>

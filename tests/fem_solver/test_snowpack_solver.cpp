@@ -4,11 +4,11 @@
 // small dynamic PSTs in which the crack runs through and in which it arrests. Serial (1 rank);
 // 1 vs 2 ranks is an app test (tests/app, fem_mpi_equals_serial).
 #include "fem/closed_forms.h"
-#include "fem/explicit_dynamics.h"
-#include "fem/quasi_static.h"
-#include "fem/snowpack_model.h"
-#include "fem/snowpack_run.h"
-#include "fem/snowpack_scene.h"
+#include "fem/solver/explicit_dynamics.h"
+#include "fem/solver/quasi_static.h"
+#include "fem/model/snowpack_model.h"
+#include "fem/analysis/snowpack_run.h"
+#include "fem/scene/snowpack_scene.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/dofs/dof_tools.h>

@@ -4,8 +4,8 @@
 // from the engine's own constants.
 #pragma once
 
-#include "dem/lattice.h"
-#include "dem/system.h"
+#include "dem/sample/lattice.h"
+#include "dem/core/system.h"
 
 #include <gtest/gtest.h>
 

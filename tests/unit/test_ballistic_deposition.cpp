@@ -1,8 +1,8 @@
 // Ballistic-deposition generators (PHYSICS.md §1.4): solid fractions and coordination of sticky
 // (Lubachevsky et al. 1992, ~0.15, 2 contacts) and rolling (Visscher & Bolsterli 1972, ~0.58)
 // deposits, overlap-free geometry, reproducibility and input checks.
-#include "dem/ballistic_deposition.h"
-#include "dem/system.h"
+#include "dem/sample/ballistic_deposition.h"
+#include "dem/core/system.h"
 
 #include <gtest/gtest.h>
 

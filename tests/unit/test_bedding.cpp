@@ -1,7 +1,7 @@
-// Bedding planes (dem/bedding.h): which bonds get the bedding strengths.
+// Bedding planes (dem/sample/bedding.h): which bonds get the bedding strengths.
 
-#include "dem/bedding.h"
-#include "dem/lattice.h"
+#include "dem/sample/bedding.h"
+#include "dem/sample/lattice.h"
 #include "dem_test_helpers.h"
 
 #include <gtest/gtest.h>

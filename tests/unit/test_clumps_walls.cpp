@@ -1,4 +1,4 @@
-// Rigid clumps (dem/clumps.h) and servo-controlled walls (dem/walls.h).
+// Rigid clumps (dem/core/clumps.h) and servo-controlled walls (dem/core/walls.h).
 
 #include "dem_test_helpers.h"
 

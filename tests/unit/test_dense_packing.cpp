@@ -1,4 +1,4 @@
-// Dense random packings by radius expansion (dem/dense_packing.h, seed paper 004): the formation
+// Dense random packings by radius expansion (dem/sample/dense_packing.h, seed paper 004): the formation
 // friction sets the density, from random close packing (frictionless, phi ~ 0.64, isostatic z* = 6)
 // down towards random loose packing (mu = 1, phi ~ 0.55-0.56, z* -> 4); seeds reproduce packings;
 // bad specs are refused naming the field; open axes keep the spheres inside the box.
@@ -8,11 +8,11 @@
 // z* = 6.004 / 4.887 / 4.073 for mu = 0 / 0.2 / 1; seeds 2-4 gave phi 0.6407-0.6412 (mu = 0),
 // 0.5884-0.5918 (0.2), 0.5510-0.5624 (1), z* 6.00-6.04, 4.81-4.92, 4.07-4.11. The engine is
 // deterministic and thread-count independent, so a given seed always gives the same packing; the
-// tolerances below leave room for other seeds and compilers. N = 1000 figures: dem/dense_packing.h
+// tolerances below leave room for other seeds and compilers. N = 1000 figures: dem/sample/dense_packing.h
 // (`anticrack check` on a dense random packing scene prints them).
-#include "dem/dense_packing.h"
-#include "dem/measurements.h"
-#include "dem/system.h"
+#include "dem/sample/dense_packing.h"
+#include "dem/lab/measurements.h"
+#include "dem/core/system.h"
 
 #include "dem_test_helpers.h"
 

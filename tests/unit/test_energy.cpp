@@ -1,4 +1,4 @@
-// Energy bookkeeping (dem/energy.h): the balance
+// Energy bookkeeping (dem/core/energy.h): the balance
 //   kinetic + elastic + gravity potential + dissipated - external work
 // must stay at its initial value. With the kinetic energy taken as 1/2 m v(n-1/2).v(n+1/2), the
 // undamped leapfrog conserves kinetic + elastic exactly for linear springs and constant forces:

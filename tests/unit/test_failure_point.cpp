@@ -1,6 +1,6 @@
-// Failure-point analysis (dem/failure_point.h) on synthetic histories with known answers.
+// Failure-point analysis (dem/lab/failure_point.h) on synthetic histories with known answers.
 
-#include "dem/failure_point.h"
+#include "dem/lab/failure_point.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Tests of the DEM I/O module (dem/io_hdf5.h, dem/io_vtp.h):
+// Tests of the DEM I/O module (dem/io/state_hdf5.h, dem/io/state_vtp.h):
 //   - a checkpoint written mid-run and read into a fresh system continues the run bit for bit
 //     (periodic box, bonds, walls, a clump with an applied force, neighbour rebuilds after the
 //     restart), and the loaded state equals the written one field by field;
@@ -10,9 +10,9 @@
 //     get an extra point), and the PVD collection lists its datasets and survives a restart.
 #include "dem_test_helpers.h"
 
-#include "dem/io_hdf5.h"
-#include "dem/io_vtp.h"
-#include "dem/lattice.h"
+#include "dem/io/state_hdf5.h"
+#include "dem/io/state_vtp.h"
+#include "dem/sample/lattice.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>

@@ -1,8 +1,8 @@
-// Virtual-laboratory tests driven by walls (dem/lab_tests.h): servo consolidation and the triaxial
+// Virtual-laboratory tests driven by walls (dem/lab/lab_tests.h): servo consolidation and the triaxial
 // test of seed 004, the Brazilian disc and the uniaxial compression of a prism between platens of
 // seed 003, specimen carving and argument checking.
 //
-// Samples come from dem/dense_packing.h (random packings formed by radius growth between
+// Samples come from dem/sample/dense_packing.h (random packings formed by radius growth between
 // frictionless walls, so that their faces are flat where walls or platens will sit). They are
 // small (275-400 spheres) to keep the suite fast on one thread (~11 s together); the figures they give
 // are recorded with RecordProperty. At the time of writing: consolidation 20 -> 100 kPa in ~300-550
@@ -10,11 +10,11 @@
 // ~0.47-0.50 sigma_bar_c; prism UCS ~0.77 sigma_bar_c with secant moduli at 30 and 60 % of the peak
 // within 2 % of each other. Halving the loading rates changed the peaks by 1-4 %.
 
-#include "dem/contact_laws.h"
-#include "dem/dense_packing.h"
-#include "dem/failure_point.h"
-#include "dem/lab_tests.h"
-#include "dem/measurements.h"
+#include "dem/contact/contact_laws.h"
+#include "dem/sample/dense_packing.h"
+#include "dem/lab/failure_point.h"
+#include "dem/lab/lab_tests.h"
+#include "dem/lab/measurements.h"
 #include "dem_test_helpers.h"
 
 #include <algorithm>
@@ -117,7 +117,7 @@ namespace
 
   /// Normal force of every sphere-wall contact times its lever arm R - delta (centre to wall), summed
   /// over the walls and divided by 3V: the mean-stress part of the boundary contacts that the
-  /// Love-Weber sum of dem/measurements.h leaves out [Pa]. Frictionless linear walls: F = k_n delta.
+  /// Love-Weber sum of dem/lab/measurements.h leaves out [Pa]. Frictionless linear walls: F = k_n delta.
   double wall_contact_arm_pressure(const DemSystem &s, double volume)
   {
     double sum = 0;
@@ -427,7 +427,7 @@ TEST(LabTests, BrazilianDiscSplitsAtBondScaleStrength)
 
 // Uniaxial compression of a bonded prism (10 x 10 x 20 mm) between frictionless platens (seed 003
 // section 4; Potyondy & Cundall 2004's UCS test). Checks: a linear elastic start, the secant moduli
-// to 30 % and 60 % of the peak (dem/failure_point.h) agree within 10 % (the bonded packing is
+// to 30 % and 60 % of the peak (dem/lab/failure_point.h) agree within 10 % (the bonded packing is
 // linear until bonds start to break, seed 003 Fig. 10: "linear elasticity and instantaneous
 // splitting"; 10 % allows for the seating of the platens and the first scattered breaks before
 // 60 %); a peak and a post-peak drop below half the peak before 5 % strain (brittle failure).

@@ -1,7 +1,7 @@
-// Love-Weber stress and fabric (dem/measurements.h) on states whose answers are known in closed form.
+// Love-Weber stress and fabric (dem/lab/measurements.h) on states whose answers are known in closed form.
 
-#include "dem/lattice.h"
-#include "dem/measurements.h"
+#include "dem/sample/lattice.h"
+#include "dem/lab/measurements.h"
 #include "dem_test_helpers.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Periodic boundaries (dem/domain.h): a pair straddling the periodic face must behave exactly like
+// Periodic boundaries (dem/core/domain.h): a pair straddling the periodic face must behave exactly like
 // the same pair inside the box, through neighbour-list rebuilds that wrap the positions.
 
 #include "dem_test_helpers.h"

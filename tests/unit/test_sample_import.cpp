@@ -1,8 +1,8 @@
-// Import of external samples (dem/io_hdf5.h read_sample): an anticrack snapshot read back as a
+// Import of external samples (dem/io/state_hdf5.h read_sample): an anticrack snapshot read back as a
 // sample gives its spheres and its intact bonds with their radii.
 
-#include "dem/io_hdf5.h"
-#include "dem/lattice.h"
+#include "dem/io/state_hdf5.h"
+#include "dem/sample/lattice.h"
 #include "dem_test_helpers.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-// Homothetic scaling (dem/scaling.h): a scaled sample under the scaled loading is the same
+// Homothetic scaling (dem/sample/scaling.h): a scaled sample under the scaled loading is the same
 // experiment in other units, so its stresses must be the original ones.
 
-#include "dem/lattice.h"
-#include "dem/scaling.h"
+#include "dem/sample/lattice.h"
+#include "dem/sample/scaling.h"
 #include "dem_test_helpers.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-// Percus-Yevick relations of sticky hard spheres (dem/sticky_hard_spheres.h) against the reference
+// Percus-Yevick relations of sticky hard spheres (dem/sample/sticky_hard_spheres.h) against the reference
 // values of PHYSICS.md §1.4 and against their own inverse.
 
-#include "dem/sticky_hard_spheres.h"
-#include "dem/types.h"
+#include "dem/sample/sticky_hard_spheres.h"
+#include "dem/core/types.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,159 @@
+#include "coupling/calibrate.h"
+
+#include "dem/campaign/campaign.h"
+#include "dem/scene/parameters.h"
+#include "util/input_error.h"
+#include "fem/material/material_file.h"
+#include "util/run_summary.h"
+#include "params/calibration_error.h"
+#include "params/calibration_output.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#ifndef ANTICRACK_SCRIPTS_DIR
+#  define ANTICRACK_SCRIPTS_DIR "scripts"
+#endif
+#ifndef ANTICRACK_PYTHON
+#  define ANTICRACK_PYTHON "/usr/bin/python3"
+#endif
+
+namespace anticrack::coupling
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// Rank of this process when started by mpirun (the campaign of a scene runs on every rank; only
+    /// rank 0 calibrates).
+    int launcher_rank()
+    {
+      for (const char *variable : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+        if (const char *value = std::getenv(variable))
+          return std::atoi(value);
+      return 0;
+    }
+
+    /// The material file name of microstructure m: material.prm for a campaign of one microstructure.
+    std::string material_file_name(std::size_t m, std::size_t count)
+    {
+      return count == 1 ? "material.prm" : "material_m" + std::to_string(m) + ".prm";
+    }
+
+    /// Runs the scene's campaign into DIR/campaign (resuming what an earlier call left) and returns
+    /// the campaign file; returns "" on ranks other than 0 or when the campaign failed (exit code set).
+    std::string campaign_of_scene(const CalibrateOptions &options, int &exit_code)
+    {
+      const dem::SceneParameters scene = dem::read_scene(options.input);
+      dem::require_dem_component(scene);
+      if (!scene.campaign.enabled())
+        throw InputError(options.input + ": the scene has no campaign (Campaign/Loading angles [deg] is empty); "
+                         "`anticrack calibrate` needs failure points at several loading angles");
+      RunOptions run;
+      run.scene_file = options.input;
+      run.output_directory = (fs::path(options.output_directory) / "campaign").string();
+      run.resume = fs::exists(run.output_directory);
+      run.threads = options.threads;
+      run.command_line = options.command_line;
+      exit_code = dem::run_campaign(scene, run);
+      if (exit_code != exit_success || launcher_rank() != 0)
+        return "";
+      return (fs::path(run.output_directory) / "campaign.h5").string();
+    }
+  } // namespace
+
+  int run_calibration(const CalibrateOptions &options)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const fs::path directory(options.output_directory);
+    const bool from_scene = fs::path(options.input).extension() == ".prm";
+    const std::vector<std::string> outputs = {"calibration.h5", "summary.json"};
+    if (!options.overwrite)
+      for (const auto &name : outputs)
+        if (fs::exists(directory / name))
+          throw InputError((directory / name).string() + " exists: an earlier calibration is in " +
+                           directory.string() + "; choose another directory or pass --overwrite");
+
+    int exit_code = exit_success;
+    const std::string campaign_file = from_scene ? campaign_of_scene(options, exit_code) : options.input;
+    if (campaign_file.empty())
+      return exit_code;
+
+    const auto calibration_start = std::chrono::steady_clock::now();
+    params::Calibration calibration;
+    try
+    {
+      params::CalibrationOptions calibration_options;
+      calibration_options.fe_plane =
+        options.fe_plane_base_stresses ? params::StressPlane::base_stresses : params::StressPlane::invariants;
+      calibration_options.confidence = options.confidence;
+      if (options.poisson_ratio > -1)
+        calibration_options.poisson_ratio = options.poisson_ratio;
+      calibration_options.bootstrap_samples = options.bootstrap_samples;
+      calibration_options.seed = options.seed;
+      calibration = params::calibrate(params::read_campaign(campaign_file), calibration_options);
+    }
+    catch (const params::CalibrationError &e)
+    {
+      throw InputError(e.what());
+    }
+
+    // Everything is computed and every material file is read back as the FE solver reads it; only
+    // then are files written, each through a temporary name.
+    const std::string version = version_info()["anticrack"].get<std::string>();
+    std::vector<std::string> material_names, material_texts;
+    for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
+    {
+      material_names.push_back(material_file_name(m, calibration.microstructures.size()));
+      material_texts.push_back(params::material_file_text(calibration, m, version));
+      fem::read_material_text(material_texts.back(), material_names.back());
+    }
+    fs::create_directories(directory);
+    for (std::size_t m = 0; m < material_names.size(); ++m)
+    {
+      const fs::path file = directory / material_names[m], temporary = file.string() + ".tmp";
+      std::ofstream(temporary) << material_texts[m];
+      fs::rename(temporary, file);
+    }
+    params::write_calibration_data(calibration, (directory / "calibration.h5").string());
+
+    Json summary;
+    summary["status"] = "completed";
+    summary["command"] = options.command_line;
+    summary["input"] = options.input;
+    summary["calibration"] = params::calibration_summary(calibration);
+    summary["outputs"] = Json{{"data", "calibration.h5"}, {"materials", material_names}, {"summary", "summary.json"}};
+    const auto now = std::chrono::steady_clock::now();
+    summary["timing"] = Json{{"wall_s", std::chrono::duration<double>(now - start).count()},
+                             {"calibration_s", std::chrono::duration<double>(now - calibration_start).count()}};
+    summary["versions"] = version_info();
+    write_json_atomically((directory / "summary.json").string(), summary);
+
+    const auto &first =
+      calibration.microstructures.front().plane(calibration.options.fe_plane).cam_clay();
+    std::cout << "anticrack calibrate: " << calibration.microstructures.size() << " microstructure(s) from "
+              << campaign_file << "\n  microstructure 0, " << params::plane_id(calibration.options.fe_plane)
+              << " plane: p0 = " << first.parameters[0]
+              << " Pa, beta = " << first.parameters[1] << ", M = " << first.parameters[2]
+              << ", R^2 = " << first.r_squared << "\n  wrote " << directory.string() << "/{"
+              << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
+              << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
+
+    if (options.plots)
+    {
+      const std::string command = std::string(ANTICRACK_PYTHON) + " \"" + ANTICRACK_SCRIPTS_DIR +
+                                  "/plot_calibration.py\" \"" + directory.string() + "\"";
+      if (std::system(command.c_str()) != 0)
+      {
+        std::cerr << "anticrack calibrate: the plots failed (" << command
+                  << "); the data files are complete. Install python3-matplotlib and python3-h5py, or pass "
+                     "--no-plots.\n";
+        return exit_numerical_failure;
+      }
+    }
+    return exit_success;
+  }
+} // namespace anticrack::coupling

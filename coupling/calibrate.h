@@ -1,0 +1,28 @@
+// `anticrack calibrate`: a campaign file (or a scene whose campaign is run first, resumably) in,
+// the calibrated continuum out (params/): calibration.h5, material file(s), summary.json and the
+// plots of scripts/plot_calibration.py.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace anticrack::coupling
+{
+  struct CalibrateOptions
+  {
+    std::string input;            ///< campaign.h5, or a scene (.prm) with a Campaign subsection
+    std::string output_directory;
+    bool fe_plane_base_stresses = false; ///< material from the (σ, τ) fit instead of (p, q)
+    double confidence = 0.95;
+    double poisson_ratio = -2;    ///< in (-1, 0.5): given ν (E from the axial modulus alone); else measured
+    int bootstrap_samples = 1000;
+    std::uint64_t seed = 1;
+    bool plots = true;
+    bool overwrite = false;       ///< replace an earlier calibration in the directory
+    int threads = -1;             ///< for a scene's campaign
+    std::string command_line;
+  };
+
+  /// Returns the exit code; throws InputError (bad options, degenerate data) before writing.
+  int run_calibration(const CalibrateOptions &options);
+} // namespace anticrack::coupling

@@ -1,0 +1,732 @@
+#include "dem/campaign/campaign.h"
+
+#include "dem/scene/model.h"
+#include "util/hdf5_file.h"
+#include "util/input_error.h"
+#include "util/progress.h"
+#include "dem/scene/parameters.h"
+#include "util/run_summary.h"
+#include "dem/lab/force_history.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace anticrack::dem
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    // ------------------------------------------------------------------------------ MPI
+    /// MPI for the lifetime of a campaign, only when the process was started by mpirun (a serial
+    /// run does not initialise MPI at all, which keeps it free of launcher requirements).
+    class MpiSession
+    {
+    public:
+      MpiSession()
+      {
+        const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") ||
+                              std::getenv("PMIX_RANK");
+        int initialised = 0;
+        MPI_Initialized(&initialised);
+        if (launched && !initialised)
+        {
+          int provided = 0;
+          MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+          owns_ = true;
+          initialised = 1;
+        }
+        if (initialised)
+        {
+          active_ = true;
+          MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+          MPI_Comm_size(MPI_COMM_WORLD, &size_);
+        }
+      }
+      ~MpiSession()
+      {
+        if (owns_)
+          MPI_Finalize();
+      }
+      MpiSession(const MpiSession &) = delete;
+      MpiSession &operator=(const MpiSession &) = delete;
+
+      [[nodiscard]] int rank() const { return rank_; }
+      [[nodiscard]] int size() const { return size_; }
+      void barrier() const
+      {
+        if (active_)
+          MPI_Barrier(MPI_COMM_WORLD);
+      }
+      /// Logical OR of `flag` over the ranks.
+      [[nodiscard]] bool any(bool flag) const
+      {
+        int local = flag ? 1 : 0, global = local;
+        if (active_)
+          MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+        return global != 0;
+      }
+
+    private:
+      bool owns_ = false, active_ = false;
+      int rank_ = 0, size_ = 1;
+    };
+
+    // ---------------------------------------------------------------------------- tests
+    struct CampaignTest
+    {
+      std::string id;
+      Index microstructure = 0;
+      Index realization = 0;
+      double angle_deg = 0;
+      double slowdown = 1;       ///< > 1: a quasi-static reference run
+      std::string reference_for; ///< the test a reference run checks
+    };
+
+    std::string test_id(Index m, Index r, double angle)
+    {
+      char text[64];
+      std::snprintf(text, sizeof text, "m%lld_r%lld_psi%05.1f", static_cast<long long>(m),
+                    static_cast<long long>(r), angle);
+      return text;
+    }
+
+    /// Every test of the campaign, grouped by sample (microstructure, realization): first the
+    /// angles, then the sample's quasi-static references.
+    std::vector<CampaignTest> enumerate_tests(const parameters::Campaign &c, Index microstructures)
+    {
+      using Check = parameters::Campaign::QuasiStaticCheck;
+      std::vector<CampaignTest> tests;
+      for (Index m = 0; m < microstructures; ++m)
+        for (Index r = 0; r < c.realizations; ++r)
+        {
+          for (const double angle : c.loading_angles_deg)
+            tests.push_back({test_id(m, r, angle), m, r, angle, 1.0, ""});
+          const bool checked = c.quasi_static_check == Check::all ||
+                               (c.quasi_static_check == Check::first_realization && r == 0);
+          if (!checked)
+            continue;
+          char suffix[32];
+          std::snprintf(suffix, sizeof suffix, "_slow%g", c.quasi_static_slowdown);
+          for (const double angle : c.loading_angles_deg)
+            tests.push_back(
+              {test_id(m, r, angle) + suffix, m, r, angle, c.quasi_static_slowdown, test_id(m, r, angle)});
+        }
+      return tests;
+    }
+
+    /// Contiguous block [begin, end) of `tests` for `rank`, balanced by the expected cost (a
+    /// reference run costs `slowdown` tests).
+    std::pair<std::size_t, std::size_t> block_of(const std::vector<CampaignTest> &tests, int rank, int size)
+    {
+      double total = 0;
+      for (const auto &t : tests)
+        total += t.slowdown;
+      std::size_t begin = tests.size(), end = 0;
+      double before = 0;
+      for (std::size_t k = 0; k < tests.size(); ++k)
+      {
+        const double middle = before + 0.5 * tests[k].slowdown;
+        const int owner = std::min(size - 1, static_cast<int>(middle / total * size));
+        if (owner == rank)
+          begin = std::min(begin, k), end = k + 1;
+        before += tests[k].slowdown;
+      }
+      return begin < end ? std::pair{begin, end} : std::pair{std::size_t(0), std::size_t(0)};
+    }
+
+    Json read_json(const fs::path &file)
+    {
+      std::ifstream in(file);
+      if (!in)
+        throw std::runtime_error("cannot open " + file.string());
+      return Json::parse(in);
+    }
+
+    /// The test's summary if it completed (a campaign resumed with --resume skips it).
+    bool completed(const fs::path &directory, const Json &labels)
+    {
+      std::error_code error;
+      if (!fs::exists(directory / "summary.json", error))
+        return false;
+      try
+      {
+        const Json s = read_json(directory / "summary.json");
+        return s.value("status", "") == "completed" && s.contains("labels") && s["labels"] == labels;
+      }
+      catch (const std::exception &)
+      {
+        return false;
+      }
+    }
+
+    // ------------------------------------------------------------------------- campaign.h5
+    using hdf5::Handle;
+
+    /// One column of a history.h5 file.
+    std::vector<double> read_history_column(const fs::path &file, const std::string &name)
+    {
+      const Handle f = hdf5::open_file_read_only(file.string());
+      return hdf5::read_doubles(f.id, name);
+    }
+
+    /// Copies every dataset of the root of `file` into a new group `name` of `parent`.
+    void copy_history(const fs::path &file, hid_t parent, const std::string &name)
+    {
+      const Handle source(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + file.string());
+      const Handle group(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                         "create group " + name);
+      H5G_info_t info;
+      H5Gget_info(source.id, &info);
+      for (hsize_t k = 0; k < info.nlinks; ++k)
+      {
+        char link[256];
+        if (H5Lget_name_by_idx(source.id, ".", H5_INDEX_NAME, H5_ITER_INC, k, link, sizeof link, H5P_DEFAULT) < 0)
+          throw std::runtime_error("HDF5: cannot list " + file.string());
+        if (H5Ocopy(source.id, link, group.id, link, H5P_DEFAULT, H5P_DEFAULT) < 0)
+          throw std::runtime_error("HDF5: cannot copy " + std::string(link) + " from " + file.string());
+      }
+    }
+
+    /// A number of a JSON object at `pointer`, NaN when absent.
+    double number_at(const Json &j, const std::string &pointer)
+    {
+      const Json::json_pointer p(pointer);
+      return j.contains(p) && j[p].is_number() ? j[p].get<double>() : nan;
+    }
+
+    /// What the campaign keeps of one finished test.
+    struct TestOutcome
+    {
+      std::string status;         ///< completed, failed, interrupted, missing
+      std::string message;
+      double sigma = nan, tau = nan, p = nan, q = nan;
+      std::vector<double> love_stress = std::vector<double>(9, nan);
+      double time = nan, step = nan;
+      double flow_angle_deg = nan, secant_modulus = nan, softening_ratio = nan, peak_q = nan;
+      double max_inertial_number = nan; ///< from half the failure stress to the failure point
+      double solid_fraction = nan, coordination = nan, bonds = nan;
+      double specimen_height = nan; ///< initial height H0 of the specimen (history strains = u / H0)
+      double layer_thickness = nan; ///< deformable layer between the base and the clump, h
+      double steps = nan, wall_s = nan;
+      std::string analysis_error;
+    };
+
+    TestOutcome read_outcome(const fs::path &directory)
+    {
+      TestOutcome o;
+      std::error_code error;
+      if (!fs::exists(directory / "summary.json", error))
+      {
+        o.status = "missing";
+        return o;
+      }
+      const Json s = read_json(directory / "summary.json");
+      o.status = s.value("status", "unknown");
+      o.message = s.value("message", "");
+      o.steps = number_at(s, "/dem/steps");
+      o.wall_s = number_at(s, "/timing/wall_s");
+      o.solid_fraction = number_at(s, "/dem/sample/volume_fraction");
+      if (std::isnan(o.solid_fraction))
+        o.solid_fraction = number_at(s, "/dem/sample/solid_fraction_bulk");
+      o.coordination = number_at(s, "/dem/sample/coordination");
+      if (std::isnan(o.coordination))
+        o.coordination = number_at(s, "/dem/sample/mean_contacts");
+      o.bonds = number_at(s, "/dem/bonds");
+      o.specimen_height = number_at(s, "/dem/specimen/height_m");
+      o.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
+      const Json::json_pointer analysis("/dem/failure_analysis");
+      if (!s.contains(analysis))
+        return o;
+      const Json &a = s[analysis];
+      if (a.contains("error"))
+      {
+        o.analysis_error = a["error"].get<std::string>();
+        return o;
+      }
+      o.sigma = number_at(a, "/failure/base_normal_stress_sigma_Pa");
+      o.tau = number_at(a, "/failure/base_shear_stress_tau_Pa");
+      o.p = number_at(a, "/failure/mean_pressure_p_Pa");
+      o.q = number_at(a, "/failure/von_mises_q_Pa");
+      o.time = number_at(a, "/failure/time_s");
+      o.step = number_at(a, "/failure/step");
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          o.love_stress[3 * r + c] = number_at(a, "/failure/love_stress_Pa/" + std::to_string(r) + "/" + std::to_string(c));
+      o.flow_angle_deg = number_at(a, "/flow_angle_deg");
+      o.secant_modulus = number_at(a, "/secant_modulus_70_percent_Pa");
+      o.softening_ratio = number_at(a, "/softening_ratio");
+      o.peak_q = number_at(a, "/peak_q/von_mises_q_Pa");
+      // Was the loading quasi-static as failure approached? The largest inertial number over the
+      // samples between half the failure stress and the failure point (earlier, I ~ 1/sqrt(p)
+      // measures nothing but the start of the ramp at vanishing stress).
+      if (!std::isnan(o.step) && fs::exists(directory / "history.h5", error))
+      {
+        const fs::path history = directory / "history.h5";
+        const auto steps = read_history_column(history, "step");
+        const auto q = read_history_column(history, "von_mises_stress");
+        const auto inertial = read_history_column(history, "inertial_number");
+        double largest = 0;
+        for (std::size_t k = 0; k < steps.size() && steps[k] <= o.step; ++k)
+          if (q[k] >= 0.5 * o.q && std::isfinite(inertial[k]))
+            largest = std::max(largest, inertial[k]);
+        o.max_inertial_number = largest;
+      }
+      return o;
+    }
+
+    /// |s - s_ref| / |s_ref| for the failure point s = (p, q) of the Love-Weber stress: the
+    /// quasi-static check's measure. It is the yield point itself (seed 002's criterion maximises q)
+    /// and a volume average; the base reactions (sigma, tau) are single-surface readings that ring
+    /// with the specimen's slip events near failure (see base_relative_difference).
+    double relative_difference(const TestOutcome &a, const TestOutcome &reference)
+    {
+      return std::hypot(a.p - reference.p, a.q - reference.q) / std::hypot(reference.p, reference.q);
+    }
+
+    /// The same for the base stresses (sigma, tau), reported beside it.
+    double base_relative_difference(const TestOutcome &a, const TestOutcome &reference)
+    {
+      return std::hypot(a.sigma - reference.sigma, a.tau - reference.tau) / std::hypot(reference.sigma, reference.tau);
+    }
+
+    std::string format_angle(double a)
+    {
+      std::ostringstream s;
+      s << a;
+      return s.str();
+    }
+  } // namespace
+
+  namespace
+  {
+    /// The scene of every microstructure (the scene itself when Campaign/Microstructures is
+    /// empty), validated; throws InputError naming the variant.
+    std::vector<SceneParameters> microstructure_scenes_of(const SceneParameters &scene)
+    {
+      const auto &c = scene.campaign;
+      std::vector<SceneParameters> scenes;
+      if (c.microstructures.empty())
+        scenes.push_back(scene);
+      for (std::size_t m = 0; m < c.microstructures.size(); ++m)
+      {
+        std::vector<std::pair<std::string, std::string>> overrides;
+        for (const auto &[entry, value] : c.microstructures[m])
+          overrides.emplace_back((split_parameter_path(entry).size() == 1 ? "DEM/Sample/" : "DEM/") + entry, value);
+        try
+        {
+          scenes.push_back(read_scene(scene.file, overrides));
+        }
+        catch (const InputError &e)
+        {
+          throw InputError("Campaign/Microstructures, variant " + std::to_string(m) + " (" +
+                           c.microstructures_text + "): " + e.what());
+        }
+      }
+      return scenes;
+    }
+  } // namespace
+
+  void describe_campaign(std::ostream &out, const SceneParameters &scene)
+  {
+    const auto &c = scene.campaign;
+    const auto scenes = microstructure_scenes_of(scene);
+    const auto tests = enumerate_tests(c, static_cast<Index>(scenes.size()));
+    std::ostringstream s;
+    s << "\nCampaign (the model above is microstructure 0, realization 0; every test is built like it)\n"
+      << "  loading angles      ";
+    for (std::size_t k = 0; k < c.loading_angles_deg.size(); ++k)
+      s << (k ? ", " : "") << c.loading_angles_deg[k];
+    s << " deg\n  realizations        " << c.realizations << " (seeds " << scene.dem.seed << " to "
+      << scene.dem.seed + c.realizations - 1 << ")\n  microstructures     " << scenes.size();
+    for (std::size_t m = 0; m < c.microstructures.size(); ++m)
+    {
+      s << "\n    " << m << ":";
+      for (const auto &[entry, value] : c.microstructures[m])
+        s << " " << entry << " = " << value << ";";
+    }
+    s << "\n  tests               " << tests.size() << " (" << tests.size() - c.loading_angles_deg.size() * c.realizations * scenes.size()
+      << " of them quasi-static references, " << c.quasi_static_slowdown << "x slower)\n"
+      << "  outputs             summary.json, campaign.h5, tests/<id>/{summary.json, history.h5}\n";
+    out << s.str();
+  }
+
+  int run_campaign(const SceneParameters &scene, const RunOptions &options)
+  {
+    const auto &c = scene.campaign;
+    const fs::path directory(options.output_directory);
+    const auto start = std::chrono::steady_clock::now();
+
+    // --- everything is validated before anything is written
+    const std::vector<SceneParameters> microstructure_scenes = microstructure_scenes_of(scene);
+    const std::vector<CampaignTest> tests = enumerate_tests(c, static_cast<Index>(microstructure_scenes.size()));
+
+    std::error_code error;
+    if (fs::exists(directory, error) && !fs::is_directory(directory, error))
+      throw InputError("The output path <" + directory.string() + "> exists and is not a directory.");
+    if (!options.resume && !options.overwrite)
+      for (const char *name : {"summary.json", "campaign.h5", "tests"})
+        if (fs::exists(directory / name, error))
+          throw InputError("The output directory <" + directory.string() + "> already holds a campaign (" +
+                           name + "). Use --resume to run only the tests that have not completed, "
+                           "--overwrite to start again, or another directory.");
+
+    const MpiSession mpi;
+    const bool root = mpi.rank() == 0;
+    if (root)
+    {
+      if (options.overwrite && !options.resume)
+        for (const char *name : {"summary.json", "campaign.h5", "tests"})
+          fs::remove_all(directory / name);
+      fs::create_directories(directory / "tests");
+    }
+    mpi.barrier();
+
+    // Threads per rank: the scene's (or --threads), but the cores are shared among the ranks.
+    int threads = options.threads >= 0 ? options.threads : scene.dem.threads;
+    if (threads <= 0 && mpi.size() > 1)
+      threads = std::max(1, dem::DemSystem::threads() / mpi.size());
+    apply_thread_count(threads);
+
+    const auto [first, last] = block_of(tests, mpi.rank(), mpi.size());
+    if (root)
+      std::cout << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
+                << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
+                << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
+                << " (quasi-static references included) on " << mpi.size() << " rank(s) x "
+                << dem::DemSystem::threads() << " thread(s)\n"
+                << std::flush;
+
+    // --- this rank's tests; one sample per (microstructure, realization), copied for each angle
+    bool any_failed = false;
+    std::pair<Index, Index> cached_sample{-1, -1};
+    std::unique_ptr<DemModel> sample;
+    for (std::size_t k = first; k < last; ++k)
+    {
+      const CampaignTest &t = tests[k];
+      SceneParameters test_scene = microstructure_scenes[t.microstructure];
+      test_scene.dem.seed += static_cast<std::uint64_t>(t.realization);
+      const double psi = t.angle_deg * M_PI / 180.0;
+      const Vec3 direction(std::sin(psi), 0.0, -std::cos(psi));
+      test_scene.dem.boundary.clump_force_direction = direction;
+      test_scene.dem.boundary.clump_force_rate /= t.slowdown;
+      test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
+      test_scene.output.progress_interval = 0;
+
+      RunOptions o;
+      o.output_directory = (directory / "tests" / t.id).string();
+      o.overwrite = true;
+      o.quiet = true;
+      o.progress_label = "[rank " + std::to_string(mpi.rank()) + "] " + t.id;
+      o.threads = threads;
+      o.command_line = options.command_line;
+      o.labels = {{"campaign_test", t.id},
+                  {"microstructure", t.microstructure},
+                  {"realization", t.realization},
+                  {"loading_angle_deg", t.angle_deg},
+                  {"seed", test_scene.dem.seed},
+                  {"rate_divisor", t.slowdown},
+                  {"reference_for", t.reference_for}};
+      if (options.resume && completed(o.output_directory, o.labels))
+      {
+        std::cout << "[rank " << mpi.rank() << "] " << t.id << ": completed earlier, skipped\n" << std::flush;
+        continue;
+      }
+      if (cached_sample != std::pair{t.microstructure, t.realization})
+      {
+        sample = build_dem_model(test_scene, threads);
+        cached_sample = {t.microstructure, t.realization};
+      }
+      auto model = std::make_unique<DemModel>(*sample);
+      model->system.clumps[model->clump].applied_force =
+        dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
+      const int code = run_dem_model(test_scene, std::move(model), o);
+      any_failed = any_failed || code != exit_success;
+      const TestOutcome outcome = read_outcome(o.output_directory);
+      std::ostringstream line;
+      line.precision(4);
+      line << "[rank " << mpi.rank() << "] test " << k + 1 << "/" << tests.size() << " " << t.id << ": " << outcome.status;
+      if (!std::isnan(outcome.sigma))
+        line << ", failure sigma = " << outcome.sigma << " Pa, tau = " << outcome.tau << " Pa, q = " << outcome.q
+             << " Pa";
+      else if (!outcome.analysis_error.empty())
+        line << " (" << outcome.analysis_error << ")";
+      line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s) << "\n";
+      std::cout << line.str() << std::flush;
+    }
+    any_failed = mpi.any(any_failed);
+    mpi.barrier();
+    if (!root)
+      return any_failed ? exit_numerical_failure : exit_success;
+
+    // --- rank 0: campaign.h5 and summary.json from the tests' own files
+    std::map<std::string, TestOutcome> outcomes;
+    for (const auto &t : tests)
+      outcomes[t.id] = read_outcome(directory / "tests" / t.id);
+
+    const fs::path campaign_file = directory / "campaign.h5";
+    const fs::path temporary = directory / "campaign.h5.tmp";
+    {
+      const Handle f = hdf5::create_file(temporary.string());
+      hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
+      hdf5::write_string_attribute(f.id, "format_version", "2");
+      hdf5::write_string_attribute(f.id, "scene_file", scene.file);
+      hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
+      hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
+      hdf5::write_string_attribute(f.id, "microstructures", c.microstructures_text);
+      hdf5::write_string_attribute(f.id, "anticrack_version", version_info()["anticrack"].get<std::string>());
+      hdf5::write_string_attribute(
+        f.id, "conventions",
+        "stresses tension positive except sigma (base normal stress) and p, compression positive; "
+        "loading angle psi: clump force direction (sin psi, 0, -cos psi)");
+
+      const Handle all(H5Gcreate2(f.id, "tests", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /tests");
+      for (const auto &t : tests)
+      {
+        const fs::path history = directory / "tests" / t.id / "history.h5";
+        const Handle group(H5Gcreate2(all.id, t.id.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                           "create /tests/" + t.id);
+        hdf5::write_string_attribute(group.id, "status", outcomes[t.id].status);
+        hdf5::write_string_attribute(group.id, "loading_angle_deg", format_angle(t.angle_deg));
+        hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
+        hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
+        hdf5::write_string_attribute(group.id, "rate_divisor", format_angle(t.slowdown));
+        if (fs::exists(history, error))
+          copy_history(history, group.id, "history");
+      }
+
+      // What a calibration needs to know of each microstructure's material (params/ reads it).
+      {
+        const Handle g = hdf5::create_group(f.id, "microstructures");
+        std::vector<std::string> labels;
+        std::vector<double> contact_modulus, bond_modulus, particle_modulus, tensile, cohesion, density, periodic;
+        for (std::size_t m = 0; m < microstructure_scenes.size(); ++m)
+        {
+          const auto &d = microstructure_scenes[m].dem;
+          std::string label = c.microstructures.empty() ? "scene sample" : "";
+          if (!c.microstructures.empty())
+            for (const auto &[entry, value] : c.microstructures[m])
+              label += (label.empty() ? "" : ", ") + entry + " = " + value;
+          labels.push_back(label);
+          contact_modulus.push_back(d.material.contact.contact_modulus);
+          bond_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : nan);
+          particle_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : d.material.contact.contact_modulus);
+          tensile.push_back(d.bond.bond.enabled ? d.bond.bond.tensile_strength : nan);
+          cohesion.push_back(d.bond.bond.enabled ? d.bond.bond.cohesion : nan);
+          density.push_back(d.material.density);
+          periodic.push_back(d.domain.periodic[0] && d.domain.periodic[1] ? 1.0 : 0.0);
+        }
+        hdf5::write_strings(g.id, "label", labels, "the microstructure variant (Campaign/Microstructures)");
+        hdf5::write_doubles(g.id, "contact_modulus", contact_modulus, "Pa", "E_c of the linear contact law");
+        hdf5::write_doubles(g.id, "bond_modulus", bond_modulus, "Pa", "E_bar of the parallel bonds (NaN: no bonds)");
+        hdf5::write_doubles(g.id, "particle_modulus", particle_modulus, "Pa",
+                            "the micro modulus of seed 000's E_macro(E_particle): the bond modulus of bonded "
+                            "samples, else the contact modulus");
+        hdf5::write_doubles(g.id, "bond_tensile_strength", tensile, "Pa", "sigma_bar_c of the parallel bonds");
+        hdf5::write_doubles(g.id, "bond_cohesion", cohesion, "Pa", "c_bar of the parallel bonds");
+        hdf5::write_doubles(g.id, "particle_density", density, "kg/m^3", "density of the sphere material");
+        hdf5::write_doubles(g.id, "laterally_periodic", periodic, "-",
+                            "1: periodic along x and y (laterally confined, uniaxial strain at psi = 0); 0: open sides");
+      }
+
+      // The failure-point table: one row per test of the campaign proper (references apart).
+      std::vector<const CampaignTest *> main_tests, references;
+      for (const auto &t : tests)
+        (t.reference_for.empty() ? main_tests : references).push_back(&t);
+      auto table = [&](hid_t group, const std::vector<const CampaignTest *> &rows) {
+        auto column = [&](auto &&get) {
+          std::vector<double> v;
+          for (const auto *t : rows)
+            v.push_back(get(*t, outcomes[t->id]));
+          return v;
+        };
+        std::vector<std::string> ids, status;
+        std::vector<double> stress;
+        for (const auto *t : rows)
+        {
+          ids.push_back(t->id);
+          status.push_back(outcomes[t->id].status);
+          const auto &s = outcomes[t->id].love_stress;
+          stress.insert(stress.end(), s.begin(), s.end());
+        }
+        hdf5::write_strings(group, "test", ids, "test id: m<microstructure>_r<realization>_psi<angle>");
+        hdf5::write_strings(group, "status", status, "completed, failed, interrupted or missing");
+        using O = TestOutcome;
+        using T = CampaignTest;
+        hdf5::write_doubles(group, "microstructure", column([](const T &t, const O &) { return double(t.microstructure); }), "-",
+                      "index into the root attribute `microstructures` (0 = the scene's own sample)");
+        hdf5::write_doubles(group, "realization", column([](const T &t, const O &) { return double(t.realization); }), "-",
+                      "realization r, sample seed = DEM/Random seed + r");
+        hdf5::write_doubles(group, "loading_angle_deg", column([](const T &t, const O &) { return t.angle_deg; }), "deg",
+                      "psi, clump force direction (sin psi, 0, -cos psi)");
+        hdf5::write_doubles(group, "sigma", column([](const T &, const O &o) { return o.sigma; }), "Pa",
+                      "base normal stress at failure, compression positive (seed 002)");
+        hdf5::write_doubles(group, "tau", column([](const T &, const O &o) { return o.tau; }), "Pa",
+                      "base shear stress at failure (along +x)");
+        hdf5::write_doubles(group, "p", column([](const T &, const O &o) { return o.p; }), "Pa",
+                      "mean pressure of the Love-Weber stress at failure, compression positive");
+        hdf5::write_doubles(group, "q", column([](const T &, const O &o) { return o.q; }), "Pa",
+                      "von Mises stress of the Love-Weber stress at failure");
+        hdf5::write_doubles(group, "love_stress", stress, "Pa",
+                      "full Love-Weber stress tensor at failure, tension positive, [test][i][j]",
+                      {rows.size(), 3, 3});
+        hdf5::write_doubles(group, "failure_time", column([](const T &, const O &o) { return o.time; }), "s",
+                      "time of the failure point");
+        hdf5::write_doubles(group, "failure_step", column([](const T &, const O &o) { return o.step; }), "-",
+                      "step of the failure point");
+        hdf5::write_doubles(group, "flow_angle_deg", column([](const T &, const O &o) { return o.flow_angle_deg; }), "deg",
+                      "plastic flow angle atan2(du_z, du_x) of the clump just after failure (seed 002)");
+        hdf5::write_doubles(group, "secant_modulus", column([](const T &, const O &o) { return o.secant_modulus; }), "Pa",
+                      "secant modulus to 70 % of the peak base normal stress (seed 000)");
+        hdf5::write_doubles(group, "softening_ratio", column([](const T &, const O &o) { return o.softening_ratio; }), "-",
+                      "residual / peak base normal stress (seed 000)");
+        hdf5::write_doubles(group, "peak_q", column([](const T &, const O &o) { return o.peak_q; }), "Pa",
+                      "largest von Mises stress of the whole test");
+        hdf5::write_doubles(group, "max_inertial_number", column([](const T &, const O &o) { return o.max_inertial_number; }),
+                      "-", "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, seed 002)");
+        hdf5::write_doubles(group, "solid_fraction", column([](const T &, const O &o) { return o.solid_fraction; }), "-",
+                      "solid volume fraction of the generated sample");
+        hdf5::write_doubles(group, "coordination", column([](const T &, const O &o) { return o.coordination; }), "-",
+                      "mean coordination number of the generated sample");
+        hdf5::write_doubles(group, "bonds", column([](const T &, const O &o) { return o.bonds; }), "-",
+                      "parallel bonds of the specimen");
+        hdf5::write_doubles(group, "specimen_height", column([](const T &, const O &o) { return o.specimen_height; }),
+                      "m", "initial height H0 of the tested specimen (strains in the histories are u / H0)");
+        hdf5::write_doubles(group, "layer_thickness", column([](const T &, const O &o) { return o.layer_thickness; }),
+                      "m", "deformable layer between the fixed base and the clump (centre to centre), h");
+      };
+      {
+        const Handle g(H5Gcreate2(f.id, "failure_points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                       "create /failure_points");
+        table(g.id, main_tests);
+      }
+      if (!references.empty())
+      {
+        const Handle g(H5Gcreate2(f.id, "quasi_static_check", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                       "create /quasi_static_check");
+        table(g.id, references);
+        std::vector<std::string> checked;
+        std::vector<double> difference, base_difference;
+        for (const auto *r : references)
+        {
+          checked.push_back(r->reference_for);
+          difference.push_back(relative_difference(outcomes[r->reference_for], outcomes[r->id]));
+          base_difference.push_back(base_relative_difference(outcomes[r->reference_for], outcomes[r->id]));
+        }
+        hdf5::write_strings(g.id, "checks", checked, "the campaign test this slower run is the reference of");
+        hdf5::write_doubles(g.id, "relative_difference", difference, "-",
+                      "|s - s_ref| / |s_ref| of the failure point s = (p, q) (the checked measure)");
+        hdf5::write_doubles(g.id, "base_relative_difference", base_difference, "-",
+                      "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
+      }
+    }
+    fs::rename(temporary, campaign_file);
+
+    // summary.json
+    Json s;
+    s["status"] = any_failed ? "failed" : "completed";
+    s["command"] = options.command_line;
+    s["scene"] = scene_info(scene);
+    Json spec;
+    spec["loading_angles_deg"] = c.loading_angles_deg;
+    spec["realizations"] = c.realizations;
+    spec["microstructures"] = c.microstructures_text;
+    spec["quasi_static_slowdown"] = c.quasi_static_slowdown;
+    spec["quasi_static_tolerance"] = c.quasi_static_tolerance;
+    s["campaign"] = spec;
+    Json rows = Json::array();
+    double test_wall = 0, largest_inertial = 0;
+    for (const auto &t : tests)
+    {
+      const TestOutcome &o = outcomes[t.id];
+      Json r;
+      r["test"] = t.id;
+      r["status"] = o.status;
+      r["loading_angle_deg"] = t.angle_deg;
+      r["microstructure"] = t.microstructure;
+      r["realization"] = t.realization;
+      r["rate_divisor"] = t.slowdown;
+      auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
+      r["sigma_Pa"] = finite(o.sigma);
+      r["tau_Pa"] = finite(o.tau);
+      r["p_Pa"] = finite(o.p);
+      r["q_Pa"] = finite(o.q);
+      r["flow_angle_deg"] = finite(o.flow_angle_deg);
+      r["max_inertial_number"] = finite(o.max_inertial_number);
+      r["steps"] = finite(o.steps);
+      r["wall_s"] = finite(o.wall_s);
+      if (!o.analysis_error.empty())
+        r["analysis_error"] = o.analysis_error;
+      if (!o.message.empty() && o.status != "completed")
+        r["message"] = o.message;
+      rows.push_back(r);
+      test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
+      if (t.reference_for.empty() && std::isfinite(o.max_inertial_number))
+        largest_inertial = std::max(largest_inertial, o.max_inertial_number);
+    }
+    s["tests"] = rows;
+    s["largest_inertial_number_before_failure"] = largest_inertial;
+
+    Json check = Json::array();
+    double worst = 0;
+    bool within = true;
+    for (const auto &t : tests)
+      if (!t.reference_for.empty())
+      {
+        const double d = relative_difference(outcomes[t.reference_for], outcomes[t.id]);
+        Json r;
+        r["test"] = t.reference_for;
+        r["reference"] = t.id;
+        r["relative_difference"] = std::isfinite(d) ? Json(d) : Json(nullptr);
+        const double base = base_relative_difference(outcomes[t.reference_for], outcomes[t.id]);
+        r["base_stress_relative_difference"] = std::isfinite(base) ? Json(base) : Json(nullptr);
+        r["within_tolerance"] = std::isfinite(d) && d <= c.quasi_static_tolerance;
+        within = within && std::isfinite(d) && d <= c.quasi_static_tolerance;
+        worst = std::isfinite(d) ? std::max(worst, d) : std::numeric_limits<double>::infinity();
+        check.push_back(r);
+      }
+    if (!check.empty())
+    {
+      Json q;
+      q["measure"] = "|(p, q) - (p, q)_ref| / |(p, q)_ref| at the failure point";
+      q["tolerance"] = c.quasi_static_tolerance;
+      q["largest_relative_difference"] = std::isfinite(worst) ? Json(worst) : Json(nullptr);
+      q["all_within_tolerance"] = within;
+      q["pairs"] = check;
+      s["quasi_static_check"] = q;
+    }
+    Json outputs;
+    outputs["campaign"] = "campaign.h5";
+    outputs["tests"] = "tests/<id>/summary.json, tests/<id>/history.h5";
+    s["outputs"] = outputs;
+    Json timing;
+    timing["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    timing["sum_of_test_wall_s"] = test_wall;
+    timing["ranks"] = mpi.size();
+    timing["threads_per_rank"] = dem::DemSystem::threads();
+    s["timing"] = timing;
+    s["versions"] = version_info();
+    write_json_atomically((directory / "summary.json").string(), s);
+
+    std::cout << "campaign done in " << format_duration(timing["wall_s"].get<double>()) << ": "
+              << tests.size() << " tests, campaign.h5 and summary.json in " << directory.string() << "\n";
+    if (!check.empty())
+      std::cout << "  quasi-static check: largest difference of the failure point (p, q) to the "
+                << c.quasi_static_slowdown << "x slower runs " << 100 * worst << " % (tolerance "
+                << 100 * c.quasi_static_tolerance << " %)\n";
+    return any_failed ? exit_numerical_failure : exit_success;
+  }
+} // namespace anticrack::dem

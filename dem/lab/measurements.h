@@ -1,0 +1,41 @@
+// Micro-to-macro measurements on a DEM state (PHYSICS.md §1.5): the Love-Weber stress tensor, the
+// fabric tensor and coordination numbers. They read the loads of the last step, so call them after
+// DemSystem::step().
+#pragma once
+
+#include "dem/lab/stress_invariants.h"
+#include "dem/core/system.h"
+
+#include <utility>
+
+namespace anticrack::dem
+{
+  /// Love-Weber stress over the volume V (tension positive, PHYSICS.md §0):
+  ///   sigma = -(1/V) sum_pairs F_j (x) l  -  (1/V) sum_p m v (x) v
+  /// with F_j the force a pair exerts on its particle j (contact and bond together) and l the branch
+  /// vector x_j + shift - x_i, so that pushing spheres give compression. Sphere-wall contacts are
+  /// boundary tractions and do not enter; the kinetic part uses the half-step velocities.
+  /// Bond couples make the contact part slightly asymmetric; the symmetric part is returned.
+  Mat3 love_weber_stress(const DemSystem &system, double volume, bool include_kinetic = true);
+
+  struct Fabric
+  {
+    Mat3 tensor = Mat3::Zero();   ///< C = (1/N_c) sum n (x) n over the counted pairs (trace 1)
+    Index pairs = 0;              ///< N_c
+    double coordination = 0;      ///< 2 N_c / N over the particles considered
+  };
+
+  /// Fabric of the touching contacts (overlap > 0 at the last step) and of the intact bonds, counted
+  /// once per pair (a bonded pair that touches counts once), over all particles.
+  Fabric contact_and_bond_fabric(const DemSystem &system);
+
+  /// Lowest and highest sphere surface along an axis (0, 0 for no spheres).
+  std::pair<double, double> sphere_extent(const ParticleStore &particles, int axis);
+
+  /// Volume the sample occupies: along periodic axes the box length, along open axes the extent of
+  /// the spheres (lowest surface to highest surface). The volume for the Love-Weber stress.
+  double sample_volume(const DemSystem &system);
+
+  /// Fraction of bonds that are broken (0 when there are none).
+  double broken_bond_fraction(const BondList &bonds);
+} // namespace anticrack::dem

@@ -1,0 +1,541 @@
+#include "dem/sample/sticky_hard_spheres.h"
+
+#include "dem/core/types.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace anticrack::dem::shs
+{
+  namespace
+  {
+    void require_volume_fraction(double phi)
+    {
+      if (!(phi > 0 && phi < 1))
+        throw SetupError("sticky hard spheres: volume fraction phi = " + std::to_string(phi) +
+                         " outside (0, 1)");
+    }
+
+    /// Coefficients of the PY quadratic a lambda^2 + b lambda + c = 0.
+    struct Quadratic
+    {
+      double a, b, c;
+    };
+    Quadratic percus_yevick_quadratic(double phi, double tau)
+    {
+      return {phi / 12, -(tau + phi / (1 - phi)), (1 + phi / 2) / ((1 - phi) * (1 - phi))};
+    }
+  } // namespace
+
+  double minimum_stickiness(double phi)
+  {
+    require_volume_fraction(phi);
+    return (14 * phi * phi - 4 * phi - 1) / (12 * (2 * phi * phi - phi - 1));
+  }
+
+  double percus_yevick_lambda(double phi, double tau)
+  {
+    const double tau_min = minimum_stickiness(phi);
+    const Quadratic q = percus_yevick_quadratic(phi, tau);
+    const double discriminant = q.b * q.b - 4 * q.a * q.c;
+    if (!(tau >= tau_min) || discriminant < 0)
+    {
+      std::ostringstream message;
+      message << "sticky hard spheres: stickiness tau = " << tau << " at volume fraction phi = " << phi
+              << " is below the admissible minimum tau_min(phi) = " << tau_min
+              << " (PHYSICS.md 1.4); use tau >= tau_min or a lower volume fraction";
+      throw SetupError(message.str());
+    }
+    // Smaller root, written to avoid cancellation: lambda = 2c / (-b + sqrt(disc)).
+    return 2 * q.c / (-q.b + std::sqrt(discriminant));
+  }
+
+  double percus_yevick_coordination(double phi, double tau)
+  {
+    return 2 * phi * percus_yevick_lambda(phi, tau);
+  }
+
+  double stickiness_for_coordination(double phi, double z)
+  {
+    require_volume_fraction(phi);
+    if (!(z > 0))
+      throw SetupError("sticky hard spheres: target coordination number z = " + std::to_string(z) +
+                       " must be positive");
+    const double lambda = z / (2 * phi);
+    const Quadratic q = percus_yevick_quadratic(phi, 0.0);
+    const double tau = (q.a * lambda * lambda + q.c) / lambda - phi / (1 - phi);
+    const double tau_min = minimum_stickiness(phi);
+    // lambda must be the smaller root: the vertex of the parabola lies at lambda* = (tau + phi/(1-phi))/(2a).
+    const double vertex = (tau + phi / (1 - phi)) / (2 * q.a);
+    if (!(tau >= tau_min) || lambda > vertex)
+    {
+      std::ostringstream message;
+      message << "sticky hard spheres: coordination number z = " << z << " at volume fraction phi = " << phi
+              << " needs tau = " << tau << ", outside the admissible range tau >= tau_min(phi) = " << tau_min
+              << " (the largest reachable z is " << percus_yevick_coordination(phi, tau_min) << ")";
+      throw SetupError(message.str());
+    }
+    return tau;
+  }
+} // namespace anticrack::dem::shs
+
+// -------------------------------------------------------------------------------------------------
+// Monte Carlo sampler
+
+namespace anticrack::dem::shs
+{
+  namespace
+  {
+    /// Particles of a periodic cube in a cell grid (cells at least one well-range wide), for the
+    /// sampler's neighbour queries; particles move between cells as they are displaced.
+    class PeriodicCells
+    {
+    public:
+      PeriodicCells(double box, double range, const std::vector<Vec3> &x)
+        : box_(box), cells_(std::max<Index>(1, static_cast<Index>(std::floor(box / range))))
+      {
+        if (cells_ < 3)
+          cells_ = 1; // one cell: every pair is a candidate (minimum image keeps it unique)
+        members_.resize(cells_ * cells_ * cells_);
+        cell_of_.resize(x.size());
+        slot_.resize(x.size());
+        for (std::size_t p = 0; p < x.size(); ++p)
+          insert(static_cast<Index>(p), cell(x[p]));
+      }
+
+      void move(Index p, const Vec3 &to)
+      {
+        const Index c = cell(to);
+        if (c == cell_of_[p])
+          return;
+        // remove by swapping with the last member of the old cell
+        auto &old_members = members_[cell_of_[p]];
+        const Index last = old_members.back();
+        old_members[slot_[p]] = last;
+        slot_[last] = slot_[p];
+        old_members.pop_back();
+        insert(p, c);
+      }
+
+      /// Calls visit(j) for every particle in the cells around x.
+      template <class Visit>
+      void for_each_near(const Vec3 &x, Visit &&visit) const
+      {
+        if (cells_ == 1)
+        {
+          for (const Index j : members_[0])
+            visit(j);
+          return;
+        }
+        const std::array<Index, 3> c = coordinates(x);
+        for (Index dz = -1; dz <= 1; ++dz)
+          for (Index dy = -1; dy <= 1; ++dy)
+            for (Index dx = -1; dx <= 1; ++dx)
+            {
+              const Index cx = (c[0] + dx + cells_) % cells_, cy = (c[1] + dy + cells_) % cells_,
+                          cz = (c[2] + dz + cells_) % cells_;
+              for (const Index j : members_[cx + cells_ * (cy + cells_ * cz)])
+                visit(j);
+            }
+      }
+
+    private:
+      std::array<Index, 3> coordinates(const Vec3 &x) const
+      {
+        std::array<Index, 3> c{};
+        for (int a = 0; a < 3; ++a)
+          c[a] = std::clamp<Index>(static_cast<Index>(std::floor(x[a] / box_ * cells_)), 0, cells_ - 1);
+        return c;
+      }
+      Index cell(const Vec3 &x) const
+      {
+        const auto c = coordinates(x);
+        return c[0] + cells_ * (c[1] + cells_ * c[2]);
+      }
+      void insert(Index p, Index c)
+      {
+        cell_of_[p] = c;
+        slot_[p] = static_cast<Index>(members_[c].size());
+        members_[c].push_back(p);
+      }
+
+      double box_;
+      Index cells_;
+      std::vector<std::vector<Index>> members_;
+      std::vector<Index> cell_of_, slot_;
+    };
+
+    Vec3 minimum_image(Vec3 d, double box)
+    {
+      for (int a = 0; a < 3; ++a)
+        d[a] -= box * std::nearbyint(d[a] / box);
+      return d;
+    }
+
+    Vec3 wrap(Vec3 x, double box)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        x[a] -= box * std::floor(x[a] / box);
+        if (x[a] >= box)
+          x[a] = 0;
+      }
+      return x;
+    }
+
+    /// Face-centred cubic sites, the first n of them, scaled into the cube (a hard-core-free start
+    /// up to phi = 0.74).
+    std::vector<Vec3> fcc_start(Index n, double box)
+    {
+      Index m = 1;
+      while (4 * m * m * m < n)
+        ++m;
+      const double a = box / m;
+      const std::array<Vec3, 4> basis = {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 0, 0.5), Vec3(0, 0.5, 0.5)};
+      std::vector<Vec3> x;
+      for (Index k = 0; k < m && static_cast<Index>(x.size()) < n; ++k)
+        for (Index j = 0; j < m && static_cast<Index>(x.size()) < n; ++j)
+          for (Index i = 0; i < m && static_cast<Index>(x.size()) < n; ++i)
+            for (const Vec3 &b : basis)
+              if (static_cast<Index>(x.size()) < n)
+                x.push_back(a * (Vec3(i, j, k) + b + Vec3::Constant(0.25)));
+      return x;
+    }
+  } // namespace
+
+  SamplerReport sample_sticky_hard_spheres(DemSystem &system, const SamplerSpec &spec)
+  {
+    const auto fail = [](const std::string &what) { throw SetupError("sticky hard spheres: " + what); };
+    if (spec.particle_count < 8)
+      fail("particle count " + std::to_string(spec.particle_count) + " must be at least 8");
+    if (!(spec.volume_fraction > 0 && spec.volume_fraction <= 0.55))
+      fail("volume fraction " + std::to_string(spec.volume_fraction) +
+           " outside (0, 0.55] (above, hard spheres crystallise)");
+    if (!(spec.radius > 0))
+      fail("radius must be positive");
+    if (!(spec.well_width > 0 && spec.well_width <= 0.1))
+      fail("well width " + std::to_string(spec.well_width) + " outside (0, 0.1] diameters");
+    if (spec.sweeps < 1)
+      fail("at least one sweep is needed");
+    if (spec.material < 0 || spec.material >= system.materials.size())
+      fail("material " + std::to_string(spec.material) + " is not defined");
+    if (!(spec.cluster_move_fraction >= 0 && spec.cluster_move_fraction < 1))
+      fail("cluster move fraction " + std::to_string(spec.cluster_move_fraction) + " outside [0, 1)");
+
+    SamplerReport report;
+    const double phi = spec.volume_fraction;
+    report.stickiness =
+      spec.target_coordination > 0 ? stickiness_for_coordination(phi, spec.target_coordination) : spec.stickiness;
+    report.percus_yevick_coordination = percus_yevick_coordination(phi, report.stickiness); // checks tau_min
+
+    const Index n = spec.particle_count;
+    const double sigma = 2 * spec.radius;
+    const double range = sigma * (1 + spec.well_width);
+    const double box = std::cbrt(n * sphere_volume(spec.radius) / phi);
+    report.box_length = box;
+    // Boltzmann factor of one contact, from the matched second virial coefficient.
+    const double contact_weight =
+      1 + 1 / (4 * report.stickiness * (std::pow(1 + spec.well_width, 3) - 1));
+
+    std::vector<Vec3> x = fcc_start(n, box);
+    PeriodicCells cells(box, range, x);
+    std::mt19937_64 rng(spec.seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::uniform_int_distribution<Index> pick(0, n - 1);
+
+    // Number of partners in the well around position y, skipping particle `self`; -1 on overlap.
+    const auto partners = [&](const Vec3 &y, Index self) {
+      Index count = 0;
+      bool overlap = false;
+      cells.for_each_near(y, [&](Index j) {
+        if (j == self || overlap)
+          return;
+        const double d2 = minimum_image(x[j] - y, box).squaredNorm();
+        if (d2 < sigma * sigma)
+          overlap = true;
+        else if (d2 < range * range)
+          ++count;
+      });
+      return overlap ? Index(-1) : count;
+    };
+
+    // Two kinds of trial move, each in detailed balance on its own, mixed half and half:
+    //  - a displacement by up to `step` in each direction (the step adapts towards 40 % acceptance in
+    //    the first half of the sweeps and is frozen in the second half, where the statistics are);
+    //  - an aggregation-volume-bias move (Chen & Siepmann 2000, AVBMC1), which makes and breaks
+    //    contacts far faster in a narrow well: pick a partner j, then with probability 1/2 move i
+    //    into j's well shell (volume V_in), otherwise out of it (anywhere else in the box, V_out);
+    //    a move "in" when i is already in (or "out" when already out) is rejected, and acceptance
+    //    carries the volume ratio V_in / V_out (in) or V_out / V_in (out). V_out is the region the
+    //    "out" move draws from and an "in" move can start from: the box minus j's shell AND j's core
+    //    (hard core: i is never there), V_out = L^3 - 4/3 pi range^3.
+    const double shell_volume = 4.0 / 3.0 * M_PI * (range * range * range - sigma * sigma * sigma);
+    const double outside_volume = box * box * box - 4.0 / 3.0 * M_PI * range * range * range;
+    const auto random_direction = [&]() {
+      const double cos_theta = 2 * unit(rng) - 1, azimuth = 2 * M_PI * unit(rng);
+      const double sin_theta = std::sqrt(1 - cos_theta * cos_theta);
+      return Vec3(sin_theta * std::cos(azimuth), sin_theta * std::sin(azimuth), cos_theta);
+    };
+    const auto in_shell_of = [&](const Vec3 &y, Index j) {
+      const double d2 = minimum_image(y - x[j], box).squaredNorm();
+      return d2 >= sigma * sigma && d2 < range * range;
+    };
+    double step = 0.1 * sigma;
+    Index accepted = 0, tried = 0;
+
+    // Cluster moves (opt-in, a fraction `cluster_move_fraction` of the trials; the detailed-balance
+    // argument is in the header): the spheres linked to a random sphere p, each pair in the well
+    // linked with probability 1 - 1/contact_weight (drawn while the cluster grows, each pair at most
+    // once), are translated rigidly by a vector uniform in a cube of half-width `cluster_step`; the
+    // move is accepted unless a moved sphere overlaps a sphere that stays. Clusters that wrap around
+    // the periodic box or have more than `largest_moved_cluster` spheres are not moved.
+    const double cluster_fraction = spec.cluster_move_fraction;
+    const double link_probability = 1 - 1 / contact_weight;
+    const std::size_t largest_moved_cluster = 16;
+    std::vector<char> member(cluster_fraction > 0 ? n : 0, 0);
+    std::vector<Vec3> unwrapped(cluster_fraction > 0 ? n : 0);
+    std::vector<Index> cluster;
+    std::vector<Vec3> moved;
+    double cluster_step = 0.1 * sigma;
+    Index cluster_accepted = 0, cluster_tried = 0;
+    // 0: the cluster wraps or is too large (not moved), 1: the translation overlaps, 2: accepted.
+    const auto cluster_move = [&]() -> int {
+      const Index p = pick(rng);
+      cluster.assign(1, p);
+      member[p] = 1;
+      unwrapped[p] = x[p];
+      bool reject = false;
+      for (std::size_t q = 0; q < cluster.size() && !reject; ++q)
+      {
+        const Index i = cluster[q];
+        cells.for_each_near(x[i], [&](Index j) {
+          if (j == i || reject)
+            return;
+          const Vec3 d = minimum_image(x[j] - x[i], box);
+          if (d.squaredNorm() >= range * range)
+            return;
+          if (member[j])
+          {
+            // the pair closes a loop: through another periodic image, the cluster wraps
+            if ((unwrapped[i] + d - unwrapped[j]).squaredNorm() > 0.25 * box * box)
+              reject = true;
+            return;
+          }
+          if (unit(rng) >= link_probability)
+            return; // not linked: j stays, whatever the move does to the pair
+          member[j] = 1;
+          unwrapped[j] = unwrapped[i] + d;
+          cluster.push_back(j);
+          if (cluster.size() > largest_moved_cluster)
+            reject = true; // too large to move: nearly always blocked, and costly to grow
+        });
+      }
+      bool accept = !reject;
+      if (accept)
+      {
+        Vec3 v;
+        for (int a = 0; a < 3; ++a)
+          v[a] = cluster_step * (2 * unit(rng) - 1);
+        moved.resize(cluster.size());
+        for (std::size_t k = 0; k < cluster.size() && accept; ++k)
+        {
+          moved[k] = wrap(x[cluster[k]] + v, box);
+          cells.for_each_near(moved[k], [&](Index j) {
+            if (accept && !member[j] && minimum_image(x[j] - moved[k], box).squaredNorm() < sigma * sigma)
+              accept = false;
+          });
+        }
+      }
+      if (accept)
+        for (std::size_t k = 0; k < cluster.size(); ++k)
+        {
+          cells.move(cluster[k], moved[k]);
+          x[cluster[k]] = moved[k];
+        }
+      for (const Index i : cluster)
+        member[i] = 0;
+      return reject ? 0 : accept ? 2 : 1;
+    };
+
+    for (Index sweep = 0; sweep < spec.sweeps; ++sweep)
+    {
+      Index sweep_accepted = 0, sweep_displacements = 0, displacements_accepted = 0;
+      Index sweep_cluster_tried = 0, sweep_cluster_accepted = 0, sweep_cluster_translations = 0;
+      for (Index t = 0; t < n; ++t)
+      {
+        if (cluster_fraction > 0 && unit(rng) < cluster_fraction)
+        {
+          ++sweep_cluster_tried;
+          const int outcome = cluster_move();
+          sweep_cluster_translations += outcome > 0;
+          if (outcome == 2)
+          {
+            ++sweep_cluster_accepted;
+            ++sweep_accepted;
+          }
+          continue;
+        }
+        const Index p = pick(rng);
+        Vec3 trial;
+        double bias = 1; // proposal-volume ratio of the move
+        const bool displacement = unit(rng) < 0.5;
+        if (displacement)
+        {
+          ++sweep_displacements;
+          trial = wrap(x[p] + step * Vec3(2 * unit(rng) - 1, 2 * unit(rng) - 1, 2 * unit(rng) - 1), box);
+        }
+        else
+        {
+          Index j = pick(rng);
+          if (j == p)
+            continue;
+          const bool into = unit(rng) < 0.5;
+          if (in_shell_of(x[p], j) == into)
+            continue; // AVBMC1: "in" only from outside j's shell, "out" only from inside
+          if (into)
+          {
+            const double r = std::cbrt(sigma * sigma * sigma + unit(rng) * (range * range * range - sigma * sigma * sigma));
+            trial = wrap(x[j] + r * random_direction(), box);
+            bias = shell_volume / outside_volume;
+          }
+          else
+          {
+            do
+              trial = Vec3(unit(rng), unit(rng), unit(rng)) * box;
+            while (in_shell_of(trial, j) || minimum_image(trial - x[j], box).squaredNorm() < sigma * sigma);
+            bias = outside_volume / shell_volume;
+          }
+        }
+        const Index after = partners(trial, p);
+        const double u = unit(rng);
+        if (after < 0)
+          continue;
+        const Index before = partners(x[p], p);
+        if (u < bias * std::pow(contact_weight, static_cast<double>(after - before)))
+        {
+          cells.move(p, trial);
+          x[p] = trial;
+          ++sweep_accepted;
+          displacements_accepted += displacement;
+        }
+      }
+      if ((sweep + 1) % 100 == 0)
+      {
+        Index pairs = 0;
+        for (Index i = 0; i < n; ++i)
+          pairs += partners(x[i], i);
+        report.coordination_history.push_back(static_cast<double>(pairs) / n);
+      }
+      if (2 * sweep < spec.sweeps)
+      {
+        const double rate =
+          sweep_displacements > 0 ? static_cast<double>(displacements_accepted) / sweep_displacements : 0.4;
+        step = std::clamp(step * (rate > 0.4 ? 1.05 : 0.95), 1e-4 * sigma, 0.5 * sigma);
+        if (sweep_cluster_translations > 0)
+        {
+          const double cluster_rate = static_cast<double>(sweep_cluster_accepted) / sweep_cluster_translations;
+          cluster_step = std::clamp(cluster_step * (cluster_rate > 0.4 ? 1.05 : 0.95), 1e-4 * sigma, 0.5 * sigma);
+        }
+      }
+      else
+      {
+        accepted += sweep_accepted;
+        tried += n;
+        cluster_accepted += sweep_cluster_accepted;
+        cluster_tried += sweep_cluster_tried;
+      }
+    }
+    report.acceptance = tried > 0 ? static_cast<double>(accepted) / tried : 0;
+    report.cluster_acceptance = cluster_tried > 0 ? static_cast<double>(cluster_accepted) / cluster_tried : 0;
+
+    const double bond_probability = 1 - 1 / contact_weight;
+    // Contact graph with the image offset of each edge, clusters and percolation (a cluster that
+    // reaches a particle through two different periodic images wraps around the box).
+    std::vector<std::vector<std::pair<Index, std::array<int, 3>>>> adjacent(n);
+    for (Index i = 0; i < n; ++i)
+      cells.for_each_near(x[i], [&](Index j) {
+        if (j <= i)
+          return;
+        const Vec3 d = x[j] - x[i];
+        const Vec3 image = minimum_image(d, box);
+        if (image.squaredNorm() < range * range)
+        {
+          ++report.well_pairs;
+          if (unit(rng) >= bond_probability)
+            return; // a hard-sphere pair that happens to be close, not an adhesive contact
+          std::array<int, 3> k{};
+          for (int a = 0; a < 3; ++a)
+            k[a] = static_cast<int>(std::nearbyint((image[a] - d[a]) / box)); // j + k box is next to i
+          adjacent[i].push_back({j, k});
+          adjacent[j].push_back({i, {-k[0], -k[1], -k[2]}});
+          report.bonded_pairs.emplace_back(i, j);
+          ++report.contacts;
+        }
+      });
+    report.coordination = 2.0 * report.contacts / n;
+    std::vector<char> seen(n, 0);
+    std::vector<std::array<int, 3>> offset(n);
+    Index largest = 0;
+    for (Index start = 0; start < n; ++start)
+    {
+      if (seen[start])
+        continue;
+      std::vector<Index> queue = {start};
+      seen[start] = 1;
+      offset[start] = {0, 0, 0};
+      bool wraps = false;
+      for (std::size_t q = 0; q < queue.size(); ++q)
+      {
+        const Index i = queue[q];
+        for (const auto &[j, k] : adjacent[i])
+        {
+          const std::array<int, 3> o = {offset[i][0] + k[0], offset[i][1] + k[1], offset[i][2] + k[2]};
+          if (!seen[j])
+          {
+            seen[j] = 1;
+            offset[j] = o;
+            queue.push_back(j);
+          }
+          else if (offset[j] != o)
+            wraps = true;
+        }
+      }
+      if (static_cast<Index>(queue.size()) > largest)
+      {
+        largest = static_cast<Index>(queue.size());
+        report.percolating = wraps;
+      }
+    }
+    report.largest_cluster_fraction = static_cast<double>(largest) / n;
+    if (spec.require_percolation && !report.percolating)
+    {
+      std::ostringstream why;
+      why << "sticky hard spheres: the sample does not percolate at phi = " << spec.volume_fraction
+          << ", tau = " << report.stickiness << " (z = " << 2.0 * static_cast<double>(report.contacts) / n
+          << " bonded partners per sphere; the largest cluster holds " << 100 * report.largest_cluster_fraction
+          << " % of the spheres and does not wrap around the periodic box). A non-percolating sample carries "
+             "no load (seed 002): raise the coordination number (lower tau) or the volume fraction";
+      throw SetupError(why.str());
+    }
+
+    system.domain.lower = Vec3::Zero();
+    system.domain.upper = Vec3::Constant(box);
+    system.domain.periodic = {true, true, true};
+    const double density = system.materials[spec.material].density;
+    const Index first = system.particles.size();
+    for (const Vec3 &y : x)
+      system.particles.add_sphere(y, spec.radius, density, spec.material);
+    for (auto &[i, j] : report.bonded_pairs)
+    {
+      i += first;
+      j += first;
+    }
+    report.volume_fraction = n * sphere_volume(spec.radius) / (box * box * box);
+    return report;
+  }
+} // namespace anticrack::dem::shs

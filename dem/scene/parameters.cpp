@@ -1,0 +1,1331 @@
+#include "dem/scene/parameters.h"
+
+
+#include "util/sha256.h"
+#include "util/input_error.h"
+#include "dem/sample/sticky_hard_spheres.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <type_traits>
+
+namespace anticrack::dem
+{
+  using dealii::ParameterHandler;
+  namespace Patterns = dealii::Patterns;
+
+  namespace
+  {
+    /// A vector entry: three comma-separated numbers x, y, z (read with get_triple<Vec3>).
+    void declare_vector(ParameterHandler &prm, const std::string &name, const std::string &default_value,
+                        const std::string &documentation)
+    {
+      prm.declare_entry(name, default_value, Patterns::List(Patterns::Double(), 3, 3),
+                        documentation + " Three comma-separated numbers x, y, z.");
+    }
+
+    /// The three comma-separated components of a vector (Vec3) or lattice-size (integer) entry.
+    template <class Triple>
+    Triple get_triple(const ParameterHandler &prm, const std::string &name)
+    {
+      const auto parts = dealii::Utilities::split_string_list(prm.get(name), ',');
+      Triple t;
+      for (int a = 0; a < 3; ++a)
+      {
+        if constexpr (std::is_integral_v<std::decay_t<decltype(t[a])>>)
+          t[a] = dealii::Utilities::string_to_int(parts.at(a));
+        else
+          t[a] = dealii::Utilities::string_to_double(parts.at(a));
+      }
+      return t;
+    }
+
+    /// An entry that may be left empty: Patterns::List of zero or one double, empty by default.
+    void declare_optional_double(ParameterHandler &prm, const std::string &name, const std::string &documentation)
+    {
+      prm.declare_entry(name, "", Patterns::List(Patterns::Double(), 0, 1), documentation);
+    }
+
+    std::optional<double> get_optional_double(const ParameterHandler &prm, const std::string &name)
+    {
+      const std::string value = dealii::Utilities::trim(prm.get(name));
+      if (value.empty())
+        return std::nullopt;
+      return dealii::Utilities::string_to_double(value);
+    }
+  } // namespace
+
+  std::string format_number(const double x)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << x;
+    return s.str();
+  }
+
+  std::string format_vector(const Vec3 &v)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << v[0] << ", " << v[1] << ", " << v[2];
+    return s.str();
+  }
+
+  namespace parameters
+  {
+    // ------------------------------------------------------------------------------- Output
+    void Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Snapshot interval [steps]", "0", Patterns::Integer(0),
+                        "Steps between HDF5 snapshots snapshots/snapshot_NNNNNN.h5 (the state for "
+                        "post-processing; NNNNNN is the step). When positive, snapshots are also "
+                        "written at the first and the last step. 0 writes none.");
+      prm.declare_entry("Checkpoint interval [steps]", "0", Patterns::Integer(0),
+                        "Steps between restart files checkpoint.h5 (overwritten each time, plus "
+                        "checkpoint.json with the scene's hash); `anticrack run --resume` continues "
+                        "from the last one. When positive, a checkpoint is also written at the last "
+                        "step. 0 writes none.");
+      prm.declare_entry("History interval [steps]", "100", Patterns::Integer(0),
+                        "Steps between rows of the time series history.h5 (energies, bonds, wall "
+                        "stresses, clump motion). The first and last steps are always recorded; "
+                        "0 records only those.");
+      prm.declare_entry("Progress interval [steps]", "1000", Patterns::Integer(0),
+                        "Steps between progress reports on the console. 0 is quiet.");
+      prm.declare_entry("Write ParaView", "false", Patterns::Bool(),
+                        "Write paraview/particles_NNNNNN.vtp and bonds_NNNNNN.vtp with "
+                        "particles.pvd and bonds.pvd collections at every snapshot step.");
+      prm.leave_subsection();
+    }
+
+    void Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      snapshot_interval = prm.get_integer("Snapshot interval [steps]");
+      checkpoint_interval = prm.get_integer("Checkpoint interval [steps]");
+      history_interval = prm.get_integer("History interval [steps]");
+      progress_interval = prm.get_integer("Progress interval [steps]");
+      write_paraview = prm.get_bool("Write ParaView");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------- Domain
+    void Domain::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Domain");
+      declare_vector(prm, "Lower corner [m]", "0, 0, 0",
+                     "x_min: lower corner of the axis-aligned simulation box. Units: m.");
+      declare_vector(prm, "Upper corner [m]", "0.02, 0.02, 0.02",
+                     "x_max: upper corner of the simulation box, above the lower corner along "
+                     "every axis. Units: m.");
+      prm.declare_entry("Periodic axes", "", Patterns::MultipleSelection("x|y|z"),
+                        "Axes along which the box is periodic (a comma-separated subset of x, y, "
+                        "z; empty for none). Contacts and bonds across a periodic face use the "
+                        "minimum image; walls cannot sit on a periodic axis.");
+      prm.leave_subsection();
+    }
+
+    void Domain::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Domain");
+      lower = get_triple<Vec3>(prm, "Lower corner [m]");
+      upper = get_triple<Vec3>(prm, "Upper corner [m]");
+      periodic = {false, false, false};
+      for (const auto &axis : dealii::Utilities::split_string_list(prm.get("Periodic axes"), ','))
+        periodic[axis == "x" ? 0 : axis == "y" ? 1 : 2] = true;
+      prm.leave_subsection();
+    }
+
+    // ----------------------------------------------------------------------------- Material
+    void Material::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      prm.declare_entry("Density [kg/m^3]", "1e4", Patterns::Double(0),
+                        "rho: density of the spheres (seed 002 uses 10 000 kg/m^3 without "
+                        "gravity to speed up quasi-static tests). Units: kg/m^3.");
+      prm.declare_entry("Contact law", "linear", Patterns::Selection("linear|hertz-mindlin"),
+                        "Force-overlap law of sphere-sphere and sphere-wall contacts "
+                        "(PHYSICS.md 1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
+                        "L = R_i + R_j, k_s = k_n / kappa; `hertz-mindlin` has "
+                        "F_n = 4/3 E* sqrt(R*) delta^(3/2) and k_t = 8 G* sqrt(R* delta). Both "
+                        "cap the tangential force by Coulomb's law |F_s| <= mu F_n.");
+      prm.declare_entry("Contact modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E_c: contact modulus of the linear law (PFC 'deformability'). Units: Pa.");
+      prm.declare_entry("Stiffness ratio", "3", Patterns::Double(0),
+                        "kappa = k_n / k_s: normal-to-shear stiffness ratio of the linear law. "
+                        "Units: none.");
+      prm.declare_entry("Friction coefficient", "0.5", Patterns::Double(0),
+                        "mu = tan(phi_contact): Coulomb friction coefficient of contacts. Units: "
+                        "none.");
+      prm.declare_entry("Damping ratio", "0", Patterns::Double(0, 1),
+                        "beta_d: ratio of the contact dashpots to critical damping, "
+                        "c = 2 beta_d sqrt(m_eff k). 0 switches the dashpots off. Units: none.");
+      prm.declare_entry("Young modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E: Young's modulus of the grain material (Hertz-Mindlin law only). Units: "
+                        "Pa.");
+      prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(0, 0.5),
+                        "nu: Poisson's ratio of the grain material (Hertz-Mindlin law only). "
+                        "Units: none.");
+      prm.leave_subsection();
+    }
+
+    void Material::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      density = prm.get_double("Density [kg/m^3]");
+      contact.law = prm.get("Contact law") == "linear" ? dem::ContactLaw::linear :
+                                                         dem::ContactLaw::hertz_mindlin;
+      contact.contact_modulus = prm.get_double("Contact modulus [Pa]");
+      contact.stiffness_ratio = prm.get_double("Stiffness ratio");
+      contact.friction = prm.get_double("Friction coefficient");
+      contact.damping_ratio = prm.get_double("Damping ratio");
+      contact.young_modulus = prm.get_double("Young modulus [Pa]");
+      contact.poisson_ratio = prm.get_double("Poisson ratio");
+      prm.leave_subsection();
+    }
+
+    // --------------------------------------------------------------------------------- Bond
+    void Bond::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bond");
+      prm.declare_entry("Enabled", "true", Patterns::Bool(),
+                        "Whether touching spheres are joined by parallel bonds (Potyondy & "
+                        "Cundall 2004; PHYSICS.md 1.2) when the sample is built.");
+      prm.declare_entry("Modulus [Pa]", "1e9", Patterns::Double(0),
+                        "E_bar: bond modulus, k_n_bar = E_bar / L per unit area with "
+                        "L = R_i + R_j. Units: Pa.");
+      prm.declare_entry("Stiffness ratio", "3", Patterns::Double(0),
+                        "kappa_bar = k_n_bar / k_s_bar: normal-to-shear stiffness ratio of the "
+                        "bond. Units: none.");
+      prm.declare_entry("Radius multiplier", "1", Patterns::Double(0),
+                        "lambda_bar: bond radius R_bar = lambda_bar min(R_i, R_j). Units: none.");
+      prm.declare_entry("Tensile strength [Pa]", "1e6", Patterns::Double(0),
+                        "sigma_bar_c: the bond breaks in tension when the rim stress "
+                        "sigma_bar = -F_n/A + beta_bar |M_b| R_bar / I >= sigma_bar_c. Units: Pa.");
+      prm.declare_entry("Cohesion [Pa]", "1e6", Patterns::Double(0),
+                        "c_bar: the bond breaks in shear when the rim stress "
+                        "tau_bar = |F_s|/A + beta_bar |M_t| R_bar / J >= c_bar - sigma_bar "
+                        "tan(phi_bar). Units: Pa.");
+      prm.declare_entry("Friction angle [deg]", "0", Patterns::Double(0, 90),
+                        "phi_bar: friction angle of the bond's shear strength, below 90. Units: "
+                        "degrees.");
+      prm.declare_entry("Moment contribution factor", "1", Patterns::Double(0, 1),
+                        "beta_bar: weight of the bending and twisting moments in the rim "
+                        "stresses; 1 is the original parallel bond. Units: none.");
+      prm.declare_entry("Gap tolerance", "1e-6", Patterns::Double(0),
+                        "Pairs whose gap d - R_i - R_j is at most this times min(R_i, R_j) are "
+                        "bonded (overlapping pairs are bonded too). Units: none (relative to the "
+                        "smaller radius).");
+      prm.leave_subsection();
+    }
+
+    void Bond::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bond");
+      bond.enabled = prm.get_bool("Enabled");
+      bond.modulus = prm.get_double("Modulus [Pa]");
+      bond.stiffness_ratio = prm.get_double("Stiffness ratio");
+      bond.radius_multiplier = prm.get_double("Radius multiplier");
+      bond.tensile_strength = prm.get_double("Tensile strength [Pa]");
+      bond.cohesion = prm.get_double("Cohesion [Pa]");
+      friction_angle_deg = prm.get_double("Friction angle [deg]");
+      bond.friction_angle = friction_angle_deg * M_PI / 180.0;
+      bond.moment_factor = prm.get_double("Moment contribution factor");
+      gap_tolerance = prm.get_double("Gap tolerance");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------- Sample
+    void Sample::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Sample");
+      prm.declare_entry("Type", "simple cubic lattice",
+                        Patterns::Selection("simple cubic lattice|snapshot|sticky hard spheres|"
+                                            "ballistic deposition|dense random packing"),
+                        "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
+                        "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
+                        "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
+                        "and the rest come from this scene). `sticky hard spheres`: N spheres of "
+                        "radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at "
+                        "volume fraction phi and stickiness tau (PHYSICS.md 1.4) in a periodic cube "
+                        "of edge L = (N 4/3 pi R^3 / phi)^(1/3) (or of edge Box edge [m], which then "
+                        "sets R) with its lower corner at the origin: DEM/Domain's corners are "
+                        "ignored and replaced by this cube, sampled periodic in x, y and z; axes "
+                        "missing from DEM/Domain/Periodic axes are opened after sampling (no bond "
+                        "crosses them: seed 002's specimen is periodic in x and y only), and every "
+                        "pair inside the well (gap <= 2 delta R) is bonded, whatever DEM/Bond/Gap "
+                        "tolerance says. `ballistic deposition`: N spheres dropped one by one along "
+                        "-z onto the base z = DEM/Domain lower z inside the DEM/Domain box, "
+                        "laterally periodic while depositing; the domain's upper z is raised to the "
+                        "deposit's top if needed; with DEM/Domain/Periodic axes = x, y the specimen "
+                        "stays laterally periodic (seed 002), with none its sides are opened after "
+                        "deposition, like a box whose side walls are removed (seed 000); bonds use "
+                        "DEM/Bond/Gap tolerance. `dense random packing`: N spheres (radius R +- w) grown "
+                        "in the DEM/Domain box with friction Formation friction until the mean stress is "
+                        "Packing pressure [Pa] (seed 004: the formation friction sets the density; "
+                        "frictionless ~0.64, rough ~0.56); open axes are walled while it forms; "
+                        "touching pairs are bonded (Gap tolerance); Disc diameter [m] > 0 then carves a "
+                        "disc with its axis along y for the Brazilian test. The generators are seeded by "
+                        "DEM/Random seed and run again by `anticrack check`, which prints their "
+                        "statistics.");
+      prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
+                        "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
+      prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
+                        "R: sphere radius, at most half the spacing (lattice); the radius of every "
+                        "sphere (sticky hard spheres); the mean radius (ballistic deposition). "
+                        "Units: m.");
+      prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
+                        "s: distance between neighbouring centres; s = 2R makes touching spheres "
+                        "(lattice only). Units: m.");
+      declare_vector(prm, "Origin [m]", "0, 0, 0",
+                     "Lower corner of the lattice's bounding box; the lattice occupies "
+                     "[origin, origin + n s] and must lie inside the domain. Units: m.");
+      prm.declare_entry("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
+                        "a: every velocity component starts uniformly random in [-a, a] (seeded "
+                        "by DEM/Random seed; fixed and clumped spheres start at rest). Units: m/s.");
+      prm.declare_entry("Snapshot file", "", Patterns::Anything(),
+                        "HDF5 snapshot (snapshots/snapshot_NNNNNN.h5 of an earlier run) to take "
+                        "the spheres from when Type = snapshot. A relative path is relative to "
+                        "the working directory.");
+      prm.declare_entry("Particle count", "512", Patterns::Integer(1),
+                        "N: number of spheres (sticky hard spheres: at least 8; ballistic "
+                        "deposition).");
+      prm.declare_entry("Volume fraction", "0.3", Patterns::Double(0, 0.55),
+                        "phi: solid volume fraction of the sticky-hard-sphere sample, in (0, 0.55] "
+                        "(sticky hard spheres only). Dimensionless.");
+      prm.declare_entry("Stickiness", "0.2", Patterns::Double(0),
+                        "tau: Baxter stickiness parameter (smaller = stickier), at least "
+                        "tau_min(phi) = (14 phi^2 - 4 phi - 1) / (12 (2 phi^2 - phi - 1)); 0 = take "
+                        "tau from the target coordination number (sticky hard spheres only). "
+                        "Dimensionless.");
+      prm.declare_entry("Target coordination number", "0", Patterns::Double(0),
+                        "z: mean number of bonded neighbours wanted; > 0 selects tau from the "
+                        "Percus-Yevick relation z = 2 phi lambda(phi, tau) and requires Stickiness = 0; "
+                        "0 = use Stickiness (sticky hard spheres only). Dimensionless.");
+      prm.declare_entry("Well width", "0.03", Patterns::Double(0, 0.1),
+                        "delta / sigma: width of the square well that represents Baxter's adhesion, "
+                        "relative to the diameter sigma = 2 R, in (0, 0.1]; pairs in the well "
+                        "(gap <= delta sigma) become bonds (sticky hard spheres only). "
+                        "Dimensionless.");
+      prm.declare_entry("Box edge [m]", "0", Patterns::Double(0),
+                        "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
+                        "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (seed 002 keeps "
+                        "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
+                        "Units: m.");
+      prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
+                        "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
+      prm.declare_entry("Cluster move fraction", "0", Patterns::Double(0, 1),
+                        "fraction of Monte Carlo trial moves that translate a whole cluster of "
+                        "spheres in each other's well (pairs in the well linked with the contact "
+                        "probability 1 - exp(-eps/kT), Swendsen-Wang; detailed balance kept because "
+                        "the move is refused only on hard-core overlap, for clusters of more than 16 "
+                        "spheres and for clusters that wrap around the box); helps dense, sticky "
+                        "states with finite clusters equilibrate, not a network that already spans the "
+                        "box (sticky hard spheres only). Must be below 1. Dimensionless.");
+      prm.declare_entry("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
+                        "`sticky`: a falling sphere stops at its first contact (bulk solid fraction "
+                        "~0.15); `rolling`: it rolls to a three-point rest (~0.58) (ballistic "
+                        "deposition only).");
+      prm.declare_entry("Radius half width [m]", "0", Patterns::Double(0),
+                        "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
+                        "(ballistic deposition, dense random packing). Units: m.");
+      prm.declare_entry("Actuator layer count", "0", Patterns::Integer(0),
+                        "N_a > 0: after the deposit, N_a spheres of radius Actuator layer radius [m] are "
+                        "dropped on top by the rolling rule (seed 000's cohesionless actuator layer) and "
+                        "become the loading clump (DEM/Boundary particles/Clump above [m] and Actuator "
+                        "thickness [mean radii] must then be empty); they are bonded to the layer where "
+                        "they touch it (ballistic deposition only).");
+      prm.declare_entry("Actuator layer radius [m]", "0.01", Patterns::Double(0),
+                        "Radius of the actuator layer's spheres (seed 000: 10 mm). Units: m.");
+      prm.declare_entry("Formation friction", "0", Patterns::Double(0),
+                        "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
+                        "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
+      prm.declare_entry("Packing pressure [Pa]", "1e5", Patterns::Double(0),
+                        "Mean stress at which the dense random packing is complete, in (0, 1e-2 x "
+                        "contact modulus) (dense random packing only). Units: Pa.");
+      prm.declare_entry("Disc diameter [m]", "0", Patterns::Double(0),
+                        "D > 0: keep only the spheres within the disc of diameter D, axis along y, "
+                        "centred in the domain's x-z section (Brazilian test; dense random packing "
+                        "only). 0 = no carving. Units: m.");
+      prm.leave_subsection();
+    }
+
+    void Sample::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Sample");
+      const std::string type_name = prm.get("Type");
+      type = type_name == "snapshot"             ? Type::snapshot :
+             type_name == "sticky hard spheres"  ? Type::sticky_hard_spheres :
+             type_name == "ballistic deposition" ? Type::ballistic_deposition :
+             type_name == "dense random packing" ? Type::dense_random_packing :
+                                                   Type::simple_cubic_lattice;
+      lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
+      radius = prm.get_double("Radius [m]");
+      spacing = prm.get_double("Spacing [m]");
+      origin = get_triple<Vec3>(prm, "Origin [m]");
+      velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
+      snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
+      particle_count = prm.get_integer("Particle count");
+      volume_fraction = prm.get_double("Volume fraction");
+      stickiness = prm.get_double("Stickiness");
+      target_coordination = prm.get_double("Target coordination number");
+      well_width = prm.get_double("Well width");
+      sweeps = prm.get_integer("Sweeps");
+      cluster_move_fraction = prm.get_double("Cluster move fraction");
+      box_edge = prm.get_double("Box edge [m]");
+      rolling = prm.get("Deposition rule") == "rolling";
+      radius_half_width = prm.get_double("Radius half width [m]");
+      actuator_count = prm.get_integer("Actuator layer count");
+      actuator_radius = prm.get_double("Actuator layer radius [m]");
+      formation_friction = prm.get_double("Formation friction");
+      packing_pressure = prm.get_double("Packing pressure [Pa]");
+      disc_diameter = prm.get_double("Disc diameter [m]");
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------------------------------- Integration
+    void Integration::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Integration");
+      declare_vector(prm, "Gravity [m/s^2]", "0, 0, 0", "g: gravitational acceleration. Units: m/s^2.");
+      prm.declare_entry("Local damping", "0.7", Patterns::Double(0, 1),
+                        "alpha: Cundall's local damping, F_w <- F_w - alpha |F_w| sign(v_w) for "
+                        "every force and moment component (PFC default 0.7; 0 is undamped). "
+                        "0 <= alpha < 1. Units: none.");
+      prm.declare_entry("Time step [s]", "0", Patterns::Double(0),
+                        "dt: fixed time step; 0 selects the automatic step "
+                        "dt = safety factor x dt_crit, re-evaluated every `Time step update "
+                        "interval` steps. Units: s.");
+      prm.declare_entry("Time step safety factor", "0.5", Patterns::Double(0, 1),
+                        "Fraction of the critical step dt_crit = min(sqrt(m/K), sqrt(I/K_rot)) "
+                        "used in automatic mode, in (0, 1]. Units: none.");
+      prm.declare_entry("Enforce critical time step", "true", Patterns::Bool(),
+                        "Refuse a fixed time step above the critical estimate.");
+      prm.declare_entry("Time step update interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between re-evaluations of the critical time step.");
+      prm.declare_entry("Verlet skin [m]", "0", Patterns::Double(0),
+                        "Extra distance of the Verlet neighbour list; the list is rebuilt when a "
+                        "sphere has moved more than half of it. 0 selects 0.1 x mean radius. "
+                        "Units: m.");
+      prm.declare_entry("Energy drift tolerance", "0.25", Patterns::Double(0),
+                        "The run stops with a numerical error when the energy balance "
+                        "kinetic + elastic + potential + dissipated - external work drifts from "
+                        "its initial value by more than this fraction. Units: none.");
+      prm.declare_entry("Stability check interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between checks of the energy balance and of NaNs.");
+      prm.leave_subsection();
+    }
+
+    void Integration::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Integration");
+      settings.gravity = get_triple<Vec3>(prm, "Gravity [m/s^2]");
+      settings.local_damping = prm.get_double("Local damping");
+      settings.time_step = prm.get_double("Time step [s]");
+      settings.time_step_safety = prm.get_double("Time step safety factor");
+      settings.enforce_critical_step = prm.get_bool("Enforce critical time step");
+      settings.time_step_interval = prm.get_integer("Time step update interval [steps]");
+      settings.verlet_skin = prm.get_double("Verlet skin [m]");
+      settings.energy_drift_tolerance = prm.get_double("Energy drift tolerance");
+      settings.stability_check_interval = prm.get_integer("Stability check interval [steps]");
+      prm.leave_subsection();
+    }
+
+    // -------------------------------------------------------------------------------- Walls
+    void WallFace::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Active", "false", Patterns::Bool(),
+                        "Whether a planar wall sits on this face of the domain, pushing spheres "
+                        "inwards with the contact law of DEM/Material (linear law: L = R, "
+                        "A = pi R^2).");
+      prm.declare_entry("Control", "fixed", Patterns::Selection("fixed|velocity|servo"),
+                        "`fixed`: the wall stays put. `velocity`: it moves at `Velocity` along "
+                        "its inward normal. `servo`: its normal velocity is "
+                        "gain (sigma_target A - F_n), capped at `Max speed`, with A the face area.");
+      prm.declare_entry("Velocity [m/s]", "0", Patterns::Double(),
+                        "v: wall speed along the inward normal (positive compresses the sample). "
+                        "Units: m/s.");
+      prm.declare_entry("Target stress [Pa]", "0", Patterns::Double(0),
+                        "sigma_target: compressive normal stress held by a servo wall. Units: Pa.");
+      prm.declare_entry("Servo gain [m/(s N)]", "0", Patterns::Double(0),
+                        "G: servo wall speed per unit force error. Units: m/(s N).");
+      prm.declare_entry("Max speed [m/s]", "0", Patterns::Double(0),
+                        "Cap on the servo wall speed. Units: m/s.");
+    }
+
+    void WallFace::parse_parameters(ParameterHandler &prm)
+    {
+      active = prm.get_bool("Active");
+      const std::string c = prm.get("Control");
+      control = c == "fixed" ? dem::WallControl::fixed :
+                c == "velocity" ? dem::WallControl::velocity : dem::WallControl::servo;
+      velocity = prm.get_double("Velocity [m/s]");
+      target_stress = prm.get_double("Target stress [Pa]");
+      servo_gain = prm.get_double("Servo gain [m/(s N)]");
+      max_speed = prm.get_double("Max speed [m/s]");
+    }
+
+    namespace
+    {
+      /// Calls body(f) inside subsection Walls/<face_names[f]> for every face f, in that order.
+      template <class Body>
+      void for_each_wall_face(ParameterHandler &prm, Body &&body)
+      {
+        prm.enter_subsection("Walls");
+        for (int f = 0; f < 6; ++f)
+        {
+          prm.enter_subsection(Walls::face_names[f]);
+          body(f);
+          prm.leave_subsection();
+        }
+        prm.leave_subsection();
+      }
+    } // namespace
+
+    void Walls::declare_parameters(ParameterHandler &prm)
+    {
+      for_each_wall_face(prm, [&](int) { WallFace::declare_parameters(prm); });
+    }
+
+    void Walls::parse_parameters(ParameterHandler &prm)
+    {
+      for_each_wall_face(prm, [&](int f) { face[f].parse_parameters(prm); });
+    }
+
+    // ------------------------------------------------------------------- Boundary particles
+    void BoundaryParticles::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary particles");
+      declare_optional_double(prm, "Fix below [m]",
+                              "Spheres whose centre has z below this are fixed (no translation, no "
+                              "rotation) and form the base; their reactions give the base stresses in "
+                              "history.h5. Empty for none. Units: m.");
+      declare_optional_double(prm, "Clump above [m]",
+                              "Spheres whose centre has z above this form one rigid clump (the loading "
+                              "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
+      declare_optional_double(prm, "Base thickness [mean radii]",
+                              "t_b: alternative to Fix below [m] in units of the mean radius R: spheres "
+                              "whose centre lies below the domain's lower z + t_b R are fixed (seed 002: "
+                              "t_b = 3, 'z_p0 < 3r'). Empty for none.");
+      declare_optional_double(prm, "Actuator thickness [mean radii]",
+                              "t_a: alternative to Clump above [m] in units of the mean radius R: spheres "
+                              "whose centre lies above z_top - t_a R form the clump, with z_top the lower "
+                              "of the domain's upper z and the highest sphere top. Empty for none.");
+      prm.declare_entry("Clump force rate [N/s]", "0", Patterns::Double(),
+                        "Fdot: the clump is loaded by F(t) = Fdot t d at its centre of mass. "
+                        "Units: N/s.");
+      declare_vector(prm, "Clump force direction", "0, 0, -1",
+                     "d: direction of the clump force, normalised to unit length; the "
+                     "mixed-mode test at angle psi uses d = (sin psi, 0, -cos psi). Units: "
+                     "none.");
+      prm.declare_entry("Clump rotation locked", "false", Patterns::Bool(),
+                        "Keep the clump from rotating (a guided platen).");
+      prm.leave_subsection();
+    }
+
+    void BoundaryParticles::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Boundary particles");
+      fix_below = get_optional_double(prm, "Fix below [m]");
+      clump_above = get_optional_double(prm, "Clump above [m]");
+      base_thickness = get_optional_double(prm, "Base thickness [mean radii]");
+      actuator_thickness = get_optional_double(prm, "Actuator thickness [mean radii]");
+      clump_force_rate = prm.get_double("Clump force rate [N/s]");
+      clump_force_direction = get_triple<Vec3>(prm, "Clump force direction");
+      if (clump_force_direction.norm() > 0)
+        clump_force_direction.normalize();
+      clump_rotation_locked = prm.get_bool("Clump rotation locked");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------ Loading
+    void Loading::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loading");
+      prm.declare_entry("Test", "clump force",
+                        Patterns::Selection("clump force|tilted gravity|simple shear|triaxial|platen compression"),
+                        "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
+                        "F(t) = Fdot t d at its centre of mass (seed 002's mixed-mode test). `tilted "
+                        "gravity`: seed 000's actuator, whose density grows linearly under gravity of "
+                        "magnitude |DEM/Integration/Gravity| along d = Clump force direction (tilted by psi), "
+                        "acting on every sphere; Clump force rate [N/s] is the growth rate of the "
+                        "actuator's weight. `simple shear`: seed 001's test at constant normal stress: the "
+                        "clump (a platen) is pressed with Normal stress [Pa], then driven along +x at "
+                        "Shear velocity [m/s], free along z, to Final shear strain. `triaxial`: seed 004's "
+                        "test in a box of six servo walls (added on the domain's faces; DEM/Walls must be "
+                        "inactive and no axis periodic): isotropic consolidation to Confining pressure "
+                        "[Pa], then the z walls close at Axial strain rate [1/s] to Final axial strain "
+                        "while the lateral walls hold the confinement. `platen compression`: seed 003's "
+                        "uniaxial compression or Brazilian disc test: DEM/Walls/z- and z+ (must be "
+                        "active) move towards each other at Platen speed [m/s] each, until the force has "
+                        "fallen below Post-peak fraction of its peak (or Final axial strain).");
+      prm.declare_entry("Adaptive rate", "false", Patterns::Bool(),
+                        "Adapt the clump force rate (dem/lab/load_control.h): DEM/Boundary particles/Clump "
+                        "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
+                        "the base reaction lags the applied force, the rate drops to Slow rate "
+                        "fraction x fast, and recovers by Rate recovery factor per quiet interval. "
+                        "false = constant rate.");
+      prm.declare_entry("Slow rate fraction", "0.1", Patterns::Double(0, 1),
+                        "f_s: slow rate / fast rate, in (0, 1]. Dimensionless.");
+      prm.declare_entry("Control interval [steps]", "100", Patterns::Integer(1),
+                        "Steps between two rate decisions.");
+      prm.declare_entry("Rate recovery factor", "1.25", Patterns::Double(1),
+                        "Growth of the rate per quiet control interval, > 1. Dimensionless.");
+      prm.declare_entry("Lag tolerance", "0.02", Patterns::Double(0),
+                        "Relative lag |F_applied - R_base| / |F_applied| of the base reaction (projected "
+                        "on the force direction) above which the ramp slows. Dimensionless.");
+      prm.declare_entry("Stop strain", "0", Patterns::Double(0),
+                        "End the run once the clump has moved by this fraction of the specimen's "
+                        "initial height (|u_clump| / H0; seed 002 follows the collapse to ~8 %); "
+                        "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
+      prm.declare_entry("Normal stress [Pa]", "1e4", Patterns::Double(0),
+                        "sigma_n: compressive normal stress on the platen (simple shear). Units: Pa.");
+      prm.declare_entry("Shear velocity [m/s]", "1e-3", Patterns::Double(0),
+                        "v: platen velocity along +x while shearing (simple shear). Units: m/s.");
+      prm.declare_entry("Consolidation time [s]", "1e-3", Patterns::Double(0),
+                        "Duration of the normal-force ramp before shearing (simple shear). Units: s.");
+      prm.declare_entry("Final shear strain", "0.1", Patterns::Double(0),
+                        "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
+      prm.declare_entry("Confining pressure [Pa]", "1e5", Patterns::Double(0),
+                        "sigma_c of the triaxial test (seed 004: 100, 250, 500 kPa). Units: Pa.");
+      prm.declare_entry("Axial strain rate [1/s]", "1", Patterns::Double(0),
+                        "Axial strain rate of the triaxial test's loading stage. Units: 1/s.");
+      prm.declare_entry("Final axial strain", "0.2", Patterns::Double(0, 1),
+                        "Axial strain at which the triaxial test ends (seed 004: 0.2); the platen test's "
+                        "strain limit. Dimensionless.");
+      prm.declare_entry("Max servo speed [m/s]", "0", Patterns::Double(0),
+                        "Cap on the triaxial servo walls' speed; 0 = 10 x strain rate x the largest box "
+                        "length. Units: m/s.");
+      prm.declare_entry("Platen speed [m/s]", "0.01", Patterns::Double(0),
+                        "Speed of each platen towards the other (platen compression). Units: m/s.");
+      prm.declare_entry("Post-peak fraction", "0.5", Patterns::Double(0, 1),
+                        "The platen test ends once the force has fallen below this fraction of its peak. "
+                        "Dimensionless.");
+      prm.leave_subsection();
+    }
+
+    void Loading::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loading");
+      const std::string test_name = prm.get("Test");
+      test = test_name == "tilted gravity" ? Test::tilted_gravity :
+             test_name == "simple shear"   ? Test::simple_shear :
+             test_name == "triaxial"       ? Test::triaxial :
+             test_name == "platen compression" ? Test::platen_compression :
+                                             Test::clump_force;
+      adaptive = prm.get_bool("Adaptive rate");
+      ramp.slow_fraction = prm.get_double("Slow rate fraction");
+      ramp.interval = prm.get_integer("Control interval [steps]");
+      ramp.recovery_factor = prm.get_double("Rate recovery factor");
+      ramp.lag_tolerance = prm.get_double("Lag tolerance");
+      stop_strain = prm.get_double("Stop strain");
+      normal_stress = prm.get_double("Normal stress [Pa]");
+      shear_velocity = prm.get_double("Shear velocity [m/s]");
+      consolidation_time = prm.get_double("Consolidation time [s]");
+      final_shear_strain = prm.get_double("Final shear strain");
+      confining_pressure = prm.get_double("Confining pressure [Pa]");
+      axial_strain_rate = prm.get_double("Axial strain rate [1/s]");
+      final_axial_strain = prm.get_double("Final axial strain");
+      max_servo_speed = prm.get_double("Max servo speed [m/s]");
+      platen_speed = prm.get_double("Platen speed [m/s]");
+      post_peak_fraction = prm.get_double("Post-peak fraction");
+      prm.leave_subsection();
+    }
+
+    // ------------------------------------------------------------------------------ Bedding
+    void Bedding::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bedding");
+      prm.declare_entry("Enabled", "false", Patterns::Bool(),
+                        "Give the bonds that cross bedding planes their own strengths (seed 003's layered "
+                        "slate; dem/sample/bedding.h).");
+      prm.declare_entry("Inclination [deg]", "0", Patterns::Double(-90, 90),
+                        "theta: angle between the bedding planes and the x-y plane (rotation about y): "
+                        "0 = planes normal to z, 90 = planes normal to x. Units: degrees.");
+      prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
+                        "Distance between neighbouring bedding planes. Units: m.");
+      prm.declare_entry("Offset [m]", "0", Patterns::Double(),
+                        "n.x of the plane k = 0. Units: m.");
+      prm.declare_entry("Thickness [m]", "0", Patterns::Double(0),
+                        "Thickness of the band around each plane whose bonds are weakened (0: bonds that "
+                        "cross the plane itself). Units: m.");
+      prm.declare_entry("Tensile strength [Pa]", "1e5", Patterns::Double(0),
+                        "sigma_bar_c of bedding bonds. Units: Pa.");
+      prm.declare_entry("Cohesion [Pa]", "1e5", Patterns::Double(0), "c_bar of bedding bonds. Units: Pa.");
+      prm.declare_entry("Friction angle [deg]", "0", Patterns::Double(0, 90),
+                        "phi_bar of bedding bonds. Units: degrees.");
+      prm.leave_subsection();
+    }
+
+    void Bedding::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Bedding");
+      enabled = prm.get_bool("Enabled");
+      inclination_deg = prm.get_double("Inclination [deg]");
+      const double theta = inclination_deg * M_PI / 180.0;
+      spec.normal = Vec3(std::sin(theta), 0.0, std::cos(theta));
+      spec.spacing = prm.get_double("Spacing [m]");
+      spec.offset = prm.get_double("Offset [m]");
+      spec.thickness = prm.get_double("Thickness [m]");
+      spec.tensile_strength = prm.get_double("Tensile strength [Pa]");
+      spec.cohesion = prm.get_double("Cohesion [Pa]");
+      spec.friction_angle = prm.get_double("Friction angle [deg]") * M_PI / 180.0;
+      prm.leave_subsection();
+    }
+
+    // ---------------------------------------------------------------------------------- DEM
+    void Dem::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("DEM");
+      prm.declare_entry("Steps", "1000", Patterns::Integer(1),
+                        "Number of time steps of the run (a resumed run continues up to this "
+                        "count).");
+      prm.declare_entry("Threads", "0", Patterns::Integer(0),
+                        "OpenMP threads of the force and update loops; 0 uses all available "
+                        "(OMP_NUM_THREADS or every core). `anticrack run --threads` overrides it. "
+                        "Results do not depend on it.");
+      prm.declare_entry("Random seed", "1", Patterns::Integer(0),
+                        "Seed of the random initial velocities.");
+      Domain::declare_parameters(prm);
+      Material::declare_parameters(prm);
+      Bond::declare_parameters(prm);
+      Sample::declare_parameters(prm);
+      Integration::declare_parameters(prm);
+      Walls::declare_parameters(prm);
+      BoundaryParticles::declare_parameters(prm);
+      Loading::declare_parameters(prm);
+      Bedding::declare_parameters(prm);
+      prm.leave_subsection();
+    }
+
+    void Dem::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("DEM");
+      steps = prm.get_integer("Steps");
+      threads = static_cast<int>(prm.get_integer("Threads"));
+      seed = static_cast<std::uint64_t>(prm.get_integer("Random seed"));
+      domain.parse_parameters(prm);
+      material.parse_parameters(prm);
+      bond.parse_parameters(prm);
+      sample.parse_parameters(prm);
+      integration.parse_parameters(prm);
+      walls.parse_parameters(prm);
+      boundary.parse_parameters(prm);
+      loading.parse_parameters(prm);
+      loading.ramp.fast_rate = boundary.clump_force_rate;
+      bedding.parse_parameters(prm);
+      prm.leave_subsection();
+    }
+  } // namespace parameters
+
+  namespace parameters
+  {
+    // ----------------------------------------------------------------------------- Campaign
+    void Campaign::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Campaign");
+      prm.declare_entry("Loading angles [deg]", "", Patterns::List(Patterns::Double(-180, 360)),
+                        "psi: loading angles of the mixed-mode test, the clump force direction being "
+                        "(sin psi, 0, -cos psi): 0 = compression, 90 = shear, 180 = tension (seed 002). "
+                        "Empty: the scene is a single run; otherwise `anticrack run` runs every angle x "
+                        "realization x microstructure as a separate test (DEM/Boundary particles/Clump "
+                        "force direction is then ignored) and writes campaign.h5. Units: degrees.");
+      prm.declare_entry("Realizations", "1", Patterns::Integer(1),
+                        "Samples per microstructure; realization r uses DEM/Random seed + r.");
+      prm.declare_entry("Microstructures", "", Patterns::Anything(),
+                        "Variants of DEM/Sample, separated by ';', each a comma-separated list of "
+                        "`entry = value` of DEM/Sample (e.g. `Volume fraction = 0.3, Target "
+                        "coordination number = 2.9; Volume fraction = 0.35, Target coordination "
+                        "number = 3.5`). An entry with a '/' is a path below DEM, so that material "
+                        "sweeps run the same way (`Bond/Tensile strength [Pa] = 2e6, Bond/Cohesion [Pa] = "
+                        "2e6`). Empty: the scene's own sample is the one microstructure.");
+      prm.declare_entry("Quasi-static check", "none", Patterns::Selection("none|first realization|all"),
+                        "Which tests are repeated with every loading rate divided by Quasi-static "
+                        "slowdown, to show that the failure point does not depend on the rate: none, "
+                        "every angle and microstructure of the first realization, or all tests.");
+      prm.declare_entry("Quasi-static slowdown", "4", Patterns::Double(1),
+                        "Factor by which the reference runs load more slowly (>= 1). Dimensionless.");
+      prm.declare_entry("Quasi-static tolerance", "0.02", Patterns::Double(0),
+                        "Allowed relative difference |s - s_ref| / |s_ref| of the failure point "
+                        "s = (p, q) of the Love-Weber stress between a test and its slow reference; "
+                        "summary.json reports every difference (and that of the base stresses "
+                        "(sigma, tau)) and whether it is within. Dimensionless.");
+      prm.leave_subsection();
+    }
+
+    void Campaign::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Campaign");
+      loading_angles_deg.clear();
+      for (const std::string &a : dealii::Utilities::split_string_list(prm.get("Loading angles [deg]"), ','))
+        loading_angles_deg.push_back(dealii::Utilities::string_to_double(a));
+      realizations = prm.get_integer("Realizations");
+      microstructures_text = prm.get("Microstructures");
+      microstructures.clear();
+      for (const std::string &variant : dealii::Utilities::split_string_list(microstructures_text, ';'))
+      {
+        std::vector<std::pair<std::string, std::string>> entries;
+        for (const std::string &item : dealii::Utilities::split_string_list(variant, ','))
+        {
+          const auto equal = item.find('=');
+          if (equal == std::string::npos)
+            throw std::invalid_argument("Campaign/Microstructures: '" + item +
+                                        "' is not of the form `entry = value` (entry of DEM/Sample)");
+          entries.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
+                               dealii::Utilities::trim(item.substr(equal + 1)));
+        }
+        microstructures.push_back(entries);
+      }
+      const std::string check = prm.get("Quasi-static check");
+      quasi_static_check = check == "all"                 ? QuasiStaticCheck::all :
+                           check == "first realization" ? QuasiStaticCheck::first_realization :
+                                                          QuasiStaticCheck::none;
+      quasi_static_slowdown = prm.get_double("Quasi-static slowdown");
+      quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
+      prm.leave_subsection();
+    }
+  } // namespace parameters
+
+  void SceneParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Components", "dem", Patterns::MultipleSelection("dem"),
+                      "What the scene runs: `dem` is the bonded-particle simulation (calibration "
+                      "and finite elements will be added as further components).");
+    parameters::Output::declare_parameters(prm);
+    parameters::Dem::declare_parameters(prm);
+    parameters::Campaign::declare_parameters(prm);
+  }
+
+  void SceneParameters::parse_parameters(ParameterHandler &prm)
+  {
+    components = dealii::Utilities::split_string_list(prm.get("Components"), ',');
+    output.parse_parameters(prm);
+    dem.parse_parameters(prm);
+    campaign.parse_parameters(prm);
+  }
+
+  // --------------------------------------------------------------------------- validation
+  namespace
+  {
+    /// Collects every problem of a scene so that the user sees them all in one go.
+    class Problems
+    {
+    public:
+      template <typename T>
+      void add(const std::string &entry, const T &value, const std::string &why)
+      {
+        std::ostringstream s;
+        s.precision(8);
+        s << entry << " = " << value << ": " << why;
+        list_.push_back(s.str());
+      }
+      void add(const std::string &text) { list_.push_back(text); }
+      [[nodiscard]] bool empty() const { return list_.empty(); }
+      [[nodiscard]] std::string text() const
+      {
+        std::string out;
+        for (const auto &p : list_)
+          out += "  - " + p + "\n";
+        return out;
+      }
+
+    private:
+      std::vector<std::string> list_;
+    };
+
+    std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
+
+    void validate(const SceneParameters &scene, Problems &problems)
+    {
+      using parameters::Sample;
+      const auto &d = scene.dem;
+      const char *axis_name[3] = {"x", "y", "z"};
+
+      if (scene.output.write_paraview && scene.output.snapshot_interval == 0)
+        problems.add("Output/Write ParaView", "true",
+                     "ParaView files are written at the snapshot steps: set Output/Snapshot "
+                     "interval [steps] > 0");
+      if (scene.components.empty())
+        problems.add("Components", "(empty)", "choose at least one component (dem)");
+
+      // The box.
+      const Vec3 length = d.domain.upper - d.domain.lower;
+      for (int a = 0; a < 3; ++a)
+        if (!(length[a] > 0))
+          problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
+                       std::string("must exceed DEM/Domain/Lower corner [m] = ") +
+                         vec(d.domain.lower) + " along " + axis_name[a]);
+
+      // Moduli that patterns only bound from below by zero.
+      const auto &m = d.material;
+      if (!(m.density > 0))
+        problems.add("DEM/Material/Density [kg/m^3]", m.density, "must be positive");
+      if (m.contact.law == dem::ContactLaw::linear)
+      {
+        if (!(m.contact.contact_modulus > 0))
+          problems.add("DEM/Material/Contact modulus [Pa]", m.contact.contact_modulus,
+                       "must be positive for the linear contact law");
+        if (!(m.contact.stiffness_ratio > 0))
+          problems.add("DEM/Material/Stiffness ratio", m.contact.stiffness_ratio, "must be positive");
+      }
+      else
+      {
+        if (!(m.contact.young_modulus > 0))
+          problems.add("DEM/Material/Young modulus [Pa]", m.contact.young_modulus,
+                       "must be positive for the Hertz-Mindlin law");
+        if (!(m.contact.poisson_ratio < 0.5))
+          problems.add("DEM/Material/Poisson ratio", m.contact.poisson_ratio,
+                       "must be below 0.5 for the Hertz-Mindlin law");
+      }
+
+      const auto &b = d.bond;
+      if (b.bond.enabled)
+      {
+        if (!(b.bond.modulus > 0))
+          problems.add("DEM/Bond/Modulus [Pa]", b.bond.modulus, "must be positive");
+        if (!(b.bond.stiffness_ratio > 0))
+          problems.add("DEM/Bond/Stiffness ratio", b.bond.stiffness_ratio, "must be positive");
+        if (!(b.bond.radius_multiplier > 0))
+          problems.add("DEM/Bond/Radius multiplier", b.bond.radius_multiplier, "must be positive");
+        if (!(b.friction_angle_deg < 90))
+          problems.add("DEM/Bond/Friction angle [deg]", b.friction_angle_deg, "must be below 90");
+      }
+
+      // The sample.
+      const auto &s = d.sample;
+      if (s.type == Sample::Type::simple_cubic_lattice)
+      {
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        if (!(s.spacing > 0))
+          problems.add("DEM/Sample/Spacing [m]", s.spacing, "must be positive");
+        else if (s.radius > 0.5 * s.spacing * (1 + 1e-12))
+          problems.add("DEM/Sample/Radius [m]", s.radius,
+                       "must be at most half of DEM/Sample/Spacing [m] = " +
+                         format_number(s.spacing) + ", or neighbouring spheres start overlapping");
+        if (b.bond.enabled && s.radius > 0 &&
+            s.spacing - 2 * s.radius > b.gap_tolerance * s.radius * (1 + 1e-12))
+          problems.add("DEM/Bond/Gap tolerance", b.gap_tolerance,
+                       "no lattice neighbours would be bonded: their gap spacing - 2 R = " +
+                         format_number(s.spacing - 2 * s.radius) +
+                         " m exceeds tolerance x R; raise the tolerance or set DEM/Bond/Enabled = "
+                         "false");
+        const double tol = 1e-9 * length.cwiseAbs().maxCoeff();
+        for (int a = 0; a < 3; ++a)
+        {
+          const double extent = s.lattice_size[a] * s.spacing;
+          const double top = s.origin[a] + extent;
+          if (s.origin[a] < d.domain.lower[a] - tol || top > d.domain.upper[a] + tol)
+          {
+            std::ostringstream why;
+            why << "the lattice spans [" << s.origin[a] << ", " << top << "] m along "
+                << axis_name[a] << " (origin + " << s.lattice_size[a] << " x spacing " << s.spacing
+                << " m), outside the domain [" << d.domain.lower[a] << ", " << d.domain.upper[a]
+                << "] m";
+            problems.add("DEM/Sample/Origin [m]", vec(s.origin), why.str());
+          }
+          if (d.domain.periodic[a] && length[a] > 0)
+          {
+            // Minimum-image search: a contact partner must be nearer than half the period.
+            const double skin = d.integration.settings.verlet_skin > 0 ?
+                                  d.integration.settings.verlet_skin :
+                                  0.1 * s.radius;
+            const double needed = 2 * (2 * s.radius + skin);
+            if (!(length[a] > needed))
+              problems.add(std::string("DEM/Domain/Periodic axes"), axis_name[a],
+                           "the period along " + std::string(axis_name[a]) + " (" +
+                             format_number(length[a]) + " m) must exceed 2 (2 R + skin) = " +
+                             format_number(needed) + " m for unique minimum images");
+          }
+        }
+      }
+      else if (s.type == Sample::Type::sticky_hard_spheres)
+      {
+        const std::string why_type = " for DEM/Sample/Type = sticky hard spheres";
+        if (s.particle_count < 8)
+          problems.add("DEM/Sample/Particle count", s.particle_count, "must be at least 8" + why_type);
+        if (!(s.volume_fraction > 0))
+          problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        if (!(s.well_width > 0))
+          problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
+        if (!(s.cluster_move_fraction < 1))
+          problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
+                       "must be in [0, 1): single-sphere moves are needed to make and break clusters");
+        const bool use_z = s.target_coordination > 0;
+        if (use_z && s.stickiness > 0)
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be 0 when DEM/Sample/Target coordination number = " +
+                         format_number(s.target_coordination) +
+                         " > 0 selects tau; set one of the two to 0");
+        else if (!use_z && !(s.stickiness > 0))
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be positive (at least tau_min(phi)) unless DEM/Sample/Target "
+                       "coordination number > 0 selects it");
+        else if (s.volume_fraction > 0 && s.volume_fraction < 1)
+        {
+          const double tau_min = dem::shs::minimum_stickiness(s.volume_fraction);
+          if (!use_z && s.stickiness < tau_min)
+            problems.add("DEM/Sample/Stickiness", s.stickiness,
+                         "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
+                           " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
+                           " (allowed: tau >= tau_min(phi), PHYSICS.md 1.4); raise tau or lower phi");
+          if (use_z)
+            try
+            {
+              dem::shs::stickiness_for_coordination(s.volume_fraction, s.target_coordination);
+            }
+            catch (const dem::SetupError &e)
+            {
+              problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
+            }
+        }
+      }
+      else if (s.type == Sample::Type::ballistic_deposition)
+      {
+        const std::string why_type = " for DEM/Sample/Type = ballistic deposition";
+        if (d.domain.periodic[0] != d.domain.periodic[1] || d.domain.periodic[2])
+        {
+          std::string axes;
+          for (int a = 0; a < 3; ++a)
+            if (d.domain.periodic[a])
+              axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
+          problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
+                       "must be x, y (laterally periodic specimen) or empty (sides opened after "
+                       "deposition)" + why_type + "; z is never periodic: spheres are dropped onto "
+                       "the base z = lower z");
+        }
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        else if (!(s.radius_half_width < s.radius))
+          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
+                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
+                         " (allowed: 0 <= w < R)");
+        const double r_max = s.radius + s.radius_half_width;
+        const double skin = d.integration.settings.verlet_skin > 0 ? d.integration.settings.verlet_skin :
+                                                                     0.1 * s.radius;
+        const double needed = std::max(8 * s.radius, 2 * (2 * r_max + skin));
+        for (int a = 0; a < 2; ++a)
+          if (s.radius > 0 && length[a] > 0 && !(length[a] >= needed))
+            problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
+                         "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                           " m) must be at least " + format_number(needed) +
+                           " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
+      }
+      else if (s.type == Sample::Type::dense_random_packing)
+      {
+        const std::string why_type = " for DEM/Sample/Type = dense random packing";
+        if (!(s.radius > 0))
+          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        else if (!(s.radius_half_width < s.radius))
+          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
+                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
+                         " (allowed: 0 <= w < R)");
+        const double modulus = d.material.contact.law == dem::ContactLaw::linear ? d.material.contact.contact_modulus :
+                                                                                  d.material.contact.young_modulus;
+        if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
+          problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
+                       "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" + why_type);
+        if (s.disc_diameter > 0 && (s.disc_diameter > length[0] * (1 + 1e-12) || s.disc_diameter > length[2] * (1 + 1e-12)))
+          problems.add("DEM/Sample/Disc diameter [m]", s.disc_diameter,
+                       "must fit in the domain's x-z section (" + format_number(length[0]) + " x " +
+                         format_number(length[2]) + " m)");
+      }
+      else
+      {
+        if (s.snapshot_file.empty())
+          problems.add("DEM/Sample/Snapshot file", "(empty)",
+                       "name the HDF5 snapshot to read when DEM/Sample/Type = snapshot");
+        else if (!std::ifstream(s.snapshot_file))
+          problems.add("DEM/Sample/Snapshot file", s.snapshot_file, "cannot be opened");
+      }
+
+      // Integration.
+      const auto &in = d.integration.settings;
+      if (!(in.local_damping < 1))
+        problems.add("DEM/Integration/Local damping", in.local_damping, "must be below 1");
+      if (!(in.time_step_safety > 0))
+        problems.add("DEM/Integration/Time step safety factor", in.time_step_safety,
+                     "must be in (0, 1]");
+
+      // Walls.
+      for (int f = 0; f < 6; ++f)
+      {
+        const auto &w = d.walls.face[f];
+        if (!w.active)
+          continue;
+        const std::string path = std::string("DEM/Walls/") + parameters::Walls::face_names[f];
+        const int a = parameters::Walls::axis(f);
+        if (d.domain.periodic[a])
+          problems.add(path + "/Active", "true",
+                       std::string("a wall cannot sit on the periodic axis ") + axis_name[a] +
+                         " (see DEM/Domain/Periodic axes)");
+        if (w.control == dem::WallControl::servo)
+        {
+          if (!(w.servo_gain > 0))
+            problems.add(path + "/Servo gain [m/(s N)]", w.servo_gain,
+                         "must be positive for a servo-controlled wall");
+          if (!(w.max_speed > 0))
+            problems.add(path + "/Max speed [m/s]", w.max_speed,
+                         "must be positive for a servo-controlled wall");
+        }
+      }
+
+      // Boundary particles.
+      const auto &bp = d.boundary;
+      if (bp.fix_below && bp.clump_above && *bp.clump_above < *bp.fix_below)
+        problems.add("DEM/Boundary particles/Clump above [m]", *bp.clump_above,
+                     "must not be below DEM/Boundary particles/Fix below [m] = " +
+                       format_number(*bp.fix_below) + ": a sphere cannot be fixed and clumped");
+      if (bp.clump_above && bp.clump_force_rate != 0 && bp.clump_force_direction.norm() == 0)
+        problems.add("DEM/Boundary particles/Clump force direction", vec(bp.clump_force_direction),
+                     "must be a nonzero vector when the clump force rate is nonzero");
+      if (bp.fix_below && bp.base_thickness)
+        problems.add("DEM/Boundary particles/Base thickness [mean radii]", *bp.base_thickness,
+                     "and Fix below [m] both select the base; leave one of them empty");
+      if (bp.clump_above && bp.actuator_thickness)
+        problems.add("DEM/Boundary particles/Actuator thickness [mean radii]", *bp.actuator_thickness,
+                     "and Clump above [m] both select the clump; leave one of them empty");
+      for (const auto &[name, value] : {std::pair{"Base thickness [mean radii]", bp.base_thickness},
+                                        {"Actuator thickness [mean radii]", bp.actuator_thickness}})
+        if (value && !(*value > 0))
+          problems.add(std::string("DEM/Boundary particles/") + name, *value, "must be positive");
+      const bool has_clump = bp.clump_above || bp.actuator_thickness || d.sample.actuator_count > 0;
+      if (d.sample.actuator_count > 0)
+      {
+        if (d.sample.type != Sample::Type::ballistic_deposition)
+          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+                       "an actuator layer is deposited on a ballistic deposit only (DEM/Sample/Type)");
+        if (bp.clump_above || bp.actuator_thickness)
+          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+                       "the actuator layer is the clump: leave DEM/Boundary particles/Clump above [m] and "
+                       "Actuator thickness [mean radii] empty");
+        if (!(d.sample.actuator_radius > 0))
+          problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius, "must be positive");
+        else
+          for (int a = 0; a < 2; ++a)
+            if (!(length[a] >= 8 * d.sample.actuator_radius))
+              problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius,
+                           "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                             " m) must be at least 4 actuator diameters");
+      }
+      if (d.loading.adaptive && !(has_clump && bp.clump_force_rate > 0))
+        problems.add("DEM/Loading/Adaptive rate", "true",
+                     "adapts the clump force ramp: it needs a clump (DEM/Boundary particles/Clump above "
+                     "[m] or Actuator thickness [mean radii]) and Clump force rate [N/s] > 0");
+      if (d.loading.stop_strain > 0 && !has_clump)
+        problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
+                     "measures the clump's displacement: it needs a clump (DEM/Boundary particles)");
+      if (d.bedding.enabled)
+      {
+        if (!d.bond.bond.enabled)
+          problems.add("DEM/Bedding/Enabled", "true", "weakens bonds: DEM/Bond/Enabled must be true");
+        if (!(d.bedding.spec.spacing > 0))
+          problems.add("DEM/Bedding/Spacing [m]", d.bedding.spec.spacing, "must be positive");
+      }
+      using LoadingTest = parameters::Loading::Test;
+      const bool clump_test = d.loading.test == LoadingTest::clump_force || d.loading.test == LoadingTest::tilted_gravity ||
+                              d.loading.test == LoadingTest::simple_shear;
+      if (d.loading.test == LoadingTest::triaxial)
+      {
+        for (int a = 0; a < 3; ++a)
+          if (d.domain.periodic[a])
+            problems.add("DEM/Domain/Periodic axes", axis_name[a],
+                         "the triaxial test walls every face of the domain: no axis may be periodic");
+        for (int f = 0; f < 6; ++f)
+          if (d.walls.face[f].active)
+            problems.add(std::string("DEM/Walls/") + parameters::Walls::face_names[f] + "/Active", "true",
+                         "the triaxial test adds its own six servo walls; leave DEM/Walls inactive");
+        for (const auto &[name, value] : {std::pair{"Confining pressure [Pa]", d.loading.confining_pressure},
+                                          {"Axial strain rate [1/s]", d.loading.axial_strain_rate},
+                                          {"Final axial strain", d.loading.final_axial_strain}})
+          if (!(value > 0))
+            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for the triaxial test");
+      }
+      if (d.loading.test == LoadingTest::platen_compression)
+      {
+        if (!d.walls.face[4].active || !d.walls.face[5].active)
+          problems.add("DEM/Walls/z- and z+/Active", "false",
+                       "platen compression drives the walls z- and z+: activate both");
+        if (!(d.loading.platen_speed > 0))
+          problems.add("DEM/Loading/Platen speed [m/s]", d.loading.platen_speed, "must be positive");
+        if (!(d.loading.post_peak_fraction > 0))
+          problems.add("DEM/Loading/Post-peak fraction", d.loading.post_peak_fraction, "must be in (0, 1)");
+      }
+      if (!clump_test && scene.campaign.enabled())
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run the clump tests at loading angles; the triaxial and platen tests have none");
+      if (d.loading.test != LoadingTest::clump_force && clump_test && !(has_clump && (bp.fix_below || bp.base_thickness)))
+        problems.add("DEM/Loading/Test", d.loading.test == LoadingTest::simple_shear ? "simple shear" : "tilted gravity",
+                     "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
+                     "[mean radii], Clump above [m] or Actuator thickness [mean radii])");
+      if (d.loading.test == LoadingTest::tilted_gravity && !(d.integration.settings.gravity.norm() > 0))
+        problems.add("DEM/Integration/Gravity [m/s^2]", vec(d.integration.settings.gravity),
+                     "must be nonzero for DEM/Loading/Test = tilted gravity (its magnitude is g; the direction "
+                     "is DEM/Boundary particles/Clump force direction)");
+      if (d.loading.test == LoadingTest::simple_shear)
+      {
+        for (const auto &[name, value] : {std::pair{"Normal stress [Pa]", d.loading.normal_stress},
+                                          {"Shear velocity [m/s]", d.loading.shear_velocity},
+                                          {"Consolidation time [s]", d.loading.consolidation_time},
+                                          {"Final shear strain", d.loading.final_shear_strain}})
+          if (!(value > 0))
+            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for simple shear");
+        if (!d.domain.periodic[0])
+          problems.add("DEM/Domain/Periodic axes", "(x not periodic)",
+                       "simple shear drives the platen along x: the specimen must be periodic along x");
+        if (d.loading.adaptive)
+          problems.add("DEM/Loading/Adaptive rate", "true",
+                       "adapts a force ramp; simple shear is displacement-controlled (set false)");
+      }
+      if (scene.campaign.enabled() && d.loading.test == LoadingTest::simple_shear)
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run load-controlled tests at loading angles; simple shear has none");
+      if (scene.campaign.enabled())
+      {
+        const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";
+        if (!has_clump || !(bp.fix_below || bp.base_thickness) || !(bp.clump_force_rate > 0))
+          problems.add("Campaign/Loading angles [deg]", "(" + std::to_string(scene.campaign.loading_angles_deg.size()) + " angles)",
+                       why + "a fixed base (DEM/Boundary particles/Fix below [m] or Base thickness [mean "
+                       "radii]), a clump (Clump above [m] or Actuator thickness [mean radii]) and Clump force "
+                       "rate [N/s] > 0");
+        if (!(d.loading.stop_strain > 0))
+          problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
+                       "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
+                       "DEM/Steps after its failure");
+      }
+      if (!has_clump && bp.clump_force_rate != 0)
+        problems.add("DEM/Boundary particles/Clump force rate [N/s]", bp.clump_force_rate,
+                     "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
+    }
+
+    std::string read_file_bytes(const std::string &file)
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in)
+        throw InputError("Cannot open the scene file <" + file + ">.");
+      return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+
+    /// Hash of the model-defining part of the parameters; see SceneParameters::resume_key_sha256.
+    std::string resume_key(const ParameterHandler &prm)
+    {
+      std::ostringstream json_text;
+      prm.print_parameters(json_text, ParameterHandler::ShortJSON);
+      auto json = nlohmann::json::parse(json_text.str());
+      json.erase("Output");
+      json["DEM"].erase("Steps");
+      json["DEM"].erase("Threads");
+      return util::sha256_hex(json.dump());
+    }
+  } // namespace
+
+  std::vector<std::string> split_parameter_path(const std::string &path)
+  {
+    std::vector<std::string> parts(1);
+    int bracket_depth = 0;
+    for (const char c : path)
+    {
+      bracket_depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+      if (c == '/' && bracket_depth == 0)
+        parts.emplace_back();
+      else
+        parts.back() += c;
+    }
+    for (std::string &part : parts)
+      part = dealii::Utilities::trim(part);
+    return parts;
+  }
+
+  SceneParameters read_scene(const std::string &file,
+                             const std::vector<std::pair<std::string, std::string>> &overrides)
+  {
+    SceneParameters scene;
+    scene.file = file;
+    const std::string bytes = read_file_bytes(file);
+    scene.file_sha256 = util::sha256_hex(bytes);
+
+    ParameterHandler prm;
+    SceneParameters::declare_parameters(prm);
+    try
+    {
+      std::istringstream input(bytes);
+      prm.parse_input(input, file);
+      for (const auto &[path, value] : overrides)
+      {
+        const std::vector<std::string> parts = split_parameter_path(path);
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          prm.enter_subsection(parts[k]);
+        try
+        {
+          prm.set(parts.back(), value);
+        }
+        catch (const dealii::ExceptionBase &)
+        {
+          throw std::invalid_argument("the override " + path + " = " + value +
+                                      " names no entry, or its value does not match the entry's pattern "
+                                      "(`anticrack params` lists them)");
+        }
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          prm.leave_subsection();
+      }
+      scene.parse_parameters(prm);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's text names the line, the entry and the pattern; drop its stack trace.
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str() +
+                       "\n(`anticrack params` lists every entry with its pattern.)");
+    }
+    catch (const std::exception &e)
+    {
+      throw InputError("Invalid scene file <" + file + ">: " + e.what());
+    }
+
+    std::ostringstream canonical;
+    prm.print_parameters(canonical, ParameterHandler::ShortPRM);
+    scene.canonical_parameters = canonical.str();
+    scene.parameters_sha256 = util::sha256_hex(scene.canonical_parameters);
+    scene.resume_key_sha256 = resume_key(prm);
+
+    Problems problems;
+    validate(scene, problems);
+    if (!problems.empty())
+      throw InputError("Invalid scene file <" + file + ">:\n" + problems.text());
+    return scene;
+  }
+
+  void require_dem_component(const SceneParameters &scene)
+  {
+    if (std::find(scene.components.begin(), scene.components.end(), "dem") == scene.components.end())
+      throw InputError("Scene <" + scene.file + "> has no runnable component (Components = dem).");
+  }
+
+  void declare_dem_scene(dealii::ParameterHandler &prm) { SceneParameters::declare_parameters(prm); }
+
+  nlohmann::ordered_json scene_info(const SceneParameters &scene)
+  {
+    nlohmann::ordered_json s;
+    s["file"] = scene.file;
+    std::error_code error;
+    const auto absolute = std::filesystem::absolute(scene.file, error);
+    s["absolute_path"] = error ? scene.file : absolute.lexically_normal().string();
+    s["file_sha256"] = scene.file_sha256;
+    s["parameters_sha256"] = scene.parameters_sha256;
+    s["resume_key_sha256"] = scene.resume_key_sha256;
+    return s;
+  }
+} // namespace anticrack::dem

@@ -1,0 +1,315 @@
+// Scene files: deal.II ParameterHandler input (.prm), one parameter struct per subsection with
+// declare_parameters / parse_parameters (the step-44 layout), gathered in SceneParameters.
+//
+// Every quantity is SI inside the code; an entry's unit is part of its name ("Radius [m]"), and
+// every help string gives the symbol, the meaning and the unit. Pattern violations and unknown
+// entries are caught by ParameterHandler while reading; read_scene() then checks what a single
+// pattern cannot (upper corner above lower corner, the lattice fits the domain, no walls on a
+// periodic axis, ...) and reports every problem at once, naming the file, the entry with its
+// subsection path, the value and why it is refused. Nothing is written before this has passed.
+//
+// Only scene_parameters.cpp includes deal.II: the rest of the application sees plain structs.
+#pragma once
+
+#include "dem/sample/bedding.h"
+#include "dem/lab/load_control.h"
+#include "dem/core/materials.h"
+#include "dem/core/system.h"
+#include "dem/core/types.h"
+#include "dem/core/walls.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace anticrack::dem
+{
+  namespace parameters
+  {
+    /// subsection Output: what is written during a run and how often.
+    struct Output
+    {
+      Index snapshot_interval = 0;   ///< steps between HDF5 snapshots, 0 = none
+      Index checkpoint_interval = 0; ///< steps between checkpoints, 0 = none
+      Index history_interval = 100;  ///< steps between rows of history.h5
+      Index progress_interval = 1000;///< steps between progress lines, 0 = quiet
+      bool write_paraview = false;   ///< .vtp/.pvd files beside the snapshots
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Domain: the simulation box.
+    struct Domain
+    {
+      Vec3 lower = Vec3::Zero();
+      Vec3 upper = Vec3::Constant(0.02);
+      std::array<bool, 3> periodic = {false, false, false};
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Material: density and the contact law of every sphere (and of the walls).
+    struct Material
+    {
+      double density = 1e4;
+      dem::ContactParameters contact;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Bond: parallel bonds created between touching spheres.
+    struct Bond
+    {
+      dem::BondParameters bond;    ///< friction angle stored in radians
+      double friction_angle_deg = 0;
+      double gap_tolerance = 1e-6; ///< relative to the smaller radius
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Sample: where the spheres come from.
+    struct Sample
+    {
+      enum class Type
+      {
+        simple_cubic_lattice,
+        snapshot,
+        sticky_hard_spheres,  ///< dem/sample/sticky_hard_spheres.h; the domain becomes the sampler's cube
+        ballistic_deposition, ///< dem/sample/ballistic_deposition.h into the DEM/Domain box
+        dense_random_packing  ///< dem/sample/dense_packing.h filling the DEM/Domain box
+      };
+      Type type = Type::simple_cubic_lattice;
+      std::array<Index, 3> lattice_size = {10, 10, 10};
+      double radius = 1e-3;
+      double spacing = 2e-3;
+      Vec3 origin = Vec3::Zero();
+      double velocity_amplitude = 0;
+      std::string snapshot_file;
+      // sticky hard spheres and ballistic deposition
+      Index particle_count = 512;
+      // sticky hard spheres
+      double volume_fraction = 0.3;     ///< phi
+      double stickiness = 0.2;          ///< tau, 0 = from the target coordination number
+      double target_coordination = 0;   ///< z, 0 = use tau
+      double well_width = 0.03;         ///< delta / sigma
+      Index sweeps = 5000;
+      double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
+      double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
+      // ballistic deposition (radius = mean radius)
+      bool rolling = false;             ///< deposition rule
+      double radius_half_width = 0;     ///< [m]
+      Index actuator_count = 0;         ///< > 0: spheres of a rolling actuator layer on top (seed 000)
+      double actuator_radius = 0;       ///< [m]
+      // dense random packing
+      double formation_friction = 0;    ///< mu while the packing forms
+      double packing_pressure = 1e5;    ///< [Pa]
+      double disc_diameter = 0;         ///< [m], > 0 carves a disc (axis y) for the Brazilian test
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Integration: time stepping, damping and stability checks.
+    struct Integration
+    {
+      dem::IntegrationSettings settings;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Walls/<face>: a planar wall on one face of the domain box.
+    struct WallFace
+    {
+      bool active = false;
+      dem::WallControl control = dem::WallControl::fixed;
+      double velocity = 0;      ///< along the inward normal [m/s]
+      double target_stress = 0; ///< compressive [Pa]
+      double servo_gain = 0;    ///< [m/(s N)]
+      double max_speed = 0;     ///< [m/s]
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Walls: one WallFace per face, in the order of `face_names`.
+    struct Walls
+    {
+      static constexpr std::array<const char *, 6> face_names = {"x-", "x+", "y-", "y+", "z-", "z+"};
+      std::array<WallFace, 6> face;
+
+      /// Axis (0, 1, 2) and side (-1 lower, +1 upper) of face f.
+      static int axis(int f) { return f / 2; }
+      static int side(int f) { return f % 2 == 0 ? -1 : 1; }
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Boundary particles: fixed base and a loaded rigid clump on top.
+    struct BoundaryParticles
+    {
+      std::optional<double> fix_below;   ///< [m], z of the centre
+      std::optional<double> clump_above; ///< [m], z of the centre
+      std::optional<double> base_thickness;     ///< [mean radii] above the domain's lower z
+      std::optional<double> actuator_thickness; ///< [mean radii] below the sample's top
+      double clump_force_rate = 0;       ///< dF/dt [N/s]
+      Vec3 clump_force_direction = -Vec3::UnitZ(); ///< normalised when parsed (if nonzero)
+      bool clump_rotation_locked = false;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Loading: adaptive quasi-static ramp of the clump force and the end of a test.
+    struct Loading
+    {
+      enum class Test
+      {
+        clump_force,    ///< force ramp on the clump (seed 002)
+        tilted_gravity, ///< growing actuator weight under gravity tilted by psi (seed 000)
+        simple_shear,   ///< platen driven along x at constant normal stress (seed 001)
+        triaxial,       ///< six servo walls: consolidation, then axial strain (seed 004)
+        platen_compression ///< z walls approach each other: uniaxial compression, Brazilian disc (seed 003)
+      };
+      Test test = Test::clump_force;
+      bool adaptive = false;
+      dem::RampControlSettings ramp;  ///< fast_rate = Boundary particles/Clump force rate [N/s]
+      double stop_strain = 0;         ///< |u_clump| / H0 at which the run ends, 0 = never
+      // simple shear (dem/lab/simple_shear.h)
+      double normal_stress = 1e4;        ///< [Pa]
+      double shear_velocity = 1e-3;      ///< [m/s]
+      double consolidation_time = 1e-3;  ///< [s]
+      double final_shear_strain = 0.1;
+      // triaxial and platen compression (dem/lab/lab_tests.h)
+      double confining_pressure = 1e5;   ///< [Pa]
+      double axial_strain_rate = 1;      ///< [1/s]
+      double final_axial_strain = 0.2;   ///< also the platen test's strain limit
+      double max_servo_speed = 0;        ///< [m/s], 0 = 10 x strain rate x box length
+      double platen_speed = 1e-2;        ///< [m/s]
+      double post_peak_fraction = 0.5;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM/Bedding: bonds crossing a family of parallel planes get their own strengths
+    /// (seed 003, dem/sample/bedding.h).
+    struct Bedding
+    {
+      bool enabled = false;
+      double inclination_deg = 0;   ///< angle between the bedding planes and the x-y plane
+      dem::BeddingSpec spec;        ///< normal from the inclination (rotated about y)
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+
+    /// subsection DEM.
+    struct Dem
+    {
+      Index steps = 1000;
+      int threads = 0;
+      std::uint64_t seed = 1;
+      Domain domain;
+      Material material;
+      Bond bond;
+      Sample sample;
+      Integration integration;
+      Walls walls;
+      BoundaryParticles boundary;
+      Loading loading;
+      Bedding bedding;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace parameters
+
+  namespace parameters
+  {
+    /// subsection Campaign: a virtual-laboratory campaign, loading angles x realizations x
+    /// microstructures of the scene's mixed-mode test (dem/campaign/campaign.h).
+    struct Campaign
+    {
+      enum class QuasiStaticCheck
+      {
+        none,
+        first_realization, ///< every angle and microstructure of realization 0
+        all
+      };
+      std::vector<double> loading_angles_deg; ///< psi; empty = the scene is a single run
+      Index realizations = 1;                 ///< seeds DEM/Random seed + 0, 1, ...
+      /// Each microstructure: (entry of DEM/Sample, value) pairs that override the scene's sample.
+      std::vector<std::vector<std::pair<std::string, std::string>>> microstructures;
+      std::string microstructures_text;       ///< as written, for messages
+      QuasiStaticCheck quasi_static_check = QuasiStaticCheck::none;
+      double quasi_static_slowdown = 4;       ///< rate divisor of the reference runs
+      double quasi_static_tolerance = 0.02;   ///< allowed relative difference of the failure stress
+
+      [[nodiscard]] bool enabled() const { return !loading_angles_deg.empty(); }
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void parse_parameters(dealii::ParameterHandler &prm);
+    };
+  } // namespace parameters
+
+  /// Everything a scene file says, plus where it came from.
+  struct SceneParameters
+  {
+    // --- provenance
+    std::string file;                  ///< as given on the command line
+    std::string file_sha256;           ///< of the file's bytes
+    std::string canonical_parameters;  ///< every entry, sorted, as ParameterHandler prints it
+    std::string parameters_sha256;     ///< of canonical_parameters
+    /// Hash of the parameters that define the model, i.e. all but the Output subsection and
+    /// DEM/Steps, DEM/Threads: a run may be resumed with more steps, other threads or outputs.
+    std::string resume_key_sha256;
+
+    // --- content
+    std::vector<std::string> components;
+    parameters::Output output;
+    parameters::Dem dem;
+    parameters::Campaign campaign;
+
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void parse_parameters(dealii::ParameterHandler &prm);
+  };
+
+  /// "DEM/Boundary particles/Clump force rate [N/s]" -> {"DEM", "Boundary particles", "Clump force
+  /// rate [N/s]"}: subsections are separated by '/', except inside a unit's brackets.
+  std::vector<std::string> split_parameter_path(const std::string &path);
+
+  /// Reads, parses and validates a scene file; throws InputError with a complete message.
+  /// `overrides` (entry path with '/' between subsections, value) are set after the file is read,
+  /// as if the file said so: a campaign's microstructures are the scene with other sample entries.
+  SceneParameters read_scene(const std::string &file,
+                             const std::vector<std::pair<std::string, std::string>> &overrides = {});
+
+  /// Throws InputError unless the scene has a runnable component (Components = dem).
+  void require_dem_component(const SceneParameters &scene);
+
+  /// Declares every entry of a DEM scene (what `anticrack params` lists for it).
+  void declare_dem_scene(dealii::ParameterHandler &prm);
+
+  /// Provenance for summary.json: the scene file (as given and absolute), its SHA-256 and those of
+  /// the canonical parameters and of the resume key.
+  nlohmann::ordered_json scene_info(const SceneParameters &scene);
+
+  /// Numbers and vectors for messages: 6 significant digits, "a, b, c".
+  std::string format_number(double x);
+  std::string format_vector(const Vec3 &v);
+} // namespace anticrack::dem

@@ -1,0 +1,125 @@
+#include "fem/analysis/run.h"
+
+#include "util/input_error.h"
+#include "util/run_options.h"
+#include "util/run_summary.h"
+#include "fem/analysis/snowpack_run.h"
+#include "fem/scene/snowpack_scene.h"
+#include "util/sha256.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <filesystem>
+#include <iostream>
+
+namespace anticrack::fem
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    const char *analysis_name(fem::Analysis::Type type)
+    {
+      switch (type)
+      {
+        case fem::Analysis::Type::energy_release_rate:
+          return "energy release rate (elastic)";
+        case fem::Analysis::Type::quasi_static:
+          return "quasi-static PST (Newton)";
+        case fem::Analysis::Type::explicit_dynamics:
+          return "dynamic PST (explicit central differences)";
+      }
+      return "";
+    }
+
+    /// Output files of a snowpack run (an earlier run's are refused without --overwrite).
+    const std::vector<std::string> run_files{"summary.json", "series.h5",        "energy_release_rate.h5",
+                                             "fields",       "checkpoint.json", "checkpoint"};
+  } // namespace
+
+  void check_snowpack_scene(const std::string &scene_file)
+  {
+    const fem::SnowpackScene scene = fem::read_snowpack_scene(scene_file);
+    std::cout << "snowpack scene " << scene_file << ": " << analysis_name(scene.analysis.type) << ", "
+              << scene.mesh.dimension << "D, column " << scene.pst.column_length << " m, slab "
+              << scene.snowpack.slab_thickness() << " m in " << scene.snowpack.slab_layers.size()
+              << " layer(s), weak layer " << scene.snowpack.weak_layer.thickness << " m ("
+              << scene.mesh.weak_layer_elements << " elements), slope "
+              << scene.snowpack.slope_angle * 180 / 3.14159265358979323846 << " deg\n";
+  }
+
+  int run_snowpack_scene(const RunOptions &options)
+  {
+    int argc = 1;
+    char name[] = "anticrack";
+    char *argv_storage[] = {name, nullptr};
+    char **argv = argv_storage;
+    dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    const MPI_Comm comm = MPI_COMM_WORLD;
+    const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+
+    // Everything that can be wrong with the input is found before the directory is touched.
+    const fem::SnowpackScene scene = fem::read_snowpack_scene(options.scene_file);
+    const fs::path dir = options.output_directory;
+    std::error_code error;
+    if (fs::exists(dir, error) && !fs::is_directory(dir, error))
+      throw InputError("The output path <" + dir.string() + "> exists and is not a directory.");
+    if (options.resume)
+    {
+      if (scene.analysis.type != fem::Analysis::Type::explicit_dynamics)
+        throw InputError("--resume: only dynamic PSTs (Analysis/Type = explicit dynamics) write checkpoints");
+      if (!fs::exists(dir / "checkpoint.json", error))
+        throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json (set Output/Checkpoint "
+                         "interval, or run without --resume).");
+    }
+    else
+    {
+      for (const std::string &file : run_files)
+        if (fs::exists(dir / file, error) && !options.overwrite)
+          throw InputError("The output directory <" + dir.string() + "> already holds a run (" + file +
+                           "). Use --resume to continue it, --overwrite to replace its outputs, or another "
+                           "directory.");
+      if (root)
+      {
+        fs::create_directories(dir);
+        for (const std::string &file : run_files)
+          fs::remove_all(dir / file, error);
+      }
+    }
+    MPI_Barrier(comm);
+
+    Json summary;
+    summary["command"] = options.command_line;
+    Json scene_json;
+    scene_json["file"] = options.scene_file;
+    scene_json["file_sha256"] = util::sha256_of_file(options.scene_file);
+    for (const fem::Layer *layer : {&scene.snowpack.weak_layer, &scene.snowpack.substratum})
+      if (!layer->material_file.empty())
+        scene_json["material_files"][layer->label] = {{"file", layer->material_file},
+                                                      {"sha256", util::sha256_of_file(layer->material_file)}};
+    summary["scene"] = scene_json;
+    summary["versions"] = version_info();
+
+    fem::SnowpackRunOptions run;
+    run.output_directory = dir.string();
+    run.log = options.quiet ? nullptr : &std::cout;
+    run.resume = options.resume;
+    int code = exit_success;
+    try
+    {
+      summary["results"] = fem::run_snowpack(scene, run, comm);
+      summary["status"] = "completed";
+    }
+    catch (const fem::NumericalFailure &e)
+    {
+      summary["status"] = "failed";
+      summary["failure"] = e.what();
+      code = exit_numerical_failure;
+      if (root)
+        std::cerr << "anticrack: numerical failure: " << e.what() << "\n";
+    }
+    if (root)
+      write_json_atomically((dir / "summary.json").string(), summary);
+    return code;
+  }
+} // namespace anticrack::fem

@@ -1,0 +1,19 @@
+// `anticrack run` and `anticrack check` for snowpack scenes (a top-level `subsection Snowpack`):
+// the deal.II solver of fem/. The scene (and every material file it names) is read and checked
+// before anything is written; MPI and PETSc are initialised here (deal.II's MPI_InitFinalize), so
+// `mpirun -np N anticrack run SCENE.prm -o DIR` runs on N ranks.
+#pragma once
+
+#include "util/run_options.h"
+
+#include <string>
+
+namespace anticrack::fem
+{
+  /// Runs the snowpack scene of options.scene_file; returns the exit code (0 done, 1 numerical
+  /// failure with summary.json "status": "failed"); throws InputError before writing anything.
+  int run_snowpack_scene(const RunOptions &options);
+
+  /// Reads and checks a snowpack scene and prints what a run would do.
+  void check_snowpack_scene(const std::string &scene_file);
+} // namespace anticrack::fem

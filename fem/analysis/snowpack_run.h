@@ -1,0 +1,39 @@
+// Runs a snowpack scene (fem/scene/snowpack_scene.h) into an output directory: the energy release rate
+// analysis of an elastic snowpack, the quasi-static PST, or the explicit dynamic PST. Writes the
+// time series (series.h5 or energy_release_rate.h5) and the fields (fields/*.pvtu with a .pvd
+// record) and returns the results that summary.json reports; the caller adds provenance and
+// writes it. Collective over the communicator; files are written by rank 0 (fields by all ranks).
+#pragma once
+
+#include "fem/scene/snowpack_scene.h"
+
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+
+#include <iosfwd>
+#include <string>
+
+namespace anticrack::fem
+{
+  using Json = nlohmann::ordered_json;
+
+  struct SnowpackRunOptions
+  {
+    std::string output_directory; ///< exists; outputs go directly into it
+    std::ostream *log = nullptr;  ///< progress lines (rank 0), nullptr: quiet
+    /// Continue a dynamic PST from DIR/checkpoint.json (same scene but for the end time and the
+    /// output, same number of ranks); throws anticrack::InputError if that is not possible.
+    bool resume = false;
+  };
+
+  /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that
+  /// cannot converge, non-finite values, unstable step); the message says what, where and when.
+  class NumericalFailure : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  /// Runs the scene; returns the "results" of summary.json (every number with its unit in its name).
+  Json run_snowpack(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm communicator);
+} // namespace anticrack::fem

@@ -1,0 +1,709 @@
+// The discretised snowpack (see the header): mesh, dofs, cell caches, the constitutive loop,
+// energies, fronts and field output. Explicitly instantiated for dim = 2 and 3.
+#include "fem/model/snowpack_model.h"
+
+#include "fem/model/checkpoint.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace anticrack::fem
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Stiffness left to a cell that is cut through, relative to its material: keeps the nodes
+    /// inside the cut in the system without carrying load (1e-6 of the weak layer's modulus moves
+    /// G(a) by less than 1e-6 relative).
+    constexpr double cut_stiffness_floor = 1e-6;
+
+    SymmetricTensor<4, 3> isotropic_elasticity(double bulk_modulus, double shear_modulus)
+    {
+      const SymmetricTensor<2, 3> one = unit_symmetric_tensor<3>();
+      return bulk_modulus * outer_product(one, one) +
+             2 * shear_modulus * (identity_tensor<3>() - outer_product(one, one) / 3.);
+    }
+
+    /// What a cell carries at a point: the fraction f of the Cam-Clay stress, and the whole lock-up
+    /// pressure, which is the contact of the faces of a collapsed (or sawn) layer: a cut cell lets
+    /// the slab fall by the collapse height and then carries it.
+    SymmetricTensor<2, 3> carried_stress(const QuadraturePointState &state, double stress_factor)
+    {
+      return stress_factor * state.cam_clay_stress() - state.lock_up_pressure * unit_symmetric_tensor<3>();
+    }
+
+    std::vector<double> equal_steps(double length, unsigned int count)
+    {
+      return std::vector<double>(count, length / count);
+    }
+
+  } // namespace
+
+  SymmetricTensor<2, 3> QuadraturePointState::cam_clay_stress() const
+  {
+    return stress + lock_up_pressure * unit_symmetric_tensor<3>();
+  }
+
+  double QuadraturePointState::cam_clay_energy_density() const
+  {
+    return 0.5 * (cam_clay_stress() * (material.strain - material.plastic_strain));
+  }
+
+  double QuadraturePointState::lock_up_energy_density(double densification_modulus) const
+  {
+    return densification_modulus > 0 ? lock_up_pressure * lock_up_pressure / (2 * densification_modulus) : 0;
+  }
+
+  template <int dim>
+  struct SnowpackModel<dim>::CellData
+  {
+    typename DoFHandler<dim>::active_cell_iterator cell;
+    unsigned int layer = 0;
+    unsigned int column = 0;     ///< index along the slope from x = 0
+    double height = 0;           ///< extent normal to the slope [m]
+    double inverse_h2 = 0;       ///< Σ_i (degree / h_i)², for the CFL estimate
+    double density = 0;
+    double intact = 1;           ///< intact fraction (saw)
+    unsigned int first_qp = 0;   ///< into the state and geometry arrays
+    std::vector<types::global_dof_index> dofs;
+    std::vector<unsigned int> local_dofs; ///< local element indices of the ghosted vectors
+    std::vector<double> nodal_mass;       ///< lumped mass of each cell dof [kg]
+  };
+
+  template <int dim>
+  SnowpackModel<dim>::SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator)
+    : scene_(scene)
+    , communicator_(communicator)
+    , triangulation_(communicator)
+    , fe_(FE_Q<dim>(scene.mesh.polynomial_degree), dim)
+    , dof_handler_(triangulation_)
+    , quadrature_(scene.mesh.polynomial_degree + 1)
+  {
+    const Snowpack &s = scene.snowpack;
+    layers_.push_back(s.substratum);
+    layers_.push_back(s.weak_layer);
+    for (auto layer = s.slab_layers.rbegin(); layer != s.slab_layers.rend(); ++layer)
+      layers_.push_back(*layer);
+    make_mesh();
+    setup_dofs();
+    setup_cells();
+    assemble_gravity_and_mass();
+  }
+
+  template <int dim>
+  SnowpackModel<dim>::~SnowpackModel()
+  {
+    cells_.clear(); // cell iterators before the DoFHandler
+    dof_handler_.clear();
+  }
+
+  template <int dim>
+  unsigned int SnowpackModel<dim>::n_cells() const
+  {
+    return triangulation_.n_global_active_cells();
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::make_mesh()
+  {
+    const MeshParameters &m = scene_.mesh;
+    const Snowpack &s = scene_.snowpack;
+    const double length = scene_.pst.column_length;
+    n_columns_ = std::max(4u, (unsigned int)std::lround(length / m.element_length));
+
+    // Through the thickness, layer by layer from the base (layer ids), rows of element_height().
+    std::vector<double> normal_steps;
+    for (unsigned int id = 0; id < layers_.size(); ++id)
+      if (layers_[id].thickness > 0)
+      {
+        const double height = element_height(scene_, id);
+        const auto steps = equal_steps(layers_[id].thickness, (unsigned int)std::lround(layers_[id].thickness / height));
+        normal_steps.insert(normal_steps.end(), steps.begin(), steps.end());
+      }
+
+    std::vector<std::vector<double>> step_sizes;
+    step_sizes.push_back(equal_steps(length, n_columns_));
+    Point<dim> upper;
+    upper[0] = length;
+    if (dim == 3)
+    {
+      const double width = scene_.pst.column_width;
+      step_sizes.push_back(equal_steps(width, std::max(1u, (unsigned int)std::lround(width / m.element_length))));
+      upper[1] = width;
+    }
+    step_sizes.push_back(normal_steps);
+    upper[dim - 1] = s.total_thickness();
+    GridGenerator::subdivided_hyper_rectangle(triangulation_, step_sizes, Point<dim>(), upper);
+
+    // Layer ids from the cell centres; the base gets boundary id 1.
+    std::vector<double> layer_tops{s.substratum.thickness, s.weak_layer_top()};
+    double top = s.weak_layer_top();
+    for (auto layer = s.slab_layers.rbegin(); layer != s.slab_layers.rend(); ++layer)
+      layer_tops.push_back(top += layer->thickness);
+    for (const auto &cell : triangulation_.active_cell_iterators())
+    {
+      const double z = cell->center()[dim - 1];
+      unsigned int id = 0;
+      while (id + 1 < layer_tops.size() && z > layer_tops[id])
+        ++id;
+      cell->set_material_id(id);
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && std::abs(cell->face(f)->center()[dim - 1]) < 1e-12)
+          cell->face(f)->set_boundary_id(1);
+    }
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::setup_dofs()
+  {
+    dof_handler_.distribute_dofs(fe_);
+    locally_owned_dofs_ = dof_handler_.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler_, locally_relevant_dofs_);
+    constraints_.clear();
+    constraints_.reinit(locally_relevant_dofs_);
+    VectorTools::interpolate_boundary_values(dof_handler_, 1, Functions::ZeroFunction<dim>(dim), constraints_);
+    constraints_.close();
+    partitioner_ = std::make_shared<Utilities::MPI::Partitioner>(locally_owned_dofs_, locally_relevant_dofs_,
+                                                                 communicator_);
+    fixed_.assign(partitioner_->locally_owned_size() + partitioner_->n_ghost_indices(), false);
+    for (const auto &line : constraints_.get_lines())
+      if (locally_relevant_dofs_.is_element(line.index))
+        fixed_[partitioner_->global_to_local(line.index)] = true;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::initialize_vector(VectorType &vector) const
+  {
+    vector.reinit(partitioner_);
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::zero_fixed(VectorType &vector) const
+  {
+    for (unsigned int i = 0; i < partitioner_->locally_owned_size(); ++i)
+      if (fixed_[i])
+        vector.local_element(i) = 0;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::setup_cells()
+  {
+    const unsigned int degree = scene_.mesh.polynomial_degree;
+    // Parameters per layer, for its element height (crack band, cam_clay_parameters()).
+    for (unsigned int id = 0; id < layers_.size(); ++id)
+    {
+      const Layer &layer = layers_[id];
+      CamClayParameters parameters;
+      if (layer.model == Layer::Model::cohesive_cam_clay)
+        parameters = cam_clay_parameters(layer, band_height(scene_, id));
+      else
+        parameters.set_elastic_moduli(layer.material.youngs_modulus, layer.material.poisson_ratio);
+      cell_parameters_.push_back(parameters);
+    }
+
+    FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values);
+    const unsigned int n_q = quadrature_.size();
+    const double column_length = scene_.pst.column_length / n_columns_;
+    // Dof i of a cell is component component_[i] of the scalar shape function node_[i]; the
+    // gradient of node k's shape function is that of the dof of component 0 at node k.
+    const unsigned int n_nodes = fe_.base_element(0).n_dofs_per_cell();
+    std::vector<unsigned int> node_dof(n_nodes);
+    for (unsigned int i = 0; i < fe_.n_dofs_per_cell(); ++i)
+    {
+      const auto [component, node] = fe_.system_to_component_index(i);
+      component_.push_back(component);
+      node_.push_back(node);
+      if (component == 0)
+        node_dof[node] = i;
+    }
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+    {
+      if (!cell->is_locally_owned())
+        continue;
+      CellData data;
+      data.cell = cell;
+      data.layer = cell->material_id();
+      data.column = std::min(n_columns_ - 1, (unsigned int)std::floor(cell->center()[0] / column_length));
+      const BoundingBox<dim> box = cell->bounding_box();
+      data.height = box.side_length(dim - 1);
+      for (unsigned int d = 0; d < dim; ++d)
+        data.inverse_h2 += std::pow(degree / box.side_length(d), 2);
+      data.density = layers_[data.layer].material.density;
+      data.first_qp = committed_.size();
+      data.dofs.resize(fe_.n_dofs_per_cell());
+      cell->get_dof_indices(data.dofs);
+      for (const auto g : data.dofs)
+        data.local_dofs.push_back(partitioner_->global_to_local(g));
+      fe_values.reinit(cell);
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        JxW_.push_back(fe_values.JxW(q));
+        for (unsigned int node = 0; node < n_nodes; ++node)
+          gradients_.push_back(fe_values.shape_grad_component(node_dof[node], q, 0));
+      }
+      QuadraturePointState initial;
+      if (layers_[data.layer].model == Layer::Model::cohesive_cam_clay)
+        initial.material = CamClayState::initial(cell_parameters_[data.layer]);
+      committed_.insert(committed_.end(), n_q, initial);
+      cells_.push_back(std::move(data));
+    }
+    trial_ = committed_;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::assemble_gravity_and_mass()
+  {
+    // Gauss–Lobatto points coincide with the support points of FE_Q, so the mass integrated with
+    // them is diagonal (step-48); the same rule integrates the body force. Each cell's nodal masses
+    // are kept so that the saw can remove a cut cell's mass and weight with its stiffness.
+    const QGaussLobatto<dim> lobatto(fe_.degree + 1);
+    FEValues<dim> fe_values(fe_, lobatto, update_values | update_JxW_values);
+    for (CellData &data : cells_)
+    {
+      fe_values.reinit(data.cell);
+      data.nodal_mass.assign(fe_.n_dofs_per_cell(), 0.);
+      for (unsigned int i = 0; i < fe_.n_dofs_per_cell(); ++i)
+        for (unsigned int q = 0; q < lobatto.size(); ++q)
+          data.nodal_mass[i] += data.density * fe_values.shape_value(i, q) * fe_values.JxW(q);
+    }
+    initialize_vector(gravity_force_);
+    initialize_vector(lumped_mass_);
+    sum_gravity_and_mass();
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::sum_gravity_and_mass()
+  {
+    // Gravity in slope-parallel coordinates: g (sin ψ e_x − cos ψ e_n).
+    const Snowpack &s = scene_.snowpack;
+    Tensor<1, dim> g;
+    g[0] = s.gravity * std::sin(s.slope_angle);
+    g[dim - 1] = -s.gravity * std::cos(s.slope_angle);
+    gravity_force_ = 0;
+    lumped_mass_ = 0;
+    for (const CellData &data : cells_)
+    {
+      // A cut cell weighs the fraction f of its weight (the sawn material is gone; its nodes would
+      // otherwise sink under their own weight on the stiffness floor) but keeps its mass, so that
+      // the lock-up's stiffness, which it keeps whole, does not shrink the stable time step.
+      const double factor = std::max(data.intact, cut_stiffness_floor);
+      for (unsigned int i = 0; i < fe_.n_dofs_per_cell(); ++i)
+      {
+        lumped_mass_.local_element(data.local_dofs[i]) += data.nodal_mass[i];
+        gravity_force_.local_element(data.local_dofs[i]) += factor * data.nodal_mass[i] * g[component_[i]];
+      }
+    }
+    gravity_force_.compress(VectorOperation::add);
+    lumped_mass_.compress(VectorOperation::add);
+    zero_fixed(gravity_force_);
+    for (unsigned int i = 0; i < partitioner_->locally_owned_size(); ++i)
+      if (fixed_[i])
+        lumped_mass_.local_element(i) = 1;
+  }
+
+  template <int dim>
+  bool SnowpackModel<dim>::set_cut(double cut_length)
+  {
+    cut_length_ = cut_length;
+    const double column_length = scene_.pst.column_length / n_columns_;
+    bool changed = false;
+    double removed = 0;
+    for (CellData &data : cells_)
+    {
+      if (data.layer != layer_weak)
+        continue;
+      // Columns counted from the cut end; the part of this column's length the saw has passed.
+      const unsigned int from_cut = scene_.pst.cut_side == SawTest::CutSide::upslope ? data.column
+                                                                                      : n_columns_ - 1 - data.column;
+      const double cut_part = std::clamp(cut_length / column_length - from_cut, 0., 1.);
+      const double intact = 1 - cut_part;
+      if (intact != data.intact)
+      {
+        removed += (std::max(data.intact, cut_stiffness_floor) - std::max(intact, cut_stiffness_floor)) *
+                   cell_elastic_energy(data);
+        data.intact = intact;
+        changed = true;
+      }
+    }
+    removed_by_saw_ += Utilities::MPI::sum(removed, communicator_);
+    changed = Utilities::MPI::logical_or(changed, communicator_);
+    if (changed)
+      sum_gravity_and_mass();
+    return changed;
+  }
+
+  template <int dim>
+  double SnowpackModel<dim>::cell_elastic_energy(const CellData &data) const
+  {
+    double energy = 0;
+    for (unsigned int q = 0; q < quadrature_.size(); ++q)
+      energy += committed_[data.first_qp + q].cam_clay_energy_density() * JxW_[data.first_qp + q];
+    return energy;
+  }
+
+  template <int dim>
+  double SnowpackModel<dim>::evaluate(const VectorType &u, VectorType &internal_force, const Request &request)
+  {
+    const unsigned int n_q = quadrature_.size();
+    const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
+    const Analysis &analysis = scene_.analysis;
+    const unsigned int n_nodes = fe_.base_element(0).n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    std::vector<double> u_local(dofs_per_cell), v_local(dofs_per_cell), f_local(dofs_per_cell);
+    internal_force = 0;
+    double max_rate2 = 0; // max over cells of c_p² Σ (p/h_i)²
+    double viscous_power = 0;
+    std::string failure; // the first failed return mapping of this rank
+
+    for (CellData &data : cells_)
+    {
+      const CamClayParameters &parameters = cell_parameters_[data.layer];
+      const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
+      const double stress_factor = std::max(data.intact, cut_stiffness_floor);
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        u_local[i] = u.local_element(data.local_dofs[i]);
+        if (request.velocity)
+          v_local[i] = request.velocity->local_element(data.local_dofs[i]);
+      }
+      std::fill(f_local.begin(), f_local.end(), 0.);
+      if (request.tangent)
+        cell_matrix = 0;
+      double cell_modulus = 0; // largest P-wave modulus of the cell's points, as they are loaded
+      bool cell_failed = false;
+
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const double JxW = JxW_[data.first_qp + q];
+        const Tensor<1, dim> *gradients = &gradients_[(data.first_qp + q) * n_nodes];
+        // Strain (3D; plane strain leaves the out-of-plane components zero) and velocity divergence.
+        SymmetricTensor<2, 3> strain;
+        double volumetric_rate = 0;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const unsigned int c = component_[i];
+          const Tensor<1, dim> &grad = gradients[node_[i]];
+          for (unsigned int j = 0; j < dim; ++j)
+            strain[c][j] += (c == j ? 1. : 0.5) * u_local[i] * grad[j];
+          if (request.velocity)
+            volumetric_rate += v_local[i] * grad[c];
+        }
+        // The loop above adds ½ (u_c,j) to [c][j] for c ≠ j from both (c, j) and (j, c) dofs,
+        // which SymmetricTensor stores in one place: ε_cj = ½ (u_c,j + u_j,c).
+
+        QuadraturePointState &state = trial_[data.first_qp + q];
+        const QuadraturePointState &previous = committed_[data.first_qp + q];
+        SymmetricTensor<4, 3> tangent;
+        if (plastic_model)
+        {
+          try
+          {
+            if (request.tangent)
+            {
+              const CamClayTangentUpdate result = update_stress_and_tangent(parameters, previous.material, strain);
+              state.material = result.update.state;
+              state.stress = result.update.stress;
+              state.lock_up_pressure = result.update.densification_pressure;
+              tangent = result.tangent;
+            }
+            else
+            {
+              const CamClayUpdate result = update_stress(parameters, previous.material, strain);
+              state.material = result.state;
+              state.stress = result.stress;
+              state.lock_up_pressure = result.densification_pressure;
+            }
+          }
+          catch (const ReturnMappingError &e)
+          {
+            // Finish the loop (and the collective compress below) on every rank, then throw on all.
+            if (failure.empty())
+            {
+              std::ostringstream where;
+              where << "in the " << layers_[data.layer].label << " at cell centre " << data.cell->center()
+                    << ", quadrature point " << q << ": " << e.what();
+              failure = where.str();
+            }
+            cell_failed = true;
+            break;
+          }
+        }
+        else
+        {
+          // σ = K tr ε I + 2 G dev ε, without forming the 4th-order tensor unless it is needed
+          // (the explicit loop spends most of its time in elastic slab cells).
+          state.material.strain = strain;
+          state.stress = 2 * parameters.shear_modulus * deviator(strain) +
+                         parameters.bulk_modulus * trace(strain) * unit_symmetric_tensor<3>();
+          if (request.tangent)
+            tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
+        }
+        const bool locked = state.lock_up_pressure > 0;
+        SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);
+        if (request.tangent)
+        {
+          tangent *= stress_factor;
+          if (locked)
+            tangent += (1 - stress_factor) * parameters.densification_modulus *
+                       outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>());
+        }
+        cell_modulus = std::max(cell_modulus, stress_factor * (parameters.bulk_modulus + 4 * parameters.shear_modulus / 3) +
+                                                (locked ? parameters.densification_modulus : 0.));
+        // Dissipation of this step: trapezoidal f σ_cc : Δε_p (the lock-up does no plastic work).
+        const SymmetricTensor<2, 3> plastic_increment = state.material.plastic_strain - previous.material.plastic_strain;
+        state.dissipation = previous.dissipation + stress_factor * 0.5 *
+                                                     (state.cam_clay_stress() + previous.cam_clay_stress()) *
+                                                     plastic_increment;
+
+        if (request.velocity && volumetric_rate < 0)
+        {
+          // Bulk viscosity (compression only), the von Neumann–Richtmyer quadratic term and a
+          // linear term, over the cell's smallest length: p_v = ρ h (c_2² h |ε̇_v|² + c_1 c |ε̇_v|).
+          const double h = 1 / std::sqrt(data.inverse_h2);
+          const double c = std::sqrt(cell_modulus / data.density);
+          const double rate = -volumetric_rate;
+          const double p_v = data.density * h *
+                             (analysis.quadratic_bulk_viscosity * analysis.quadratic_bulk_viscosity * h * rate +
+                              analysis.linear_bulk_viscosity * c) *
+                             rate;
+          stress -= p_v * unit_symmetric_tensor<3>();
+          viscous_power += p_v * rate * JxW;
+        }
+
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const unsigned int c = component_[i];
+          const Tensor<1, dim> &grad = gradients[node_[i]];
+          double f = 0;
+          for (unsigned int j = 0; j < dim; ++j)
+            f += stress[c][j] * grad[j];
+          f_local[i] += f * JxW;
+        }
+        if (request.tangent)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          {
+            const unsigned int ci = component_[i];
+            const Tensor<1, dim> &grad_i = gradients[node_[i]];
+            for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            {
+              const unsigned int ck = component_[k];
+              const Tensor<1, dim> &grad_k = gradients[node_[k]];
+              double value = 0;
+              for (unsigned int j = 0; j < dim; ++j)
+                for (unsigned int l = 0; l < dim; ++l)
+                  value += grad_i[j] * tangent[ci][j][ck][l] * grad_k[l];
+              cell_matrix(i, k) += value * JxW;
+            }
+          }
+      }
+      if (cell_failed)
+        continue;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        internal_force.local_element(data.local_dofs[i]) += f_local[i];
+      if (request.tangent)
+        constraints_.distribute_local_to_global(cell_matrix, data.dofs, *request.tangent);
+      max_rate2 = std::max(max_rate2, cell_modulus / data.density * data.inverse_h2);
+    }
+    internal_force.compress(VectorOperation::add);
+    zero_fixed(internal_force);
+    if (request.tangent)
+      request.tangent->compress(VectorOperation::add);
+    if (Utilities::MPI::logical_or(!failure.empty(), communicator_))
+      throw ReturnMappingError(failure.empty() ? std::string("the return mapping failed on another rank") : failure);
+    viscous_power_ = Utilities::MPI::sum(viscous_power, communicator_);
+    max_rate2 = Utilities::MPI::max(max_rate2, communicator_);
+    // Central differences are stable for Δt ≤ 2/ω_max; ω_max ≤ c sqrt(Σ (2/h_i)²) for Q1 with a
+    // lumped mass (the element eigenvalue bound), so Δt ≤ 1 / (c sqrt(Σ (1/h_i)²)).
+    return 1 / std::sqrt(max_rate2);
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::commit()
+  {
+    committed_ = trial_;
+  }
+
+  template <int dim>
+  Energies SnowpackModel<dim>::energies() const
+  {
+    double elastic = 0, dissipated = 0;
+    for (const CellData &data : cells_)
+    {
+      const double densification_modulus = cell_parameters_[data.layer].densification_modulus;
+      elastic += std::max(data.intact, cut_stiffness_floor) * cell_elastic_energy(data);
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+        elastic += committed_[data.first_qp + q].lock_up_energy_density(densification_modulus) * JxW_[data.first_qp + q];
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+        dissipated += committed_[data.first_qp + q].dissipation * JxW_[data.first_qp + q];
+    }
+    Energies energies;
+    energies.elastic = Utilities::MPI::sum(elastic, communicator_);
+    energies.dissipated = Utilities::MPI::sum(dissipated, communicator_);
+    energies.removed_by_saw = removed_by_saw_;
+    return energies;
+  }
+
+  template <int dim>
+  CrackFronts SnowpackModel<dim>::crack_fronts(double failure_fraction) const
+  {
+    std::vector<int> failed(n_columns_, 0), locked(n_columns_, 0);
+    const CamClayParameters &weak = cell_parameters_[layer_weak];
+    const double densification = weak.densification_strain;
+    for (const CellData &data : cells_)
+    {
+      if (data.layer != layer_weak)
+        continue;
+      double softening = 0;
+      bool lock = false;
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+      {
+        const CamClayState &state = committed_[data.first_qp + q].material;
+        softening += (weak.p0_initial - state.p0) / std::max(weak.p0_initial - weak.p0_floor, 1e-300);
+        lock = lock || (densification > 0 && -trace(state.strain) > densification);
+      }
+      softening /= quadrature_.size();
+      if (data.intact < 0.5 || softening >= failure_fraction)
+        failed[data.column] = 1;
+      if (lock)
+        locked[data.column] = 1;
+    }
+    Utilities::MPI::max(failed, communicator_, failed);
+    Utilities::MPI::max(locked, communicator_, locked);
+    const double column_length = scene_.pst.column_length / n_columns_;
+    auto front = [&](const std::vector<int> &flags) {
+      unsigned int k = 0;
+      for (; k < n_columns_; ++k)
+      {
+        const unsigned int column = scene_.pst.cut_side == SawTest::CutSide::upslope ? k : n_columns_ - 1 - k;
+        if (!flags[column])
+          break;
+      }
+      return k * column_length;
+    };
+    CrackFronts fronts;
+    fronts.crack_tip = front(failed);
+    for (unsigned int k = 0; k < n_columns_; ++k)
+    {
+      const unsigned int column = scene_.pst.cut_side == SawTest::CutSide::upslope ? k : n_columns_ - 1 - k;
+      if (locked[column])
+        fronts.touchdown = (k + 1) * column_length;
+    }
+    fronts.failed_anywhere = std::any_of(failed.begin(), failed.end(), [](int f) { return f != 0; });
+    return fronts;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::save(std::ostream &out) const
+  {
+    static_assert(std::is_trivially_copyable_v<QuadraturePointState>);
+    checkpoint::write(out, cut_length_);
+    checkpoint::write(out, removed_by_saw_);
+    checkpoint::write_vector(out, committed_);
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::load(std::istream &in)
+  {
+    double cut = 0, removed = 0;
+    checkpoint::read(in, cut);
+    checkpoint::read(in, removed);
+    std::vector<QuadraturePointState> states;
+    checkpoint::read_vector(in, states, committed_.size(), "quadrature-point states");
+    committed_ = trial_ = states;
+    set_cut(cut);
+    removed_by_saw_ = removed;
+  }
+
+  template <int dim>
+  std::vector<CellSummary<dim>> SnowpackModel<dim>::cell_summaries() const
+  {
+    std::vector<CellSummary<dim>> summaries;
+    const unsigned int n_q = quadrature_.size();
+    for (const CellData &data : cells_)
+    {
+      CellSummary<dim> summary;
+      summary.center = data.cell->center();
+      summary.layer = data.layer;
+      summary.intact = data.intact;
+      const double stress_factor = std::max(data.intact, cut_stiffness_floor);
+      for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const QuadraturePointState &state = committed_[data.first_qp + q];
+        summary.stress += carried_stress(state, stress_factor) / n_q;
+        summary.p0 += state.material.p0 / n_q;
+      }
+      summaries.push_back(summary);
+    }
+    return summaries;
+  }
+
+  template <int dim>
+  std::string SnowpackModel<dim>::write_fields(const VectorType &u, const std::string &directory,
+                                               const std::string &stem, unsigned int index) const
+  {
+    const unsigned int n_q = quadrature_.size();
+    const unsigned int n_active = triangulation_.n_active_cells();
+    enum Field
+    {
+      p, q, p0, plastic_volumetric, softening, intact, layer, sigma_xx, sigma_nn, sigma_xn, n_fields
+    };
+    const char *names[n_fields] = {"p",         "q",     "p0",       "plastic_volumetric_strain", "collapse_state",
+                                   "intact",    "layer", "sigma_xx", "sigma_nn",                  "sigma_xn"};
+    std::vector<Vector<double>> fields(n_fields, Vector<double>(n_active));
+    for (const CellData &data : cells_)
+    {
+      const unsigned int c = data.cell->active_cell_index();
+      const CamClayParameters &parameters = cell_parameters_[data.layer];
+      const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
+      for (unsigned int k = 0; k < n_q; ++k)
+      {
+        const QuadraturePointState &state = committed_[data.first_qp + k];
+        const SymmetricTensor<2, 3> stress = carried_stress(state, std::max(data.intact, cut_stiffness_floor));
+        fields[p][c] += mean_pressure(stress) / n_q;
+        fields[q][c] += von_mises(stress) / n_q;
+        fields[p0][c] += (plastic_model ? state.material.p0 : 0) / n_q;
+        fields[plastic_volumetric][c] += trace(state.material.plastic_strain) / n_q;
+        if (plastic_model)
+          fields[softening][c] += (parameters.p0_initial - state.material.p0) /
+                                  std::max(parameters.p0_initial - parameters.p0_floor, 1e-300) / n_q;
+        fields[sigma_xx][c] += stress[0][0] / n_q;
+        fields[sigma_nn][c] += stress[dim - 1][dim - 1] / n_q;
+        fields[sigma_xn][c] += stress[0][dim - 1] / n_q;
+      }
+      fields[intact][c] = data.intact;
+      fields[layer][c] = data.layer;
+    }
+
+    DataOut<dim> data_out;
+    data_out.attach_dof_handler(dof_handler_);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u, std::vector<std::string>(dim, "displacement"), DataOut<dim>::type_dof_data,
+                             vector_field);
+    for (unsigned int f = 0; f < n_fields; ++f)
+      data_out.add_data_vector(fields[f], names[f], DataOut<dim>::type_cell_data);
+    Vector<float> subdomain(n_active);
+    subdomain = triangulation_.locally_owned_subdomain();
+    data_out.add_data_vector(subdomain, "subdomain");
+    data_out.build_patches(fe_.degree);
+    return data_out.write_vtu_with_pvtu_record(directory + "/", stem, index, communicator_, 5);
+  }
+
+  template class SnowpackModel<2>;
+  template class SnowpackModel<3>;
+} // namespace anticrack::fem

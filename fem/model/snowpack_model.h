@@ -1,0 +1,221 @@
+// The discretised snowpack: mesh, degrees of freedom, the history at quadrature points, and the one
+// loop that evaluates the constitutive law over the cells (internal force, optionally the
+// consistent tangent, energies). The quasi-static (fem/solver/quasi_static.h) and the explicit
+// (fem/solver/explicit_dynamics.h) solvers drive it; neither has a cell loop of its own.
+//
+// Mesh: parallel::distributed::Triangulation (p4est) built as one structured, graded coarse mesh
+// (GridGenerator::subdivided_hyper_rectangle with step sizes): uniform element length along the
+// slope, `Weak layer elements` through the weak layer, slab and substratum elements of the target
+// heights. Cell material ids are layer indices (layer_substratum, layer_weak, then slab layers from
+// the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
+// quadrature point (PHYSICS.md §0); the base (normal coordinate 0) is fixed.
+//
+// Softening regularisation (crack band, Bažant & Oh 1983): the hardening factor of a cohesive
+// Cam-Clay cell is ξ_e = ξ h_e / h_ref, with h_e the cell's height normal to the slope and h_ref
+// the material's reference thickness (the specimen height over which the calibration measured the
+// softening strain). The collapse law dissipates ∫ p0 dα over Δα = asinh(p0/K)/ξ_e, so a band one
+// element high dissipates per unit area h_e ∫ p0 dα, which does not depend on h_e
+// (tests/fem: crack-band test).
+//
+// The saw: weak-layer cells are removed progressively as the saw passes them; a cell's intact
+// fraction f ∈ [0, 1] is the part of its length not yet cut, and its Cam-Clay stress and weight are
+// scaled by max(f, 1e-6) (the floor keeps the nodes inside the cut in the system). It keeps its
+// mass and its lock-up: the sawn gap closes once the slab has fallen by the collapse height.
+#pragma once
+
+#include "fem/material/cohesive_cam_clay.h"
+#include "fem/scene/snowpack_scene.h"
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <memory>
+#include <vector>
+
+namespace dealii::PETScWrappers::MPI
+{
+  class SparseMatrix;
+  class Vector;
+} // namespace dealii::PETScWrappers::MPI
+
+namespace anticrack::fem
+{
+  /// Material ids of the cells.
+  enum LayerId : unsigned int
+  {
+    layer_substratum = 0,
+    layer_weak = 1,
+    layer_first_slab = 2 ///< slab layers from the bottom up: 2, 3, ...
+  };
+
+  /// History of one quadrature point.
+  struct QuadraturePointState
+  {
+    CamClayState material;                 ///< strain, plastic strain, α, p0 (elastic cells: strain only)
+    dealii::SymmetricTensor<2, 3> stress;  ///< stress of the material (without the intact fraction)
+    double lock_up_pressure = 0;           ///< p_d of the densification lock-up, included in stress [Pa]
+    double dissipation = 0;                ///< plastic work dissipated so far per volume [J/m³]
+
+    /// The Cam-Clay part of the stress (the lock-up is a parallel elastic spring).
+    dealii::SymmetricTensor<2, 3> cam_clay_stress() const;
+    /// Stored elastic energy per volume of the Cam-Clay part, ½ σ_cc : (ε − ε_p) [J/m³].
+    double cam_clay_energy_density() const;
+    /// Stored energy per volume of the lock-up, p_d² / (2 K_d) [J/m³].
+    double lock_up_energy_density(double densification_modulus) const;
+  };
+
+  /// Energies of the model [J per metre of column width in 2D, J in 3D].
+  struct Energies
+  {
+    double elastic = 0;     ///< ∫ ½ σ:(ε − ε_p) of the committed states (cut cells included with f)
+    double dissipated = 0;  ///< plastic work of the committed states
+    double kinetic = 0;     ///< set by the explicit solver
+    double viscous = 0;     ///< bulk viscosity and damping, set by the explicit solver
+    double external_work = 0; ///< set by the solvers
+    double removed_by_saw = 0; ///< elastic energy of the material the saw removed
+  };
+
+  /// Where the weak layer has failed, measured from the cut end along the column [m].
+  struct CrackFronts
+  {
+    double crack_tip = 0;  ///< far end of the contiguous failed (or cut) columns
+    double touchdown = 0;  ///< far end of the farthest column where the collapsed layer locked up
+    bool failed_anywhere = false;
+  };
+
+  /// Average state of one locally owned cell (for tests and diagnostics).
+  template <int dim>
+  struct CellSummary
+  {
+    dealii::Point<dim> center;
+    unsigned int layer = 0;
+    double intact = 1;
+    dealii::SymmetricTensor<2, 3> stress; ///< mean over the quadrature points, as carried (f σ_cc − p_d I)
+    double p0 = 0;                        ///< mean p0 (Cam-Clay cells)
+  };
+
+  template <int dim>
+  class SnowpackModel
+  {
+  public:
+    using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
+
+    SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator);
+    ~SnowpackModel();
+
+    const SnowpackScene &scene() const { return scene_; }
+    MPI_Comm communicator() const { return communicator_; }
+    const dealii::DoFHandler<dim> &dof_handler() const { return dof_handler_; }
+    const dealii::AffineConstraints<double> &constraints() const { return constraints_; }
+    const dealii::IndexSet &locally_owned_dofs() const { return locally_owned_dofs_; }
+    const dealii::IndexSet &locally_relevant_dofs() const { return locally_relevant_dofs_; }
+    dealii::types::global_dof_index n_dofs() const { return dof_handler_.n_dofs(); }
+    unsigned int n_cells() const;
+    unsigned int n_columns() const { return n_columns_; }
+
+    /// A vector with the ghost layer this model needs for displacements and forces.
+    void initialize_vector(VectorType &vector) const;
+
+    /// Gravity body force per unit load factor, with fixed dofs zero (cut cells weigh nothing).
+    const VectorType &gravity_force() const { return gravity_force_; }
+
+    /// The lumped (Gauss–Lobatto) mass, one entry per dof, with fixed dofs 1 (never used).
+    const VectorType &lumped_mass() const { return lumped_mass_; }
+
+    /// True for the dofs of the fixed base (locally owned or ghost), indexed by local element.
+    bool is_fixed(unsigned int local_index) const { return fixed_[local_index]; }
+    /// Sets the fixed dofs of a vector to zero.
+    void zero_fixed(VectorType &vector) const;
+
+    /// Cuts the weak layer up to `cut_length` from the cut end (set_cut(0): intact). Returns true
+    /// if any cell changed its intact fraction.
+    bool set_cut(double cut_length);
+    double cut_length() const { return cut_length_; }
+
+    /// What evaluate() computes besides the internal force.
+    struct Request
+    {
+      /// Assemble the consistent tangent and the residual `load_factor · f_gravity − f_int` into
+      /// these PETSc objects (through the constraints; fixed rows get the identity).
+      dealii::PETScWrappers::MPI::SparseMatrix *tangent = nullptr;
+      dealii::PETScWrappers::MPI::Vector *residual = nullptr;
+      double load_factor = 1;
+      /// Velocity (ghosted) for the bulk viscosity pressure of explicit steps; nullptr: none.
+      const VectorType *velocity = nullptr;
+    };
+
+    /// Evaluates every locally owned cell at displacement u (ghosted): trial states from the
+    /// committed ones, internal force f_int (ghosted layout, compressed, fixed dofs zero), and what
+    /// `request` asks for. Returns the largest stable explicit time step of the trial states
+    /// (CFL estimate, before the safety factor) over all ranks. Throws ReturnMappingError with the
+    /// cell and quadrature point when the return mapping fails.
+    double evaluate(const VectorType &u, VectorType &internal_force, const Request &request);
+
+    /// The trial states of the last evaluate() become the committed history.
+    void commit();
+
+    /// Power of the bulk viscosity in the last evaluate() with a velocity [W], over all ranks.
+    double last_viscous_power() const { return viscous_power_; }
+
+    /// Elastic and dissipated energies of the committed states, over all ranks.
+    Energies energies() const;
+
+    /// Crack and touchdown fronts of the committed states, over all ranks.
+    CrackFronts crack_fronts(double failure_fraction) const;
+
+    /// Writes the fields of displacement u (ghosted) as VTU/PVTU into `directory` with the given
+    /// name stem and index; returns the .pvtu file name (relative to `directory`).
+    std::string write_fields(const VectorType &u, const std::string &directory, const std::string &stem,
+                             unsigned int index) const;
+
+    /// Writes / reads the history of this rank (committed states, cut, saw energy). load() needs a
+    /// model of the same scene on the same number of ranks; throws checkpoint::Mismatch otherwise.
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
+
+    /// The committed state of every locally owned cell.
+    std::vector<CellSummary<dim>> cell_summaries() const;
+
+  private:
+    struct CellData;
+
+    void make_mesh();
+    void setup_dofs();
+    void setup_cells();
+    void assemble_gravity_and_mass();
+    void sum_gravity_and_mass();
+    double cell_elastic_energy(const CellData &data) const;
+
+    const SnowpackScene &scene_;
+    MPI_Comm communicator_;
+    dealii::parallel::distributed::Triangulation<dim> triangulation_;
+    dealii::FESystem<dim> fe_;
+    dealii::DoFHandler<dim> dof_handler_;
+    dealii::QGauss<dim> quadrature_;
+    dealii::AffineConstraints<double> constraints_;
+    dealii::IndexSet locally_owned_dofs_, locally_relevant_dofs_;
+    std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
+    std::vector<bool> fixed_;
+
+    std::vector<Layer> layers_;                    ///< by layer id
+    std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)
+    std::vector<CellData> cells_;                  ///< locally owned cells, by active cell index order
+    std::vector<QuadraturePointState> committed_, trial_;
+    // Geometry cache (a flat array is ~10× faster than FEValues::reinit per cell in explicit loops):
+    // JxW per quadrature point and the gradients of the scalar shape functions per (point, node).
+    std::vector<double> JxW_;
+    std::vector<dealii::Tensor<1, dim>> gradients_;
+    std::vector<unsigned int> component_, node_; ///< of each cell dof
+    double removed_by_saw_ = 0;
+    unsigned int n_columns_ = 0;
+    double cut_length_ = 0;
+    double viscous_power_ = 0;
+
+    VectorType gravity_force_, lumped_mass_;
+  };
+} // namespace anticrack::fem

@@ -1,0 +1,477 @@
+#include "fem/scene/snowpack_scene.h"
+
+#include "util/input_error.h"
+#include "util/sha256.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace anticrack::fem
+{
+  using dealii::ParameterHandler;
+  using dealii::Patterns::Anything;
+  using dealii::Patterns::Bool;
+  using dealii::Patterns::Double;
+  using dealii::Patterns::Integer;
+  using dealii::Patterns::Selection;
+
+  namespace
+  {
+    constexpr unsigned int max_slab_layers = 8;
+    constexpr double pi = 3.14159265358979323846;
+
+    std::string slab_layer_section(unsigned int k) { return "Slab layer " + std::to_string(k + 1); }
+
+    void declare_layer(ParameterHandler &prm, const std::string &default_model, const std::string &default_thickness)
+    {
+      prm.declare_entry("Thickness [m]", default_thickness, Double(0), "layer thickness measured normal to the slope");
+      prm.declare_entry("Model", default_model, Selection("elastic|cohesive cam-clay"),
+                        "constitutive model: linear elastic, or cohesive Cam-Clay with softening (PHYSICS.md 2)");
+      prm.declare_entry("Material file", "", Anything(),
+                        "material file of a calibration (`anticrack calibrate`, subsection Material), relative "
+                        "to the scene's directory; when given it replaces the inline material entries below");
+      prm.declare_entry("Collapse height [m]", "0", Double(0),
+                        "how far the faces of a collapsing layer approach before its grains lock up (0: no "
+                        "lock-up); weak layers collapse by 3-5 mm of 10-30 mm (PHYSICS.md 2)");
+      prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
+                        "bulk modulus of the lock-up once the collapse height is used up");
+      declare_material_entries(prm);
+    }
+
+    Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::string &section,
+                      const std::string &scene_file)
+    {
+      const std::filesystem::path scene_directory = std::filesystem::path(scene_file).parent_path();
+      Layer layer;
+      layer.label = label;
+      layer.thickness = prm.get_double("Thickness [m]");
+      layer.model = prm.get("Model") == "elastic" ? Layer::Model::elastic : Layer::Model::cohesive_cam_clay;
+      layer.collapse_height = prm.get_double("Collapse height [m]");
+      layer.densification_modulus = prm.get_double("Densification modulus [Pa]");
+      layer.material = parse_material_entries(prm);
+      const std::string file = prm.get("Material file");
+      if (!file.empty())
+      {
+        const std::filesystem::path path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : scene_directory / file;
+        layer.material_file = path.lexically_normal().string();
+        try
+        {
+          layer.material = read_material_file(layer.material_file);
+        }
+        catch (const InputError &e)
+        {
+          throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/Material file = " + file +
+                           ":\n" + e.what());
+        }
+      }
+      if (layer.material.name.empty())
+        layer.material.name = label;
+      return layer;
+    }
+
+    /// Collects the problems of a scene so that all of them are reported at once.
+    class Problems
+    {
+    public:
+      explicit Problems(std::string file) : file_(std::move(file)) {}
+      void add(const std::string &entry, const std::string &message)
+      {
+        text_ << "\n  " << entry << ": " << message;
+        ++count_;
+      }
+      void throw_if_any() const
+      {
+        if (count_ > 0)
+          throw InputError("Invalid scene file <" + file_ + ">: " + std::to_string(count_) + " problem" +
+                           (count_ > 1 ? "s" : "") + text_.str());
+      }
+
+    private:
+      std::string file_;
+      std::ostringstream text_;
+      unsigned int count_ = 0;
+    };
+
+    std::string number(double value)
+    {
+      std::ostringstream out;
+      out << value;
+      return out.str();
+    }
+
+    void check_layer(const Layer &layer, const std::string &section, bool thickness_may_be_zero,
+                     double band_height, Problems &problems)
+    {
+      if (!thickness_may_be_zero && !(layer.thickness > 0))
+        problems.add(section + "/Thickness [m]", "must be > 0 (is " + number(layer.thickness) + ")");
+      if (!(layer.material.youngs_modulus > 0))
+        problems.add(section + "/Young's modulus [Pa]", "must be > 0 (is " + number(layer.material.youngs_modulus) + ")");
+      if (layer.collapse_height > 0 && !(layer.densification_modulus > 0))
+        problems.add(section + "/Densification modulus [Pa]",
+                     "must be > 0 when a collapse height is given (is " + number(layer.densification_modulus) + ")");
+      if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
+        problems.add(section + "/Collapse height [m]",
+                     "the crack band (one element row) must be able to close by the collapse height: it must be "
+                     "< 0.9 element heights, " + number(0.9 * band_height) + " m (is " +
+                       number(layer.collapse_height) + "); use fewer elements through the layer");
+      if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height < 0.9 * band_height)
+      {
+        try
+        {
+          cam_clay_parameters(layer, band_height);
+        }
+        catch (const std::exception &e)
+        {
+          problems.add(section, std::string("the cohesive Cam-Clay parameters are refused: ") + e.what());
+        }
+      }
+    }
+  } // namespace
+
+  double Snowpack::slab_thickness() const
+  {
+    double sum = 0;
+    for (const Layer &layer : slab_layers)
+      sum += layer.thickness;
+    return sum;
+  }
+
+  double Snowpack::weak_layer_top() const { return substratum.thickness + weak_layer.thickness; }
+
+  double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }
+
+  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height)
+  {
+    const ContinuumMaterial &m = layer.material;
+    CamClayParameters parameters;
+    parameters.set_elastic_moduli(m.youngs_modulus, m.poisson_ratio);
+    parameters.M = m.M;
+    parameters.beta = m.beta;
+    parameters.p0_initial = m.p0;
+    parameters.hardening_factor = m.hardening_factor;
+    if (m.reference_thickness > 0)
+      parameters.hardening_factor *= band_height / m.reference_thickness;
+    parameters.law = m.hardening_law == "signed" ? HardeningLaw::signed_volumetric : HardeningLaw::collapse;
+    parameters.p0_floor = residual_p0_floor(m.p0, m.residual_strength_ratio);
+    if (layer.collapse_height > 0)
+    {
+      parameters.densification_strain = layer.collapse_height / band_height;
+      parameters.densification_modulus = layer.densification_modulus;
+    }
+    parameters.check();
+    return parameters;
+  }
+
+  double element_height(const SnowpackScene &scene, unsigned int layer_id)
+  {
+    const Snowpack &s = scene.snowpack;
+    const MeshParameters &m = scene.mesh;
+    auto rows = [](double thickness, double target) {
+      return std::max(1u, (unsigned int)std::ceil(thickness / target - 1e-9));
+    };
+    if (layer_id == 0)
+      return s.substratum.thickness / rows(s.substratum.thickness, m.substratum_element_height);
+    if (layer_id == 1)
+      return s.weak_layer.thickness / m.weak_layer_elements;
+    const Layer &slab = s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)];
+    return slab.thickness / rows(slab.thickness, m.slab_element_height);
+  }
+
+  double band_height(const SnowpackScene &scene, unsigned int layer_id)
+  {
+    if (scene.analysis.crack_band)
+      return element_height(scene, layer_id);
+    const Snowpack &s = scene.snowpack;
+    return layer_id == 0 ? s.substratum.thickness
+                         : layer_id == 1 ? s.weak_layer.thickness
+                                         : s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)].thickness;
+  }
+
+  bool is_snowpack_scene(const std::string &file)
+  {
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line))
+    {
+      // Top level only: the keyword starts the line (nested subsections are indented or follow
+      // another subsection; a scene that indents its top level is still found by the name).
+      const auto first = line.find_first_not_of(" \t");
+      if (first == std::string::npos || line[first] == '#')
+        continue;
+      std::istringstream words(line.substr(first));
+      std::string keyword, name;
+      words >> keyword;
+      std::getline(words >> std::ws, name);
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back())))
+        name.pop_back();
+      if (keyword == "subsection" && name == "Snowpack")
+        return true;
+    }
+    return false;
+  }
+
+  void declare_snowpack_scene(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Snowpack");
+    prm.declare_entry("Slope angle [deg]", "0", Double(0, 60), "psi: inclination of the slope; +x points downslope");
+    prm.declare_entry("Gravity [m/s^2]", "9.81", Double(0), "g");
+    prm.declare_entry("Number of slab layers", "1", Integer(1, max_slab_layers),
+                      "slab layers, given top first in subsections `Slab layer 1`, `Slab layer 2`, ...");
+    for (unsigned int k = 0; k < max_slab_layers; ++k)
+    {
+      prm.enter_subsection(slab_layer_section(k));
+      declare_layer(prm, "elastic", "0.4");
+      prm.leave_subsection();
+    }
+    prm.enter_subsection("Weak layer");
+    declare_layer(prm, "cohesive cam-clay", "0.02");
+    prm.leave_subsection();
+    prm.enter_subsection("Substratum");
+    declare_layer(prm, "elastic", "0.1");
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    prm.enter_subsection("PST");
+    prm.declare_entry("Column length [m]", "2.5", Double(0), "L: length of the isolated column along the slope");
+    prm.declare_entry("Column width [m]", "0.3", Double(0), "across the slope (3D only)");
+    prm.declare_entry("Cut from", "upslope", Selection("upslope|downslope"), "end of the column where the saw enters");
+    prm.declare_entry("Saw", "advancing", Selection("fixed|advancing"),
+                      "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
+                      "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself)");
+    prm.declare_entry("Cut length [m]", "0.3", Double(0), "a: fixed cut, or the longest cut of an advancing saw");
+    prm.declare_entry("Saw speed [m/s]", "1", Double(0), "speed of an advancing saw");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Mesh");
+    prm.declare_entry("Dimension", "2", Integer(2, 3), "2: plane strain in the slope-normal plane; 3: the whole column");
+    prm.declare_entry("Polynomial degree", "1", Integer(1, 2), "degree of the Lagrange elements");
+    prm.declare_entry("Element length [m]", "0.01", Double(0), "element size along the slope (and across in 3D)");
+    prm.declare_entry("Weak layer elements", "4", Integer(1, 64), "elements through the weak-layer thickness");
+    prm.declare_entry("Slab element height [m]", "0.04", Double(0), "target element height in the slab layers");
+    prm.declare_entry("Substratum element height [m]", "0.05", Double(0), "target element height in the substratum");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Analysis");
+    prm.declare_entry("Type", "explicit dynamics", Selection("energy release rate|quasi-static|explicit dynamics"),
+                      "energy release rate: elastic snowpack, G(a) = -dPi/da over every cut length up to "
+                      "`PST/Cut length`; quasi-static: gravity, then saw steps with Newton until equilibrium "
+                      "is lost; explicit dynamics: gravity equilibrium, then saw and crack propagation in time");
+    prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0), "G_c of the weak layer (energy release rate analysis)");
+    prm.declare_entry("Crack band regularisation", "true", Bool(),
+                      "true: softening layers soften and collapse in one element row with the energy and the "
+                      "collapse height of the calibrated layer (mesh-independent); false: the local model");
+    prm.enter_subsection("Newton");
+    prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2), "on |residual| / |external force|");
+    prm.declare_entry("Maximum iterations", "25", Integer(2, 500), "per load step");
+    prm.declare_entry("Linear solver", "direct", Selection("direct|amg"),
+                      "direct: MUMPS; amg: GMRES with BoomerAMG (large problems)");
+    prm.declare_entry("Gravity steps", "4", Integer(1, 10000), "initial number of steps of the gravity ramp");
+    prm.declare_entry("Saw step [m]", "0", Double(0), "quasi-static cut increment; 0: one element length");
+    prm.leave_subsection();
+    prm.enter_subsection("Explicit");
+    prm.declare_entry("End time [s]", "1", Double(0), "simulated time after the saw starts");
+    prm.declare_entry("CFL safety factor", "0.5", Double(0.01, 1), "dt = safety * min(h / c_p)");
+    prm.declare_entry("Linear bulk viscosity", "0.06", Double(0, 10), "c_1 of p_v = rho h (c_2^2 h e_v'^2 - c_1 c e_v')");
+    prm.declare_entry("Quadratic bulk viscosity", "1.2", Double(0, 10), "c_2 (acts in compression only)");
+    prm.declare_entry("Mass damping [1/s]", "0", Double(0), "alpha_M of the damping force -alpha_M M v");
+    prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
+                      "a weak-layer element has failed when its softening has gone this fraction of the way "
+                      "from p0 to the residual strength");
+    prm.declare_entry("Self-propagation lead [m]", "0", Double(0),
+                      "the crack runs by itself once its tip leads the saw by this much; 0: slab thickness");
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("Field interval [s]", "0.01", Double(0), "simulated time between field outputs; 0: none");
+    prm.declare_entry("Series interval [s]", "1e-3", Double(0), "simulated time between time-series rows");
+    prm.declare_entry("Progress interval", "1000", Integer(0), "steps between progress lines; 0: quiet");
+    prm.declare_entry("Checkpoint interval", "10000", Integer(0),
+                      "explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
+                      "`anticrack run --resume` continues; 0: none");
+    prm.leave_subsection();
+  }
+
+  SnowpackScene read_snowpack_scene(const std::string &file)
+  {
+    std::ifstream in(file);
+    if (!in)
+      throw InputError("scene " + file + " cannot be read");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return read_snowpack_scene_text(text.str(), file);
+  }
+
+  SnowpackScene read_snowpack_scene_text(const std::string &text, const std::string &file)
+  {
+    ParameterHandler prm;
+    declare_snowpack_scene(prm);
+    try
+    {
+      std::istringstream input(text);
+      prm.parse_input(input, file);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's text names the line, the entry and the pattern; drop its stack trace.
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
+    }
+    catch (const std::exception &e)
+    {
+      throw InputError("Invalid scene file <" + file + ">: " + e.what());
+    }
+
+    SnowpackScene scene;
+    scene.file = file;
+    Snowpack &s = scene.snowpack;
+    prm.enter_subsection("Snowpack");
+    s.slope_angle = prm.get_double("Slope angle [deg]") * pi / 180;
+    s.gravity = prm.get_double("Gravity [m/s^2]");
+    const unsigned int n_slab = prm.get_integer("Number of slab layers");
+    for (unsigned int k = 0; k < n_slab; ++k)
+    {
+      prm.enter_subsection(slab_layer_section(k));
+      s.slab_layers.push_back(
+        parse_layer(prm, "slab layer " + std::to_string(k + 1), "Snowpack/" + slab_layer_section(k), file));
+      prm.leave_subsection();
+    }
+    prm.enter_subsection("Weak layer");
+    s.weak_layer = parse_layer(prm, "weak layer", "Snowpack/Weak layer", file);
+    prm.leave_subsection();
+    prm.enter_subsection("Substratum");
+    s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file);
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    SawTest &pst = scene.pst;
+    prm.enter_subsection("PST");
+    pst.column_length = prm.get_double("Column length [m]");
+    pst.column_width = prm.get_double("Column width [m]");
+    pst.cut_side = prm.get("Cut from") == "upslope" ? SawTest::CutSide::upslope : SawTest::CutSide::downslope;
+    pst.saw = prm.get("Saw") == "fixed" ? SawTest::Saw::fixed : SawTest::Saw::advancing;
+    pst.cut_length = prm.get_double("Cut length [m]");
+    pst.saw_speed = prm.get_double("Saw speed [m/s]");
+    prm.leave_subsection();
+
+    MeshParameters &mesh = scene.mesh;
+    prm.enter_subsection("Mesh");
+    mesh.dimension = prm.get_integer("Dimension");
+    mesh.polynomial_degree = prm.get_integer("Polynomial degree");
+    mesh.element_length = prm.get_double("Element length [m]");
+    mesh.weak_layer_elements = prm.get_integer("Weak layer elements");
+    mesh.slab_element_height = prm.get_double("Slab element height [m]");
+    mesh.substratum_element_height = prm.get_double("Substratum element height [m]");
+    prm.leave_subsection();
+
+    Analysis &analysis = scene.analysis;
+    prm.enter_subsection("Analysis");
+    const std::string type = prm.get("Type");
+    analysis.type = type == "energy release rate" ? Analysis::Type::energy_release_rate
+                    : type == "quasi-static"      ? Analysis::Type::quasi_static
+                                                  : Analysis::Type::explicit_dynamics;
+    analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
+    analysis.crack_band = prm.get_bool("Crack band regularisation");
+    prm.enter_subsection("Newton");
+    analysis.newton_tolerance = prm.get_double("Tolerance");
+    analysis.newton_max_iterations = prm.get_integer("Maximum iterations");
+    analysis.linear_solver = prm.get("Linear solver") == "direct" ? Analysis::LinearSolver::direct
+                                                                 : Analysis::LinearSolver::amg;
+    analysis.gravity_steps = prm.get_integer("Gravity steps");
+    analysis.saw_step = prm.get_double("Saw step [m]");
+    prm.leave_subsection();
+    prm.enter_subsection("Explicit");
+    analysis.end_time = prm.get_double("End time [s]");
+    analysis.cfl_safety = prm.get_double("CFL safety factor");
+    analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
+    analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
+    analysis.mass_damping = prm.get_double("Mass damping [1/s]");
+    analysis.failure_fraction = prm.get_double("Failure fraction");
+    analysis.self_propagation_lead = prm.get_double("Self-propagation lead [m]");
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    OutputParameters &output = scene.output;
+    prm.enter_subsection("Output");
+    output.field_interval = prm.get_double("Field interval [s]");
+    output.series_interval = prm.get_double("Series interval [s]");
+    output.progress_interval = prm.get_integer("Progress interval");
+    output.checkpoint_interval = prm.get_integer("Checkpoint interval");
+    prm.leave_subsection();
+
+    {
+      std::ostringstream json_text;
+      prm.print_parameters(json_text, ParameterHandler::ShortJSON);
+      auto json = nlohmann::json::parse(json_text.str());
+      json.erase("Output");
+      auto &explicit_entries = json["Analysis"]["Explicit"];
+      for (auto entry = explicit_entries.begin(); entry != explicit_entries.end();)
+        entry = entry.key().rfind("End time", 0) == 0 ? explicit_entries.erase(entry) : std::next(entry);
+      std::string key = json.dump();
+      for (const Layer *layer : {&s.weak_layer, &s.substratum})
+        if (!layer->material_file.empty())
+          key += util::sha256_of_file(layer->material_file);
+      for (const Layer &layer : s.slab_layers)
+        if (!layer.material_file.empty())
+          key += util::sha256_of_file(layer.material_file);
+      scene.resume_key_sha256 = util::sha256_hex(key);
+    }
+
+    // --- what single patterns cannot check
+    Problems problems(file);
+    for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
+      check_layer(s.slab_layers[k], "Snowpack/" + slab_layer_section(k), false,
+                  band_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
+    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, 1), problems);
+    if (s.substratum.thickness > 0)
+      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, 0), problems);
+    if (!(pst.column_length > 0))
+      problems.add("PST/Column length [m]", "must be > 0 (is " + number(pst.column_length) + ")");
+    if (mesh.dimension == 3 && !(pst.column_width > 0))
+      problems.add("PST/Column width [m]", "must be > 0 in 3D (is " + number(pst.column_width) + ")");
+    if (!(pst.cut_length < pst.column_length))
+      problems.add("PST/Cut length [m]", "must be shorter than the column, " + number(pst.column_length) +
+                                           " m (is " + number(pst.cut_length) + ")");
+    if (pst.saw == SawTest::Saw::advancing && analysis.type == Analysis::Type::explicit_dynamics &&
+        !(pst.saw_speed > 0))
+      problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + number(pst.saw_speed) + ")");
+    if (!(mesh.element_length > 0) || !(mesh.element_length <= pst.column_length / 4))
+      problems.add("Mesh/Element length [m]", "must lie in (0, column length / 4 = " +
+                                                number(pst.column_length / 4) + "] (is " +
+                                                number(mesh.element_length) + ")");
+    if (!(mesh.slab_element_height > 0))
+      problems.add("Mesh/Slab element height [m]", "must be > 0");
+    if (!(mesh.substratum_element_height > 0))
+      problems.add("Mesh/Substratum element height [m]", "must be > 0");
+    if (analysis.type == Analysis::Type::energy_release_rate)
+    {
+      auto elastic = [&](const Layer &layer, const std::string &section) {
+        if (layer.model != Layer::Model::elastic)
+          problems.add(section + "/Model", "must be `elastic` for the energy release rate analysis");
+      };
+      for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
+        elastic(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
+      elastic(s.weak_layer, "Snowpack/Weak layer");
+      elastic(s.substratum, "Snowpack/Substratum");
+      if (!(pst.cut_length >= 2 * mesh.element_length))
+        problems.add("PST/Cut length [m]", "must cover at least two element lengths, " +
+                                             number(2 * mesh.element_length) + " m, for G(a) (is " +
+                                             number(pst.cut_length) + ")");
+    }
+    else if (s.weak_layer.model != Layer::Model::cohesive_cam_clay)
+      problems.add("Snowpack/Weak layer/Model", "must be `cohesive cam-clay` for a quasi-static or dynamic PST (only "
+                                               "a yielding weak layer can fail)");
+    if (analysis.type == Analysis::Type::explicit_dynamics && !(analysis.end_time > 0))
+      problems.add("Analysis/Explicit/End time [s]", "must be > 0");
+    problems.throw_if_any();
+    return scene;
+  }
+} // namespace anticrack::fem

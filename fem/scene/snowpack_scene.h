@@ -1,0 +1,191 @@
+// Snowpack scenes: the layered snowpack, the propagation saw test (PST), the mesh, the analysis and
+// the output of a finite-element run, read from a deal.II parameter file (.prm). A scene is a
+// snowpack scene when it has a top-level `subsection Snowpack` (is_snowpack_scene()).
+//
+// Geometry (PHYSICS.md §3). The model is built in slope-parallel coordinates: x runs along the slope,
+// downslope positive, from the upslope end of the column (x = 0) to its downslope end (x = L); the
+// last axis (y in 2D, z in 3D) is normal to the slope, pointing out of the snowpack, with 0 at the
+// base of the substratum; in 3D, y spans the column width. Gravity is g (sin ψ e_x − cos ψ e_n).
+// From the base up: substratum (may be absent), weak layer, slab layers (listed top first, as a
+// snow profile is read). The base is fixed; every other face is free (an isolated PST column).
+//
+// Every entry's unit is in its name; the reader checks what single patterns cannot (a weak layer
+// resolved by at least one element, a cut shorter than the column, a Cam-Clay weak layer for a
+// propagation run, ...) and reports every problem at once with the file and the entry.
+#pragma once
+
+#include "fem/material/cohesive_cam_clay.h"
+#include "fem/material/material_file.h"
+
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace anticrack::fem
+{
+  /// One layer of the snowpack with the constitutive model it uses.
+  struct Layer
+  {
+    enum class Model
+    {
+      elastic,           ///< linear elastic (E, ν)
+      cohesive_cam_clay  ///< elasticity + cohesive Cam-Clay with softening (PHYSICS.md §2)
+    };
+    std::string label;          ///< "slab layer 1", "weak layer", "substratum" (for messages)
+    double thickness = 0;       ///< [m]
+    Model model = Model::elastic;
+    ContinuumMaterial material; ///< from a material file or inline
+    std::string material_file;  ///< the file it came from, "" if inline
+    /// Lock-up of the collapsed pores (fem/material/cohesive_cam_clay.h): the collapse height of the layer
+    /// [m] (how far its faces approach before the grains lock up; 0: no lock-up) and the lock-up's
+    /// bulk modulus [Pa].
+    double collapse_height = 0;
+    double densification_modulus = 0;
+  };
+
+  /// The layered snowpack.
+  struct Snowpack
+  {
+    std::vector<Layer> slab_layers; ///< top first
+    Layer weak_layer;
+    Layer substratum;               ///< thickness 0: the weak layer rests on the fixed base
+    double slope_angle = 0;         ///< ψ [rad], downslope along +x
+    double gravity = 9.81;          ///< [m/s²]
+
+    double slab_thickness() const;
+    /// Height of the slab's base (= top of the weak layer) above the model base [m].
+    double weak_layer_top() const;
+    double total_thickness() const;
+  };
+
+  /// The propagation saw test.
+  struct SawTest
+  {
+    enum class CutSide
+    {
+      upslope,  ///< the saw enters at x = 0
+      downslope ///< the saw enters at x = L
+    };
+    enum class Saw
+    {
+      fixed,    ///< the cut of `cut_length` is made at once (after the gravity equilibrium)
+      advancing ///< the saw advances at `saw_speed` from 0 up to `cut_length`
+    };
+    double column_length = 2.5; ///< L [m]
+    double column_width = 0.3;  ///< [m], 3D only
+    CutSide cut_side = CutSide::upslope;
+    Saw saw = Saw::advancing;
+    double cut_length = 0.3;    ///< fixed cut, or the largest cut of an advancing saw [m]
+    double saw_speed = 1;       ///< [m/s]
+  };
+
+  /// The structured, graded mesh.
+  struct MeshParameters
+  {
+    unsigned int dimension = 2;          ///< 2 (plane strain) or 3
+    unsigned int polynomial_degree = 1;  ///< of FE_Q
+    double element_length = 0.01;        ///< along the slope (and across in 3D) [m]
+    unsigned int weak_layer_elements = 4;///< elements through the weak-layer thickness
+    double slab_element_height = 0.04;   ///< target height of slab elements [m]
+    double substratum_element_height = 0.05; ///< target height of substratum elements [m]
+  };
+
+  /// What the run computes.
+  struct Analysis
+  {
+    enum class Type
+    {
+      energy_release_rate, ///< elastic snowpack: G(a) = −ΔΠ/Δa over cut lengths, a for G = G_c
+      quasi_static,        ///< gravity, then saw steps with Newton until equilibrium is lost
+      explicit_dynamics    ///< gravity equilibrium, then the saw and crack propagation in time
+    };
+    Type type = Type::explicit_dynamics;
+    /// Crack band regularisation of softening layers (cam_clay_parameters()); false: the local
+    /// model, softening and collapse spread over the layer thickness in every element (for showing
+    /// the mesh dependence the regularisation removes).
+    bool crack_band = true;
+
+    // energy release rate
+    double fracture_energy = 0.5;        ///< G_c [J/m²]
+
+    // Newton (gravity equilibrium and quasi-static steps)
+    double newton_tolerance = 1e-8;      ///< on |r| / |f_ext|
+    unsigned int newton_max_iterations = 25;
+    enum class LinearSolver
+    {
+      direct, ///< MUMPS
+      amg     ///< GMRES with BoomerAMG (hypre)
+    };
+    LinearSolver linear_solver = LinearSolver::direct;
+    unsigned int gravity_steps = 4;      ///< initial number of load steps of the gravity ramp
+    double saw_step = 0;                 ///< quasi-static cut increment [m]; 0 = one element length
+
+    // explicit dynamics
+    double end_time = 1;                 ///< [s] after the saw starts
+    double cfl_safety = 0.5;             ///< Δt = safety · min h / c_p
+    double linear_bulk_viscosity = 0.06; ///< c_1 of the bulk viscosity pressure
+    double quadratic_bulk_viscosity = 1.2; ///< c_2 of the bulk viscosity pressure
+    double mass_damping = 0;             ///< α_M of the damping force −α_M M v [1/s]
+    /// A weak-layer element counts as failed when its softening has used this fraction of the way
+    /// from p0 to the residual strength (the crack tip is the farthest failed element).
+    double failure_fraction = 0.9;
+    /// The crack runs by itself once its tip leads the saw by this distance [m]; 0 = slab thickness.
+    double self_propagation_lead = 0;
+  };
+
+  struct OutputParameters
+  {
+    double field_interval = 0.01;        ///< [s] between field outputs (explicit), 0 = none
+    double series_interval = 1e-3;       ///< [s] between time-series rows (explicit)
+    unsigned int progress_interval = 1000; ///< steps between progress lines, 0 = quiet
+    unsigned int checkpoint_interval = 10000; ///< explicit steps between checkpoints, 0 = none
+  };
+
+  struct SnowpackScene
+  {
+    std::string file;   ///< where it was read from
+    /// SHA-256 of every entry except Output and Analysis/Explicit/End time, and of the material
+    /// files: a checkpoint resumes only a scene with the same key (the end time may be extended).
+    std::string resume_key_sha256;
+    Snowpack snowpack;
+    SawTest pst;
+    MeshParameters mesh;
+    Analysis analysis;
+    OutputParameters output;
+  };
+
+  /// True when `file` has a top-level `subsection Snowpack`.
+  bool is_snowpack_scene(const std::string &file);
+
+  /// Declares every entry of a snowpack scene.
+  void declare_snowpack_scene(dealii::ParameterHandler &prm);
+
+  /// Reads and checks a snowpack scene; throws anticrack::InputError (file, entry, value, range).
+  /// Material files are looked up relative to the scene's directory.
+  SnowpackScene read_snowpack_scene(const std::string &file);
+
+  /// The same from the text of a scene; `file` names it in messages and locates material files.
+  SnowpackScene read_snowpack_scene_text(const std::string &text, const std::string &file);
+
+  /// Cam-Clay parameters of a cohesive Cam-Clay layer whose softening localises in a band of height
+  /// h_e normal to the slope: with the crack band regularisation (Bažant & Oh 1983) one element row,
+  /// which must dissipate and collapse what the calibrated layer of reference thickness h_ref does,
+  /// so
+  ///   ξ_e = ξ h_e / h_ref                 (same plastic displacement h_e Δα_e to the residual),
+  ///   ε_d,e = collapse height / h_e       (the row closes by the layer's collapse height),
+  /// with the p0 floor from the residual strength ratio. Throws std::invalid_argument (via check())
+  /// when the result is out of range, e.g. a row thinner than the collapse height.
+  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height);
+
+  /// Height normal to the slope of the elements of layer `layer_id` (0 substratum, 1 weak layer,
+  /// 2, 3, ... slab layers from the bottom up), as the structured mesh makes them [m].
+  double element_height(const SnowpackScene &scene, unsigned int layer_id);
+
+  /// The band height cam_clay_parameters() gets for layer `layer_id`: its element height with the
+  /// crack band, its thickness without.
+  double band_height(const SnowpackScene &scene, unsigned int layer_id);
+} // namespace anticrack::fem

@@ -1,0 +1,56 @@
+#include "util/run_summary.h"
+
+#include <Eigen/Core>
+#include <hdf5.h>
+#include <omp.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+// Both come from CMake (util/CMakeLists.txt): util links neither deal.II nor git.
+#ifndef ANTICRACK_GIT_VERSION
+#  define ANTICRACK_GIT_VERSION "unknown"
+#endif
+#ifndef ANTICRACK_DEAL_II_VERSION
+#  define ANTICRACK_DEAL_II_VERSION "unknown"
+#endif
+
+namespace anticrack
+{
+  Json version_info()
+  {
+    unsigned major = 0, minor = 0, release = 0;
+    H5get_libversion(&major, &minor, &release);
+    Json v;
+    v["anticrack"] = ANTICRACK_GIT_VERSION;
+    v["deal.II"] = ANTICRACK_DEAL_II_VERSION;
+    v["eigen"] = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                 std::to_string(EIGEN_MINOR_VERSION);
+    v["hdf5"] = std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(release);
+#if defined(__clang__)
+    v["compiler"] = std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+    v["compiler"] = std::string("gcc ") + __VERSION__;
+#else
+    v["compiler"] = "unknown";
+#endif
+    v["openmp_threads"] = omp_get_max_threads();
+    return v;
+  }
+
+  void write_json_atomically(const std::string &file, const Json &json)
+  {
+    const std::string temporary = file + ".tmp";
+    {
+      std::ofstream out(temporary);
+      if (!out)
+        throw std::runtime_error("cannot write " + temporary);
+      // Non-finite numbers (a failed run) become null rather than invalid JSON.
+      out << json.dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
+      if (!out)
+        throw std::runtime_error("cannot write " + temporary);
+    }
+    std::filesystem::rename(temporary, file);
+  }
+} // namespace anticrack
