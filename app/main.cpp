@@ -130,7 +130,7 @@ int main(int argc, char **argv)
   std::string fe_plane = "p-q";
   calibrate->add_option("--fe-plane", fe_plane,
                         "Plane whose Cam-Clay fit goes into the material file: p-q (Love-Weber invariants) or "
-                        "sigma-tau (base stresses, seed 002)")
+                        "sigma-tau (base stresses, Ritter et al. 2020)")
     ->check(CLI::IsMember({"p-q", "sigma-tau"}))
     ->capture_default_str();
   calibrate->add_option("--poisson-ratio", calibrate_options.poisson_ratio,

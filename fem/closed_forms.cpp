@@ -360,7 +360,7 @@ namespace anticrack::fem::closed_forms
     require_positive("slab_density [kg/m^3]", slab_density);
     require_positive("collapse_height [m]", collapse_height);
     require_positive("gravity [m/s^2]", gravity);
-    // Eq. 16 (PHYSICS.md §3 uses E, not E', in D_f).
+    // Eq. 16 (docs/physics.md §3 uses E, not E', in D_f).
     const double flexural_rigidity = youngs_modulus * std::pow(slab_thickness, 3) / 12;
     return std::pow(gravity * flexural_rigidity / (2 * collapse_height * slab_density * slab_thickness), 0.25);
   }

@@ -1,4 +1,4 @@
-// Closed forms that the FE solver's physics tests compare against (PHYSICS.md §3): plane-strain
+// Closed forms that the FE solver's physics tests compare against (docs/physics.md §3): plane-strain
 // elastic helpers, the propagation saw test (PST) as a slab on an elastic (Winkler) foundation with
 // its energy release rate, Gaume et al. (2017)'s critical cut length, Heierli (2005)'s flexural wave
 // speed, and estimates of the error of the beam model against a 2D continuum. The derivations, with
@@ -10,7 +10,7 @@
 //       supported part is semi-infinite: semi_infinite_column_error_estimate() says when a finite
 //       column of length L is long enough);
 //   w   slab deflection normal to the slope, positive into the weak layer: for x >= a it is the
-//       weak-layer compression (a length, positive in compression, unlike strains in PHYSICS.md §0);
+//       weak-layer compression (a length, positive in compression, unlike strains in docs/physics.md §0);
 //   u   slab axial displacement along +x; for x >= a it is the weak-layer shear slip;
 //   ψ   slope angle: ψ > 0 when the slope-parallel weight points along +x (the cut starts at the
 //       upslope end of the column), ψ < 0 when the cut starts at the downslope end. The closed forms
@@ -157,7 +157,7 @@ namespace anticrack::fem::closed_forms
   double critical_cut_length_gaume2017(const SlabOnFoundation &s, double peak_shear_strength);
 
   /// Heierli (2005), speed of the flexural wave that a collapsing weak layer carries under the slab:
-  ///   c = (g D_f / (2 h_f ρ H))^{1/4},   D_f = E H³ / 12   [m/s]   (PHYSICS.md §3; Eq. 16).
+  ///   c = (g D_f / (2 h_f ρ H))^{1/4},   D_f = E H³ / 12   [m/s]   (docs/physics.md §3; Eq. 16).
   /// Throws std::invalid_argument unless every argument is finite and > 0.
   double flexural_wave_speed_heierli2005(double youngs_modulus,
                                          double slab_thickness,

@@ -197,7 +197,7 @@ namespace anticrack::params
         throw CalibrationError(where + ": the campaign records solid fraction " + std::to_string(c.solid_fraction) +
                                " and coordination " + std::to_string(c.coordination) +
                                " for the samples; the density and the contact density need 0 < phi < 1 and z > 0");
-      c.contact_density = c.solid_fraction * c.coordination; // ν_c = z φ (seed 002)
+      c.contact_density = c.solid_fraction * c.coordination; // ν_c = z φ (Ritter et al. 2020)
       c.layer_thickness = mean_of(c.tests, &CampaignTest::layer_thickness);
       c.density = c.solid_fraction * c.material.particle_density;
 
@@ -238,14 +238,14 @@ namespace anticrack::params
         s.M.push_back(p.M);
       }
       s.compressive = fit_power_law(s.contact_density, s.compressive_over_bond, options.confidence,
-                                    "sigma0/sigma_bond against contact density (seed 002 Eq. 2)");
+                                    "sigma0/sigma_bond against contact density (Ritter et al. 2020, Eq. 2)");
       s.tensile = fit_power_law(s.contact_density, s.tensile_over_bond, options.confidence,
-                                "beta sigma0/sigma_bond against contact density (seed 002 Eq. 3)");
+                                "beta sigma0/sigma_bond against contact density (Ritter et al. 2020, Eq. 3)");
       s.M_statistics = describe(s.M, options.confidence, "M across microstructures");
       result.scaling = s;
     }
 
-    // Seed 000 Eqs. 5-8: the macro modulus (Young's, from the secant moduli) and the compressive
+    // Eqs. 5-8 of Bobillier et al. (2020): the macro modulus (Young's, from the secant moduli) and the compressive
     // strength (base sigma at failure at psi = 0) of every microstructure against its micro values.
     auto &mm = result.micro_macro;
     double reference_thickness = 0;
@@ -264,11 +264,11 @@ namespace anticrack::params
     }
     if (distinct(mm.particle_modulus) >= 3)
       mm.modulus = MicroMacroLaw{fit_line(mm.particle_modulus, mm.macro_modulus, options.confidence,
-                                          "macro modulus against particle modulus (seed 000 Eqs. 5, 7)"),
+                                          "macro modulus against particle modulus (Bobillier et al. 2020, Eqs. 5, 7)"),
                                  reference_thickness};
     if (distinct(mm.bond_strength) >= 3)
       mm.strength = MicroMacroLaw{fit_line(mm.bond_strength, mm.macro_strength, options.confidence,
-                                           "macro strength against bond strength (seed 000 Eqs. 6, 8)"),
+                                           "macro strength against bond strength (Bobillier et al. 2020, Eqs. 6, 8)"),
                                   reference_thickness};
     return result;
   }

@@ -1,13 +1,13 @@
 // The calibration: a DEM campaign (campaign.h5) in, everything a continuum model needs out, with
 // uncertainties. For every microstructure of the campaign:
-//   - the cohesive Cam-Clay surface fitted in both stress planes — the base stresses (σ, τ) of seed
-//     002 and the invariants (p, q) of the Love–Weber stress — with the two alternative envelopes
-//     (Mohr–Coulomb with a cap, seed 001; the quadratic polynomial of seed 000 Eq. 9) and their
+//   - the cohesive Cam-Clay surface fitted in both stress planes — the base stresses (σ, τ) of
+//     Ritter et al. (2020) and the invariants (p, q) of the Love–Weber stress — with the two alternative envelopes
+//     (Mohr–Coulomb with a cap, Mede et al. 2018; the quadratic polynomial of Bobillier et al. 2020, Eq. 9) and their
 //     information criteria;
-//   - seed 002's flow-rule analysis in the normalised (σ*, τ*) plane;
+//   - Ritter et al.'s (2020) flow-rule analysis in the normalised (σ*, τ*) plane;
 //   - elastic constants and the collapse-softening factor ξ (params/elastic_calibration.h).
 // Across microstructures: the power laws of σ0/σ̄_c and βσ0/σ̄_c with the contact density ν_c = zφ
-// (seed 002 Eqs. 2–3), M's mean and spread, and the linear micro-to-macro laws of seed 000 (Eqs. 5–8)
+// (Ritter et al. 2020, Eqs. 2–3), M's mean and spread, and the linear micro-to-macro laws of Bobillier et al. 2020 (Eqs. 5–8)
 // when the campaign varies the particle modulus or the bond strength.
 //
 // Which plane the FE solver uses: (p, q) by default (CalibrationOptions::fe_plane). The continuum yield function is a function of the stress
@@ -16,7 +16,7 @@
 // traction components on one plane: under mixed-mode loading the lateral stresses (σ_xx, σ_yy) are
 // not controlled (periodic sides confine the specimen), so (σ, τ) and (p, q) differ in shape, not only
 // in scale — in compression the lateral stresses put the failure points at q > 0. The (σ, τ) fit is
-// kept for comparison with seed 002 (its σ0, β, M, scaling laws and flow rule are in that plane).
+// kept for comparison with Ritter et al. 2020 (its σ0, β, M, scaling laws and flow rule are in that plane).
 // Laterally confined tests (periodic sides) reach only a narrow fan of q/p in the invariant plane
 // (failure points at polar angles of roughly 60–120°, the lateral stresses following the axial one),
 // so the tips p0 and −βp0 there are extrapolations: well determined when the points bend over
@@ -42,7 +42,7 @@ namespace anticrack::params
 {
   enum class StressPlane
   {
-    base_stresses, ///< (σ, τ) at the fixed base (seed 002)
+    base_stresses, ///< (σ, τ) at the fixed base (Ritter et al. 2020)
     invariants     ///< (p, q) of the Love–Weber stress — the FE solver's plane
   };
 
@@ -76,7 +76,7 @@ namespace anticrack::params
     [[nodiscard]] CamClayParameters cam_clay_parameters() const;
   };
 
-  /// Seed 002's flow-rule analysis for one microstructure, in the (σ, τ) plane of its Cam-Clay fit.
+  /// Ritter et al.'s (2020) flow-rule analysis for one microstructure, in the (σ, τ) plane of its Cam-Clay fit.
   struct FlowRuleAnalysis
   {
     std::vector<double> loading_angle, flow_angle;   ///< ψ and θ per test [rad]
@@ -105,7 +105,7 @@ namespace anticrack::params
     [[nodiscard]] const PlaneCalibration &plane(StressPlane which) const;
   };
 
-  /// Seed 002 Eqs. 2–3 across microstructures (in the (σ, τ) plane, as published).
+  /// Eqs. 2–3 of Ritter et al. (2020) across microstructures (in the (σ, τ) plane, as published).
   struct ScalingLaws
   {
     std::vector<double> contact_density, compressive_over_bond, tensile_over_bond, M; ///< one per microstructure
@@ -114,7 +114,7 @@ namespace anticrack::params
     SampleStatistics M_statistics;    ///< M's mean and spread
   };
 
-  /// Seed 000 Eqs. 5–8 across microstructures, with its thickness scaling (reference = the layers' h).
+  /// Eqs. 5–8 of Bobillier et al. (2020) across microstructures, with its thickness scaling (reference = the layers' h).
   struct MicroMacroRelations
   {
     std::vector<double> particle_modulus, macro_modulus;   ///< Young's modulus of the continuum

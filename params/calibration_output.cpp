@@ -159,11 +159,11 @@ namespace anticrack::params
         const hdf5::Handle fr = hdf5::create_group(g.id, "flow_rule");
         hdf5::write_doubles(fr.id, "loading_angle_deg", in_degrees(f.loading_angle), "deg", "psi");
         hdf5::write_doubles(fr.id, "flow_angle_deg", in_degrees(f.flow_angle), "deg", "theta");
-        hdf5::write_doubles(fr.id, "sigma_star", f.sigma_star, "-", "normalised normal stress (seed 002 Eq. 5)");
-        hdf5::write_doubles(fr.id, "tau_star", f.tau_star, "-", "normalised shear stress (seed 002 Eq. 6)");
+        hdf5::write_doubles(fr.id, "sigma_star", f.sigma_star, "-", "normalised normal stress (Ritter et al. 2020, Eq. 5)");
+        hdf5::write_doubles(fr.id, "tau_star", f.tau_star, "-", "normalised shear stress (Ritter et al. 2020, Eq. 6)");
         hdf5::write_doubles(fr.id, "psi_star_deg", in_degrees(f.psi_star), "deg", "normalised loading angle");
         hdf5::write_doubles(fr.id, "theta_star_deg", in_degrees(f.theta_star), "deg",
-                            "normalised flow angle (seed 002 Eq. 18)");
+                            "normalised flow angle (Ritter et al. 2020, Eq. 18)");
         const CamClayParameters surface = c.base_plane.cam_clay_parameters();
         std::vector<double> curve_psi, curve_theta;
         for (int k = 0; k <= 180; ++k)
@@ -291,7 +291,7 @@ namespace anticrack::params
         << (plane == StressPlane::invariants ?
               "# failure points in the (p, q) plane of the Love-Weber stress (the invariants the FE solver uses) by\n" :
               "# failure points in the (sigma, tau) plane of the base stresses (chosen with --fe-plane sigma-tau;\n"
-              "# p0, beta, M of seed 002's plane, used as the FE's invariant-plane parameters) by\n")
+              "# p0, beta, M of Ritter et al.'s (2020) plane, used as the FE's invariant-plane parameters) by\n")
         << "# least squares of the relative radial residuals ln(r/R): R^2 = " << number(surface.r_squared)
         << ", RMSE = " << number(100 * surface.rmse) << " %.\n"
         << "# Intervals: " << number(percent) << " % from the covariance of the fit (surface) and over the\n"

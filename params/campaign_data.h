@@ -41,7 +41,7 @@ namespace anticrack::params
 
   /// The columns of one test's history that the calibration uses. The strains are those of the
   /// deformable layer, u/h: the histories store u/H0 over the whole specimen, whose rigid base and
-  /// clump do not deform, so they are rescaled by H0/h on reading (for seed 000's weak layer under
+  /// clump do not deform, so they are rescaled by H0/h on reading (for Bobillier et al.'s (2020) weak layer under
   /// its actuator layer H0/h is about 2.5).
   struct TestHistory
   {

@@ -141,7 +141,7 @@ namespace anticrack::params
         excluded.push_back(t->id + ": the history ends at the peak");
         continue;
       }
-      // The residual stress: the mean over the last half of the post-peak samples (seed 000's
+      // The residual stress: the mean over the last half of the post-peak samples (Bobillier et al.'s (2020)
       // brittle-crushing phase at the end of the test). A load-controlled test collapses within a few
       // samples, so a fixed share of the whole history would reach back to the peak.
       const double R = dem::softening_ratio(h.sigma, static_cast<dem::Index>(peak),

@@ -3,24 +3,24 @@
 // t-interval over the realizations.
 //
 // Elasticity. The compression test gives the secant modulus of the base normal stress against the
-// normal strain of the deformable layer to 70 % of the peak (seed 000; strains u/h, campaign_data.h). With periodic sides (seed 002) the specimen is
+// normal strain of the deformable layer to 70 % of the peak (Bobillier et al. 2020; strains u/h, campaign_data.h). With periodic sides (Ritter et al. 2020) the specimen is
 // laterally confined, so that modulus is the constrained (P-wave) modulus M = K + 4G/3; with open
-// sides (seed 000) it is Young's modulus E. The shear test gives G as the secant modulus of τ against
+// sides (Bobillier et al. 2020) it is Young's modulus E. The shear test gives G as the secant modulus of τ against
 // γ = u_x/H0 to 70 % of its peak (the clump moves along x over a fixed base: simple shear). Then
 //   confined:   K = M − 4G/3,  E = 9KG/(3K + G),  ν = (3K − 2G)/(2(3K + G));
 //   unconfined: ν = E/(2G) − 1,  K = E/(3(1 − 2ν)).
 // Confined specimens also give ν from the lateral stress ratio K0 = σ_xx/σ_zz of the Love stress in
 // the elastic range, ν = K0/(1 + K0) (uniaxial strain), reported as a cross-check.
 //
-// Softening (PHYSICS.md §2). p0 = K sinh(ξ max(−α, 0)) with α the accumulated volumetric plastic
+// Softening (docs/physics.md §2). p0 = K sinh(ξ max(−α, 0)) with α the accumulated volumetric plastic
 // strain, starting at α0 = −asinh(p0_init/K)/ξ; under "collapse softening" every plastic volume
 // change, either sign, moves α towards 0, so p0 falls from p0_init to R p0_init after a plastic
 // volumetric strain Δε_p when ξ = [asinh(p0/K) − asinh(R p0/K)] / Δε_p. The compression test gives
-// R (softening ratio, seed 000: residual over peak base stress, the residual being the mean over the
+// R (softening ratio, Bobillier et al. 2020: residual over peak base stress, the residual being the mean over the
 // last half of the post-peak samples) and Δε_p: the normal strain from the peak to the first sample
 // at the residual stress, less the elastic recovery (σ_peak − σ_res)/M_axial. Under
 // uniaxial strain (confined) the volumetric strain is the normal strain; with open sides the collapse
-// is still a compaction band of zero lateral strain (seed 002 Fig. 1), so the same holds for its
+// is still a compaction band of zero lateral strain (Ritter et al. 2020, Fig. 1), so the same holds for its
 // plastic part.
 #pragma once
 

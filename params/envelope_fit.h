@@ -8,11 +8,11 @@
 // module), from every starting point the model derives from the data, keeping the lowest SSR. All
 // families are compared on the same residuals. (With absolute residuals r_i - R(a_i) and 3 % relative
 // scatter the covariance intervals below were too narrow: the nominal 95 % interval of p0 covered the
-// truth in 77 % of synthetic data sets with seed 002's design; the relative residuals restore 93-96 %,
+// truth in 77 % of synthetic data sets with Ritter et al.'s (2020) design; the relative residuals restore 93-96 %,
 // tests/params/test_envelope_fit.cpp.)
 //
 // Goodness of fit. R^2 = 1 - SSR/SST with SST = sum_i (ln r_i - mean ln r)^2, in the coordinate of the
-// fit (seed 000, reply to referee 1: "R^2 = 1 - SSR/SST, SSR the residual sum of squares, SST the total
+// fit (Bobillier et al. 2020, reply to referee 2, comment 31: "R^2 = 1 - SSR/SST, SSR the residual sum of squares, SST the total
 // sum of squares"); RMSE = sqrt(SSR/n), a relative error; information criteria with k = p + 1
 // parameters (the noise variance is estimated too): AIC = n ln(SSR/n) + 2k, AICc = AIC +
 // 2k(k+1)/(n-k-1), BIC = n ln(SSR/n) + k ln n.
@@ -148,7 +148,7 @@ namespace anticrack::params
   /// g = dR/dtheta (central differences in internal coordinates), its lower end floored at 0 and
   /// infinite where a parameter is unidentifiable; with `from_bootstrap` (and a bootstrap in the fit)
   /// the percentiles of the radius over the bootstrap samples. The covariance is the default because
-  /// it keeps its coverage with few realizations (measured with seed 002's design, 9 angles x 3
+  /// it keeps its coverage with few realizations (measured with Ritter et al.'s (2020) design, 9 angles x 3
   /// realizations, 3 % scatter: 95 % intervals covering in 94.9-95.4 % of 2000 data sets, the
   /// percentile bootstrap over the three realizations in only 73-75 %). Throws std::invalid_argument
   /// if the fit is of another model or n_angles < 2.

@@ -1,4 +1,4 @@
-// Flow-rule analysis in the mixed-mode plane (seed 002 Eqs. 1, 4-7, 12-19; see flow_rule.h).
+// Flow-rule analysis in the mixed-mode plane (Ritter et al. 2020, Eqs. 1, 4-7, 12-19; see flow_rule.h).
 #include "params/flow_rule.h"
 
 #include "params/calibration_error.h"
@@ -50,7 +50,7 @@ namespace anticrack::params
     }
 
     /// sqrt(1 + 2 beta), the factor between the cohesive and the cohesionless critical state
-    /// line (seed 002 Discussion: M' = M/sqrt(1 + 2 beta)).
+    /// line (Ritter et al. 2020, Discussion: M' = M/sqrt(1 + 2 beta)).
     double cohesion_factor(const CamClayParameters &parameters)
     {
       return std::sqrt(1 + 2 * parameters.beta);
@@ -88,7 +88,7 @@ namespace anticrack::params
     }
   } // namespace
 
-  // Seed 002 Eqs. 5-6: the affine map that sends the ellipse of Eq. 1 to the unit circle (Eq. 4):
+  // Eqs. 5-6 of Ritter et al. (2020): the affine map that sends the ellipse of Eq. 1 to the unit circle (Eq. 4):
   // centre (1 - beta) p0/2 -> 0, semi-axis (1 + beta) p0/2 -> 1 along sigma, and the apex height
   // M (1 + beta) p0/(2 sqrt(1 + 2 beta)) -> 1 along tau.
   NormalisedStress normalise(double sigma, double tau, const CamClayParameters &parameters)
@@ -118,7 +118,7 @@ namespace anticrack::params
   }
 
   // psi* = atan2(tau*, sigma*) of the intersection: the quadrant is that of the point itself, so
-  // psi* is right beyond the apex (psi* > pi/2), where seed 002 Eq. 14 would return the mirror image.
+  // psi* is right beyond the apex (psi* > pi/2), where Eq. 14 of Ritter et al. (2020) would return the mirror image.
   double normalised_loading_angle(double psi, const CamClayParameters &parameters)
   {
     const StressPoint point = surface_point_on_loading_ray(psi, parameters);
@@ -126,7 +126,7 @@ namespace anticrack::params
     return std::atan2(normalised.tau, normalised.sigma);
   }
 
-  // Seed 002 Eq. 19, mu* = k (1 + d sqrt(1 + mu*^2)) with k = (mu/M) sqrt(1 + 2 beta),
+  // Eq. 19 of Ritter et al. (2020), mu* = k (1 + d sqrt(1 + mu*^2)) with k = (mu/M) sqrt(1 + 2 beta),
   // d = (1 - beta)/(1 + beta): the loading ray is the line tau* = k (sigma* + d) through the
   // image (-d, 0) of the origin, and Eq. 14 puts the point on the circle at sigma* > 0.
   // Squaring gives (1 - k^2 d^2) mu*^2 - 2 k mu* + k^2 (1 - d^2) = 0 with the roots
@@ -179,7 +179,7 @@ namespace anticrack::params
     return k * one_minus_d_squared / (1 + d * s);
   }
 
-  // Seed 002 Eq. 18 with the quadrant kept: tan theta* = (sqrt(1 + 2 beta)/M) tan theta is the
+  // Eq. 18 of Ritter et al. (2020) with the quadrant kept: tan theta* = (sqrt(1 + 2 beta)/M) tan theta is the
   // same direction as (M cos theta, sqrt(1 + 2 beta) sin theta), both components scaled by
   // positive factors.
   double normalised_flow_angle(double theta, const CamClayParameters &parameters)
@@ -196,7 +196,7 @@ namespace anticrack::params
                       cohesion_factor(parameters) * std::cos(theta_star));
   }
 
-  // Seed 002 Eq. 16: the outward normal of the unit circle at psi* is (cos psi*, sin psi*) =
+  // Eq. 16 of Ritter et al. (2020): the outward normal of the unit circle at psi* is (cos psi*, sin psi*) =
   // (-du_z*, du_x*), so theta* = atan2(du_z*, du_x*) = psi* - pi/2.
   double associative_normalised_flow_angle(double psi_star)
   {
@@ -209,7 +209,7 @@ namespace anticrack::params
     return flow_angle_from_normalised(associative_normalised_flow_angle(psi_star), parameters);
   }
 
-  // Seed 002 Eq. 7: the apex (sigma, tau) = ((1 - beta) p0/2, M (1 + beta) p0/(2 sqrt(1 + 2 beta)))
+  // Eq. 7 of Ritter et al. (2020): the apex (sigma, tau) = ((1 - beta) p0/2, M (1 + beta) p0/(2 sqrt(1 + 2 beta)))
   // seen from the origin; atan2 gives the obtuse angle when the apex is on the tensile side (beta > 1).
   double transition_loading_angle(const CamClayParameters &parameters)
   {
@@ -237,7 +237,7 @@ namespace anticrack::params
     measure.confidence = confidence;
     measure.line = fit_line(psi_star, theta_star, confidence, what);
 
-    // Deviations from seed 002 Eq. 16.
+    // Deviations from Ritter et al. (2020), Eq. 16.
     measure.deviation.resize(psi_star.size());
     double sum_of_squares = 0;
     for (std::size_t i = 0; i < psi_star.size(); ++i)

@@ -1,5 +1,5 @@
 // Plastic flow of the DEM samples against the cohesive Cam-Clay surface in the mixed-mode plane
-// (seed 002, Results "Yield surface and plastic flow" and Methods "Plastic flow in the normalized
+// (Ritter et al. 2020, Results "Yield surface and plastic flow" and Methods "Plastic flow in the normalized
 // stress space", Eqs. 4-7 and 12-19).
 //
 // Conventions of the mixed-mode plane:
@@ -7,12 +7,12 @@
 //    for our loading.
 //  * The clump force is F (sin psi, 0, -cos psi): the loading angle psi = 0 is pure compression,
 //    pi/2 pure shear, pi pure tension, and the loading ray in (sigma, tau) is r (cos psi, sin psi),
-//    r > 0; mu = tan psi (seed 002 Eq. 12 without star).
+//    r > 0; mu = tan psi (Ritter et al. 2020, Eq. 12 without star).
 //  * The flow angle theta = atan2(du_z, du_x) is the direction of the clump displacement after
-//    failure (u_z up, so theta > 0 is expansion and theta < 0 compaction); seed 002 writes
+//    failure (u_z up, so theta > 0 is expansion and theta < 0 compaction); Ritter et al. (2020) write
 //    theta = arctan(u_z/u_x).
 //
-// The surface is seed 002 Eq. 1, tau^2 (1 + 2 beta) + M^2 (sigma - sigma_0)(sigma + beta sigma_0) = 0,
+// The surface is Eq. 1 of Ritter et al. (2020), tau^2 (1 + 2 beta) + M^2 (sigma - sigma_0)(sigma + beta sigma_0) = 0,
 // an ellipse with tips at sigma_0 (compression) and -beta sigma_0 (tension) and its apex at
 // sigma = (1 - beta) sigma_0/2. In the normalised coordinates of Eqs. 5-6 it is the unit circle
 // sigma*^2 + tau*^2 = 1 (Eq. 4), and the loading ray of angle psi meets it at the normalised loading
@@ -33,7 +33,7 @@
 
 namespace anticrack::params
 {
-  /// The cohesive Cam-Clay surface in the mixed-mode plane (seed 002 Eq. 1).
+  /// The cohesive Cam-Clay surface in the mixed-mode plane (Ritter et al. 2020, Eq. 1).
   struct CamClayParameters
   {
     double p0 = 0;    ///< sigma_0, the compressive strength (tip in compression) [Pa], > 0
@@ -41,14 +41,14 @@ namespace anticrack::params
     double M = 0;     ///< slope of the cohesionless critical state line, > 0
   };
 
-  /// A point in the normalised stress plane of seed 002 Eqs. 5-6.
+  /// A point in the normalised stress plane of Ritter et al. (2020), Eqs. 5-6.
   struct NormalisedStress
   {
     double sigma = 0;  ///< sigma*
     double tau = 0;    ///< tau*
   };
 
-  /// Seed 002 Eqs. 5-6: sigma* = (2 sigma - (1 - beta) p0)/((1 + beta) p0),
+  /// Eqs. 5-6 of Ritter et al. (2020): sigma* = (2 sigma - (1 - beta) p0)/((1 + beta) p0),
   /// tau* = 2 tau sqrt(1 + 2 beta)/(M (1 + beta) p0); points of the surface satisfy
   /// sigma*^2 + tau*^2 = 1 (Eq. 4). Throws CalibrationError for invalid parameters.
   NormalisedStress normalise(double sigma, double tau, const CamClayParameters &parameters);
@@ -67,7 +67,7 @@ namespace anticrack::params
   /// gives pi/2. Throws CalibrationError for psi outside [0, pi] or invalid parameters.
   double normalised_loading_angle(double psi, const CamClayParameters &parameters);
 
-  /// mu* = tan psi* from mu = tan psi by seed 002 Eq. 19,
+  /// mu* = tan psi* from mu = tan psi by Ritter et al. (2020), Eq. 19,
   /// mu* = (mu/M) sqrt(1 + 2 beta) (1 + (1 - beta)/(1 + beta) sqrt(1 + mu*^2)), in closed form, on
   /// the branch sigma* > 0 (Eq. 14), i.e. loading angles below the transition angle of Eq. 7.
   /// With k = (mu/M) sqrt(1 + 2 beta) and d = (1 - beta)/(1 + beta) the squared equation is the
@@ -78,7 +78,7 @@ namespace anticrack::params
   /// invalid parameters.
   double normalised_loading_slope_eq19(double mu, const CamClayParameters &parameters);
 
-  /// Seed 002 Eq. 18, theta* = arctan((sqrt(1 + 2 beta)/M) tan theta), evaluated as
+  /// Eq. 18 of Ritter et al. (2020), theta* = arctan((sqrt(1 + 2 beta)/M) tan theta), evaluated as
   /// atan2(sqrt(1 + 2 beta) sin theta, M cos theta) so that the quadrant is kept (theta near
   /// -pi/2, compaction under pure compression, stays near -pi/2). Throws CalibrationError for invalid
   /// parameters.
@@ -87,7 +87,7 @@ namespace anticrack::params
   /// Inverse of normalised_flow_angle: theta = atan2(M sin theta*, sqrt(1 + 2 beta) cos theta*).
   double flow_angle_from_normalised(double theta_star, const CamClayParameters &parameters);
 
-  /// Associative flow in normalised space, seed 002 Eq. 16: theta* = psi* - pi/2.
+  /// Associative flow in normalised space, Eq. 16 of Ritter et al. (2020): theta* = psi* - pi/2.
   double associative_normalised_flow_angle(double psi_star);
 
   /// The raw flow angle theta that associative flow predicts for the loading angle psi in [0, pi]:
@@ -95,13 +95,13 @@ namespace anticrack::params
   /// atan2 of the surface slope d tau/d sigma at the failure point, in (-pi/2, pi/2) for tau > 0.
   double associative_flow_angle(double psi, const CamClayParameters &parameters);
 
-  /// Seed 002 Eq. 7: the loading angle psi+- of the ray through the apex of the surface, where
+  /// Eq. 7 of Ritter et al. (2020): the loading angle psi+- of the ray through the apex of the surface, where
   /// associative flow changes from compaction to expansion,
   /// tan psi+- = M (1 + beta)/((1 - beta) sqrt(1 + 2 beta)), in (0, pi): arctan M for beta = 0,
   /// pi/2 for beta = 1, obtuse for beta > 1. Throws CalibrationError for invalid parameters.
   double transition_loading_angle(const CamClayParameters &parameters);
 
-  /// How associative measured flow is, in the normalised plane of seed 002 Fig. 5B.
+  /// How associative measured flow is, in the normalised plane of Ritter et al. (2020), Fig. 5B.
   struct AssociativityMeasure
   {
     /// d_i = theta*_i - (psi*_i - pi/2), wrapped to (-pi, pi] (directions, not numbers) [rad].
@@ -127,15 +127,15 @@ namespace anticrack::params
     int n = 0;
   };
 
-  /// Compares normalised flow angles theta*_i with the associative prediction psi*_i - pi/2 (seed
-  /// 002 Eq. 16). Throws CalibrationError for fewer than 3 points, sizes that differ, non-finite
+  /// Compares normalised flow angles theta*_i with the associative prediction psi*_i - pi/2
+  /// (Ritter et al. 2020, Eq. 16). Throws CalibrationError for fewer than 3 points, sizes that differ, non-finite
   /// values, all psi* equal, or a confidence outside (0, 1).
   AssociativityMeasure measure_associativity(const std::vector<double> &psi_star,
                                              const std::vector<double> &theta_star,
                                              double confidence = 0.95);
 
   /// The loading angle where measured flow changes from compaction (theta < 0) to expansion
-  /// (theta > 0), to compare with Eq. 7 (seed 002 reports ~67.5 deg). Flow angles are averaged per
+  /// (theta > 0), to compare with Eq. 7 (Ritter et al. (2020) report ~67.5 deg). Flow angles are averaged per
   /// distinct loading angle (angles within 1e-9 rad are the same), sorted by psi, and the first change
   /// from negative to positive mean is interpolated linearly; a run of means that are exactly 0
   /// between them gives the middle of the run. Throws CalibrationError if the sizes differ, a value is

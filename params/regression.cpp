@@ -171,7 +171,7 @@ namespace anticrack::params
     return prefactor * std::pow(x, exponent);
   }
 
-  // Seed 002 Eqs. (2)-(3): y = prefactor x^exponent  <=>  ln y = ln(prefactor) + exponent ln x.
+  // Eqs. (2)-(3) of Ritter et al. (2020): y = prefactor x^exponent  <=>  ln y = ln(prefactor) + exponent ln x.
   // The exponent's interval is the slope's t-interval; the prefactor's is exp of the intercept's,
   // which is asymmetric (a symmetric error in ln(prefactor) is a factor, not a difference).
   PowerLawFit fit_power_law(const std::vector<double> &x,
@@ -254,7 +254,7 @@ namespace anticrack::params
     return statistics;
   }
 
-  // Seed 000 (reply to referee 1, comment 3): X_macro(h) = X_macro(h_ref) / (h_ref/h).
+  // Bobillier et al. 2020 (reply to referee 1, comment 3): X_macro(h) = X_macro(h_ref) / (h_ref/h).
   double scale_to_thickness(double value_at_reference,
                             double thickness,
                             double reference_thickness)

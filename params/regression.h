@@ -5,15 +5,15 @@
 // properties per micro-macro relation), so every estimate is reported with its interval from
 // Student's t distribution rather than the normal one:
 //
-//  * lines y = intercept + slope x: the micro-to-macro relations of seed 000, Eqs. (5)-(8)
+//  * lines y = intercept + slope x: the micro-to-macro relations of Bobillier et al. (2020), Eqs. (5)-(8)
 //    (E_macro = beta_0 + beta_1 E_particle, sigma_macro = gamma_0 + gamma_1 sigma_bond);
 //  * power laws y = prefactor x^exponent: the scaling of the Cam-Clay tips with contact density,
-//    seed 002 Eqs. (2)-(3) (sigma_0/sigma_bond = h nu_c^kappa, beta sigma_0/sigma_bond = k nu_c^lambda),
+//    Ritter et al. 2020, Eqs. (2)-(3) (sigma_0/sigma_bond = h nu_c^kappa, beta sigma_0/sigma_bond = k nu_c^lambda),
 //    fitted as lines in log-log space;
-//  * mean and spread of a parameter without a trend, e.g. M (seed 002: "M varies between 0.6 and 1
+//  * mean and spread of a parameter without a trend, e.g. M (Ritter et al. 2020: "M varies between 0.6 and 1
 //    with an average of ~0.8").
 //
-// Goodness of fit is R^2 = 1 - SSR/SST (seed 000, reply to referee 1 on its Eq. 9): SSR the residual
+// Goodness of fit is R^2 = 1 - SSR/SST (Bobillier et al. 2020, reply to referee 2, comment 31, on its Eq. 9): SSR the residual
 // and SST the total sum of squares about the mean.
 #pragma once
 
@@ -93,7 +93,7 @@ namespace anticrack::params
     [[nodiscard]] double operator()(double x) const;
   };
 
-  /// Fits y = prefactor x^exponent by least squares of ln y on ln x (seed 002 Eqs. 2-3). Multiplicative
+  /// Fits y = prefactor x^exponent by least squares of ln y on ln x (Ritter et al. 2020, Eqs. 2-3). Multiplicative
   /// scatter, which is what a power law over a decade of nu_c shows, becomes additive in log space.
   /// Throws CalibrationError, naming `what` and the offending value, for x <= 0 or y <= 0, and as
   /// fit_line for fewer than 3 points, sizes that differ, non-finite values or fewer than 2 distinct x.
@@ -121,7 +121,7 @@ namespace anticrack::params
                             double confidence = 0.95,
                             const std::string &what = "");
 
-  /// Thickness scaling of a macroscopic property of a homothetically scaled layer (seed 000, reply
+  /// Thickness scaling of a macroscopic property of a homothetically scaled layer (Bobillier et al. 2020, reply
   /// to referee 1 comment 3 and its supplement): a sample of thickness h whose particles and
   /// positions are scaled by h/h_ref from the calibrated sample of thickness h_ref has, for the same
   /// particle properties, value(h) = value(h_ref) / (h_ref/h). Throws CalibrationError for a
@@ -130,11 +130,11 @@ namespace anticrack::params
                             double thickness,
                             double reference_thickness);
 
-  /// A micro-to-macro relation fitted at one layer thickness, usable at another: seed 000
+  /// A micro-to-macro relation fitted at one layer thickness, usable at another: Bobillier et al. (2020)
   /// E_wl,macro = (beta_0 + beta_1 E_particle)/(h_ref/h) and
   /// sigma_wl,macro = (gamma_0 + gamma_1 sigma_bond)/(h_ref/h), with `fit` the line (beta_0, beta_1)
   /// or (gamma_0, gamma_1) of the calibrated sample and `reference_thickness` its thickness h_ref
-  /// (seed 000: 3 cm) [m].
+  /// (Bobillier et al. 2020: 3 cm) [m].
   struct MicroMacroLaw
   {
     LinearFit fit;

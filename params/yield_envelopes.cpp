@@ -95,7 +95,7 @@ namespace anticrack::params
     }
 
     // -------------------------------------------------------------------------------------------------
-    /// Cohesive Cam-Clay (PHYSICS.md §2, seed 002 Eq. 1), parameters (p0 [Pa], beta [-], M [-]), all
+    /// Cohesive Cam-Clay (docs/physics.md §2, Ritter et al. 2020, Eq. 1), parameters (p0 [Pa], beta [-], M [-]), all
     /// positive; internal coordinates are their logarithms.
     ///
     /// Radius: the point R (cos a, sin a) on y = 0 solves
@@ -324,7 +324,7 @@ namespace anticrack::params
     };
 
     // -------------------------------------------------------------------------------------------------
-    /// Quadratic polynomial of seed 000 Eq. 9, shear = b0 + b1 n + b2 n^2, parameters (b0 [Pa], b1 [-],
+    /// Quadratic polynomial of Bobillier et al. (2020), Eq. 9, shear = b0 + b1 n + b2 n^2, parameters (b0 [Pa], b1 [-],
     /// b2 [1/Pa]) with b0 > 0 (shear strength at n = 0, so the origin is inside) and b2 < 0 (concave,
     /// closed by its two roots, the tips). Internal coordinates (ln b0, b1, ln(-b2)).
     ///
@@ -384,7 +384,7 @@ namespace anticrack::params
         return {};
       }
 
-      /// Seed 000's own fit, ordinary least squares of the shear on (1, n, n^2), projected into the
+      /// Bobillier et al.'s (2020) own fit, ordinary least squares of the shear on (1, n, n^2), projected into the
       /// admissible set (b0 and -b2 at least 1 % of the data's scale, which leaves an admissible fit
       /// untouched); and the parabola through the two tips and the shear near n = 0.
       std::vector<Eigen::VectorXd> initial_guesses(const std::vector<StressPoint> &points) const override

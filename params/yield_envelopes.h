@@ -1,16 +1,16 @@
 // Failure envelopes in a two-dimensional stress plane, the shapes the calibration fits to DEM failure
-// points: the cohesive Cam-Clay ellipse (PHYSICS.md §2, seed 002 Eq. 1), Mohr-Coulomb with an
-// elliptical cap (seed 001: weak-layer envelopes "resemble Mohr-Coulomb with a cap") and the quadratic
-// polynomial of seed 000 (Eqs. 9 and 10).
+// points: the cohesive Cam-Clay ellipse (docs/physics.md §2, Ritter et al. 2020, Eq. 1), Mohr-Coulomb with an
+// elliptical cap (Mede et al. 2018: weak-layer envelopes "resemble Mohr-Coulomb with a cap") and the quadratic
+// polynomial of Bobillier et al. 2020 (Eqs. 9 and 10).
 //
 // The plane. A point has a normal coordinate, COMPRESSION POSITIVE, and a shear coordinate >= 0. It is
-// either the base-stress plane (sigma, tau) of the mixed-mode tests of seed 002 or the invariant plane
+// either the base-stress plane (sigma, tau) of the mixed-mode tests of Ritter et al. (2020) or the invariant plane
 // (p, q) of the continuum model; the envelopes do not know which, the caller says so in the names of
-// its data sets. The two planes hold different stress measures (PHYSICS.md §2): a fit in one plane is not
+// its data sets. The two planes hold different stress measures (docs/physics.md §2): a fit in one plane is not
 // a fit in the other.
 //
 // Why radii. The DEM loads along rays from the origin: the direction of the load (the loading angle psi
-// of seed 002) is what the test controls, the size of the load at failure is what it measures. Every
+// of Ritter et al. 2020) is what the test controls, the size of the load at failure is what it measures. Every
 // envelope here encloses the origin and is star-shaped about it, so it is the curve r = R(a) in polar
 // coordinates of the plane, a in [0, pi] the angle from the compressive normal axis,
 //     normal = r cos a,   shear = r sin a.
@@ -104,9 +104,9 @@ namespace anticrack::params
   /// The envelope families.
   enum class EnvelopeKind
   {
-    cohesive_cam_clay,   ///< PHYSICS.md §2, seed 002 Eq. 1
-    mohr_coulomb_cap,    ///< seed 001's description of weak-layer envelopes
-    quadratic_polynomial ///< seed 000 Eq. 9
+    cohesive_cam_clay,   ///< docs/physics.md §2, Eq. 1 of Ritter et al. (2020)
+    mohr_coulomb_cap,    ///< Mede et al.'s (2018) description of weak-layer envelopes
+    quadratic_polynomial ///< Eq. 9 of Bobillier et al. (2020)
   };
 
   /// Every envelope family, in the order of the enumeration.
@@ -118,7 +118,7 @@ namespace anticrack::params
   // ---------------------------------------------------------------------------------------------------
   // Cohesive Cam-Clay, the pieces the rest of the code uses directly.
 
-  /// Cohesive Cam-Clay yield function (PHYSICS.md §2; seed 002 Eq. 1 with sigma0 = p0):
+  /// Cohesive Cam-Clay yield function (docs/physics.md §2; Ritter et al. 2020, Eq. 1 with sigma0 = p0):
   ///   y(n, s) = (1 + 2 beta) s^2 + M^2 (n + beta p0)(n - p0),
   /// negative inside, zero on the ellipse with tips n = p0 (compression) and n = -beta p0 (tension).
   /// Units Pa^2.
@@ -130,24 +130,24 @@ namespace anticrack::params
   double cam_clay_radius(double angle, double p0, double beta, double M);
 
   /// Largest shear of the Cam-Clay ellipse, q_max = M p0 (1 + beta) / (2 sqrt(1 + 2 beta)), reached at
-  /// the centre n = (1 - beta) p0 / 2 (PHYSICS.md §2) [Pa].
+  /// the centre n = (1 - beta) p0 / 2 (docs/physics.md §2) [Pa].
   double cam_clay_peak_shear(double p0, double beta, double M);
 
   // ---------------------------------------------------------------------------------------------------
-  // Quadratic polynomial, the strength scaling of seed 000.
+  // Quadratic polynomial, the strength scaling of Bobillier et al. (2020).
 
   /// Coefficients (b0, b1, b2) of the polynomial envelope shear = b0 + b1 n + b2 n^2 scaled
   /// homothetically by k = strength_ratio = sigma_c / sigma_c,ref: both stress axes are multiplied by
   /// k (n' = k n, s' = k s), so s' = k b0 + b1 n' + (b2 / k) n'^2 and both tips move by the factor k.
   ///
-  /// Seed 000 Eq. 10 as printed, tau = (b2 sigma^2 + b1 sigma + b0) sigma_wl / sigma_wl,ref, multiplies
+  /// Eq. 10 of Bobillier et al. (2020) as printed, tau = (b2 sigma^2 + b1 sigma + b0) sigma_wl / sigma_wl,ref, multiplies
   /// only the shear by the ratio: it leaves the tensile and compressive tips where they were, although
   /// sigma_wl,ref is itself the compressive strength that the ratio is meant to change. A change of bond
   /// strength in a bonded-particle model scales every stress of the failure envelope by the same
   /// factor (the bond forces at failure, hence all macroscopic stresses, are proportional to the bond
   /// strength while the geometry is unchanged), which is the homothety implemented here.
   ///
-  /// (Seed 000 prints b0 = -766 Pa, b1 = -0.25, b2 = 1.97e-4 1/Pa, a convex curve through negative
+  /// (Bobillier et al. (2020) print b0 = -766 Pa, b1 = -0.25, b2 = 1.97e-4 1/Pa, a convex curve through negative
   /// shear; with the shear taken positive, as here, its envelope is b0 = 766 Pa, b1 = 0.25,
   /// b2 = -1.97e-4 1/Pa, with tips at n = -1437 Pa and n = 2706 Pa, next to its sigma_wl,ref = 2650 Pa.)
   ///

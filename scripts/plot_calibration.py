@@ -7,8 +7,8 @@ Reads DIR/calibration.h5 (written by `anticrack calibrate`) and writes into DIR:
   yield_surface.png             failure points, the cohesive Cam-Clay fit and its confidence band in the
                                 (sigma, tau) base-stress plane and the (p, q) Love-Weber plane
   model_comparison.png          the three fitted envelopes per plane and microstructure (R^2, delta AICc)
-  normalised_yield_surface.png  (sigma*, tau*) against the unit circle (seed 002 Fig. 5A)
-  flow_rule.png                 theta* against psi* (seed 002 Fig. 5B); flow angle against loading angle
+  normalised_yield_surface.png  (sigma*, tau*) against the unit circle (Ritter et al. 2020, Fig. 5A)
+  flow_rule.png                 theta* against psi* (Ritter et al. 2020, Fig. 5B); flow angle against loading angle
   stress_strain.png             total base stress against strain magnitude, one panel per microstructure
   scaling.png                   only with /scaling or /micro_macro: power laws in the contact density,
                                 M, and the micro-to-macro relations
@@ -31,7 +31,7 @@ from matplotlib.transforms import offset_copy  # noqa: E402
 KPA = 1e-3
 PLANES = {  # points' keys, axis labels, panel title
     "sigma_tau": ("sigma", "tau", "base normal stress σ [kPa] (compression +)", "base shear stress τ [kPa]",
-                  "(σ, τ) base stresses, seed 002"),
+                  "(σ, τ) base stresses, Ritter et al. 2020"),
     "p_q": ("p", "q", "mean stress p [kPa] (compression +)", "von Mises stress q [kPa]",
             "(p, q) Love–Weber invariants"),
 }
@@ -158,7 +158,7 @@ def plot_model_comparison(data, micros):
 def plot_normalised(data, micros):
     fig, ax = plt.subplots(figsize=(8, 5))
     t = np.linspace(0, np.pi, 181)
-    ax.plot(np.cos(t), np.sin(t), "k-", lw=1.2, label="unit circle σ*² + τ*² = 1 (seed 002 Eq. 4)")
+    ax.plot(np.cos(t), np.sin(t), "k-", lw=1.2, label="unit circle σ*² + τ*² = 1 (Ritter et al. 2020, Eq. 4)")
     for k, (name, m) in enumerate(micros):
         fr = m["flow_rule"]
         ax.scatter(fr["sigma_star"], fr["tau_star"], color=colour(k), s=28, edgecolor="k", linewidth=0.4,
@@ -167,7 +167,7 @@ def plot_normalised(data, micros):
     ax.axvline(0, color="0.7", lw=0.6)
     ax.set_xlabel("normalised normal stress σ* (Eq. 5)")
     ax.set_ylabel("normalised shear stress τ* (Eq. 6)")
-    ax.set_title("normalised yield surface (seed 002 Fig. 5A)")
+    ax.set_title("normalised yield surface (Ritter et al. 2020, Fig. 5A)")
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     legend_below(ax)
@@ -199,7 +199,7 @@ def plot_flow_rule(data, micros):
               bbox=dict(boxstyle="round", facecolor="white", alpha=0.9))
     left.set_xlabel("normalised loading angle ψ* [deg]")
     left.set_ylabel("normalised flow angle θ* [deg]")
-    left.set_title("normalised flow rule (seed 002 Fig. 5B)")
+    left.set_title("normalised flow rule (Ritter et al. 2020, Fig. 5B)")
     left.legend(loc="lower right", fontsize=8)
     right.axhline(0, color="k", lw=0.8)
     right.text(0.02, 2, "expansion (θ > 0) ↑", transform=right.get_yaxis_transform(), va="bottom", fontsize=9)
@@ -248,20 +248,20 @@ def panel_power_laws(ax, scaling):
     nu = scaling["contact_density"]
     a = scaling.attrs
     x = np.geomspace(nu.min() / 1.1, nu.max() * 1.1, 50)
-    # Seed 002's published laws (Eqs. 2-3) for comparison: h = 2.81e-3, kappa = 3.59; k = 1.38e-3, lambda = 3.09.
+    # Ritter et al.'s (2020) published laws (Eqs. 2-3) for comparison: h = 2.81e-3, kappa = 3.59; k = 1.38e-3, lambda = 3.09.
     published = {"sigma0": (2.81e-3, 3.59), "tensile": (1.38e-3, 3.09)}
     for key, y, symbol, c in [("sigma0", scaling["sigma0_over_bond"], r"\sigma_0", "C0"),
                               ("tensile", scaling["beta_sigma0_over_bond"], r"\beta\sigma_0", "C3")]:
         prefactor, exponent = a[f"{key}_prefactor"], a[f"{key}_exponent"]
         ax.loglog(x, published[key][0] * x**published[key][1], ":", color=c, lw=1,
-                  label=rf"seed 002: ${published[key][0]:.3g}\,\nu_c^{{{published[key][1]}}}$")
+                  label=rf"Ritter et al. 2020: ${published[key][0]:.3g}\,\nu_c^{{{published[key][1]}}}$")
         ax.loglog(nu, y, "o", color=c, mec="k", mew=0.4, label=rf"${symbol}/\sigma_b$")
         ax.loglog(x, prefactor * x**exponent, "-", color=c, lw=1.2,
                   label=rf"${symbol}/\sigma_b = {prefactor:.3g}\,\nu_c^{{{exponent:.2f}}}$"
                         f"  (R² = {a[f'{key}_r_squared']:.3f})")
     ax.set_xlabel("contact density ν_c = z φ")
     ax.set_ylabel("strength / bond strength σ_b")
-    ax.set_title("size of the yield surface (seed 002 Eqs. 2, 3)")
+    ax.set_title("size of the yield surface (Ritter et al. 2020, Eqs. 2, 3)")
     # Plain numbers; the strength axis spans decades, so only its minor ticks 2 and 5 are labelled.
     def two_and_five(value, _):
         mantissa = value / 10 ** np.floor(np.log10(value))

@@ -4,7 +4,7 @@
 Usage: scripts/plot_campaign.py DIR [--output FILE.png]
 
 Reads DIR/campaign.h5 (the table /failure_points and the histories /tests/<id>/history) and writes
-DIR/campaign.png with three panels: the yield points in seed 002's base-stress plane (sigma, tau),
+DIR/campaign.png with three panels: the yield points in Ritter et al.'s (2020) base-stress plane (sigma, tau),
 the same in the invariant plane (p, q) of the Love-Weber stress (one marker per realization, colour
 by loading angle), and the base stress paths of the first realization up to failure. The fit of
 the cohesive Cam-Clay surface is `anticrack calibrate`'s job; this is the raw envelope.
@@ -59,7 +59,7 @@ def main():
         ax.set_xlabel(xlabel)
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
-    axes[0].set_title("yield points, base stresses (seed 002)")
+    axes[0].set_title("yield points, base stresses (Ritter et al. 2020)")
     axes[1].set_title("yield points, invariants")
     ax = axes[2]
     for test, (sigma, tau, step) in paths.items():

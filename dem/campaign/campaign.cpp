@@ -289,7 +289,7 @@ namespace anticrack::dem
     }
 
     /// |s - s_ref| / |s_ref| for the failure point s = (p, q) of the Love-Weber stress: the
-    /// quasi-static check's measure. It is the yield point itself (seed 002's criterion maximises q)
+    /// quasi-static check's measure. It is the yield point itself (Ritter et al.'s (2020) criterion maximises q)
     /// and a volume average; the base reactions (sigma, tau) are single-surface readings that ring
     /// with the specimen's slip events near failure (see base_relative_difference).
     double relative_difference(const TestOutcome &a, const TestOutcome &reference)
@@ -533,7 +533,7 @@ namespace anticrack::dem
         hdf5::write_doubles(g.id, "contact_modulus", contact_modulus, "Pa", "E_c of the linear contact law");
         hdf5::write_doubles(g.id, "bond_modulus", bond_modulus, "Pa", "E_bar of the parallel bonds (NaN: no bonds)");
         hdf5::write_doubles(g.id, "particle_modulus", particle_modulus, "Pa",
-                            "the micro modulus of seed 000's E_macro(E_particle): the bond modulus of bonded "
+                            "the micro modulus of Bobillier et al.'s (2020) E_macro(E_particle): the bond modulus of bonded "
                             "samples, else the contact modulus");
         hdf5::write_doubles(g.id, "bond_tensile_strength", tensile, "Pa", "sigma_bar_c of the parallel bonds");
         hdf5::write_doubles(g.id, "bond_cohesion", cohesion, "Pa", "c_bar of the parallel bonds");
@@ -573,7 +573,7 @@ namespace anticrack::dem
         hdf5::write_doubles(group, "loading_angle_deg", column([](const T &t, const O &) { return t.angle_deg; }), "deg",
                       "psi, clump force direction (sin psi, 0, -cos psi)");
         hdf5::write_doubles(group, "sigma", column([](const T &, const O &o) { return o.sigma; }), "Pa",
-                      "base normal stress at failure, compression positive (seed 002)");
+                      "base normal stress at failure, compression positive (Ritter et al. 2020)");
         hdf5::write_doubles(group, "tau", column([](const T &, const O &o) { return o.tau; }), "Pa",
                       "base shear stress at failure (along +x)");
         hdf5::write_doubles(group, "p", column([](const T &, const O &o) { return o.p; }), "Pa",
@@ -588,15 +588,15 @@ namespace anticrack::dem
         hdf5::write_doubles(group, "failure_step", column([](const T &, const O &o) { return o.step; }), "-",
                       "step of the failure point");
         hdf5::write_doubles(group, "flow_angle_deg", column([](const T &, const O &o) { return o.flow_angle_deg; }), "deg",
-                      "plastic flow angle atan2(du_z, du_x) of the clump just after failure (seed 002)");
+                      "plastic flow angle atan2(du_z, du_x) of the clump just after failure (Ritter et al. 2020)");
         hdf5::write_doubles(group, "secant_modulus", column([](const T &, const O &o) { return o.secant_modulus; }), "Pa",
-                      "secant modulus to 70 % of the peak base normal stress (seed 000)");
+                      "secant modulus to 70 % of the peak base normal stress (Bobillier et al. 2020)");
         hdf5::write_doubles(group, "softening_ratio", column([](const T &, const O &o) { return o.softening_ratio; }), "-",
-                      "residual / peak base normal stress (seed 000)");
+                      "residual / peak base normal stress (Bobillier et al. 2020)");
         hdf5::write_doubles(group, "peak_q", column([](const T &, const O &o) { return o.peak_q; }), "Pa",
                       "largest von Mises stress of the whole test");
         hdf5::write_doubles(group, "max_inertial_number", column([](const T &, const O &o) { return o.max_inertial_number; }),
-                      "-", "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, seed 002)");
+                      "-", "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, Ritter et al. 2020)");
         hdf5::write_doubles(group, "solid_fraction", column([](const T &, const O &o) { return o.solid_fraction; }), "-",
                       "solid volume fraction of the generated sample");
         hdf5::write_doubles(group, "coordination", column([](const T &, const O &o) { return o.coordination; }), "-",

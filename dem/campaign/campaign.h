@@ -1,4 +1,4 @@
-// Virtual-laboratory campaigns (seed 002): the scene's mixed-mode test at every loading angle x
+// Virtual-laboratory campaigns (Ritter et al. 2020): the scene's mixed-mode test at every loading angle x
 // realization x microstructure of its Campaign subsection, each test a complete run of its own.
 //
 // Layout of the output directory:

@@ -1,4 +1,4 @@
-// Contact force kernels (PHYSICS.md §1.1). Pure functions of parameters, geometry and the pair's
+// Contact force kernels (docs/physics.md §1.1). Pure functions of parameters, geometry and the pair's
 // tangential state: they update the state, return the load on the pair and report the energy they
 // dissipate. The normal force is repulsive only; the tangential force is incremental, carried with
 // the contact plane and capped by Coulomb's law |F_s| <= mu F_n.

@@ -1,4 +1,4 @@
-// The parallel bond of Potyondy & Cundall (2004, Int. J. Rock Mech. Min. Sci. 41:1329), PHYSICS.md
+// The parallel bond of Potyondy & Cundall (2004, Int. J. Rock Mech. Min. Sci. 41:1329), docs/physics.md
 // §1.2: a cemented cylinder of radius R_bar between two spheres, acting in parallel with their
 // contact. Incremental law with Delta u = v_rel dt and Delta theta = (omega_j - omega_i) dt:
 //   F_n += -k_n A du_n          (compression positive)

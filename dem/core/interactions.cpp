@@ -72,7 +72,7 @@ namespace anticrack::dem
     j[k] = flip ? a : b;
     shift[k] = flip ? Vec3(-s) : s;
     radius[k] = bond_radius;
-    // Stiffness per unit area k_n = E / L with L = R_i + R_j (PHYSICS.md §1.2).
+    // Stiffness per unit area k_n = E / L with L = R_i + R_j (docs/physics.md §1.2).
     const double kn = modulus / gap_length;
     const double ks = kn / stiffness_ratio;
     const double area_k = M_PI * bond_radius * bond_radius;

@@ -53,7 +53,7 @@ namespace anticrack::dem
     broken_shear = 2
   };
 
-  /// Parallel bonds (Potyondy & Cundall 2004), PHYSICS.md §1.2. Geometry and strengths are stored
+  /// Parallel bonds (Potyondy & Cundall 2004), docs/physics.md §1.2. Geometry and strengths are stored
   /// per bond so that generators can give individual bonds their own properties (bedding planes).
   struct BondList
   {
@@ -90,7 +90,7 @@ namespace anticrack::dem
     [[nodiscard]] double area(Index b) const;
     [[nodiscard]] double bending_inertia(Index b) const; ///< I_bar = pi R^4 / 4
     [[nodiscard]] double polar_inertia(Index b) const;   ///< J_bar = 2 I_bar
-    /// Rim stresses of bond b from its current state, PHYSICS.md §1.2: sigma_bar (tension positive)
+    /// Rim stresses of bond b from its current state, docs/physics.md §1.2: sigma_bar (tension positive)
     /// and tau_bar. With A = pi R^2, R/I = 4/(pi R^3) and R/J = 2/(pi R^3).
     [[nodiscard]] std::pair<double, double> rim_stresses(Index b) const
     {

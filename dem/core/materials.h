@@ -1,4 +1,4 @@
-// Material parameters of contacts and parallel bonds (PHYSICS.md §1.1, §1.2). Parameters are
+// Material parameters of contacts and parallel bonds (docs/physics.md §1.1, §1.2). Parameters are
 // plain data kept apart from the state the interactions carry (MercuryDPM "species" style).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Verlet list built with linked cells (PHYSICS.md §1.3 and any MD text, e.g. Allen & Tildesley §5.3).
+// Verlet list built with linked cells (docs/physics.md §1.3 and any MD text, e.g. Allen & Tildesley §5.3).
 // Candidate pairs are those with a gap below `skin`; the list stays valid until some particle has
 // moved by more than skin/2 since the build. Polydisperse radii: the cell size is 2 R_max + skin.
 // Periodic axes wrap the cell grid; when an axis has fewer than three cells the search falls back

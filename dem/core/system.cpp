@@ -43,7 +43,7 @@ namespace anticrack::dem
       }
     }
 
-    /// Cundall's local damping force for one body, PHYSICS.md §1.3: per component
+    /// Cundall's local damping force for one body, docs/physics.md §1.3: per component
     /// F_d = -alpha |F| sign(v), with v predicted at the full step.
     inline Vec3 local_damping_force(double alpha, const Vec3 &force, const Vec3 &velocity, double dt,
                              double mass)
@@ -419,7 +419,7 @@ namespace anticrack::dem
     }
     if (!std::isfinite(dt2))
     {
-      // Nothing touches: the P-wave estimate R sqrt(rho/E) of seed 000, Eq. (1).
+      // Nothing touches: the P-wave estimate R sqrt(rho/E) of Bobillier et al. (2020), Eq. (1).
       for (Index p = 0; p < n; ++p)
       {
         const ContactParameters &c = materials[particles.material_id[p]].contact;

@@ -120,7 +120,7 @@ namespace anticrack::dem
     void run(Index n, const std::function<void(const DemSystem &)> &observer = {});
 
     /// Critical time step estimate min(sqrt(m/K), sqrt(I/K_rot)) over free particles and clumps,
-    /// with the summed stiffness of candidate contacts, bonds and wall contacts (PHYSICS.md §1.3).
+    /// with the summed stiffness of candidate contacts, bonds and wall contacts (docs/physics.md §1.3).
     /// `where` receives the limiting particle (or -1 - clump index).
     [[nodiscard]] double critical_time_step(Index *where = nullptr) const;
 

@@ -47,7 +47,7 @@
 
 namespace anticrack::dem::io
 {
-  /// A sample made elsewhere (e.g. grains segmented from tomography, seed 001) or an earlier run's
+  /// A sample made elsewhere (e.g. grains segmented from tomography, Mede et al. 2018) or an earlier run's
   /// snapshot: spheres, optional rigid clumps of (overlapping) spheres, optional bonds with their
   /// cross-section. File layout (SI units):
   ///   /particles/position (N x 3), /particles/radius (N)          required

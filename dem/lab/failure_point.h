@@ -1,9 +1,9 @@
-// Failure-point analysis of a virtual-laboratory test history (PHYSICS.md §1.5): the failure point by
-// the kinetic-energy window of seed 002 or by the peak of a stress measure (seed 000), the secant
-// modulus to 70 % of the peak and the softening ratio (seed 000), and the plastic flow angle after
-// failure (seed 002, PHYSICS.md §1.5). Pure functions on recorded time series: no I/O, no deal.II.
+// Failure-point analysis of a virtual-laboratory test history (docs/physics.md §1.5): the failure point by
+// the kinetic-energy window of Ritter et al. (2020) or by the peak of a stress measure (Bobillier et al. 2020), the secant
+// modulus to 70 % of the peak and the softening ratio (Bobillier et al. 2020), and the plastic flow angle after
+// failure (Ritter et al. 2020, docs/physics.md §1.5). Pure functions on recorded time series: no I/O, no deal.II.
 //
-// Sign conventions (PHYSICS.md §0): stress tensors tension positive; p compression positive; the base
+// Sign conventions (docs/physics.md §0): stress tensors tension positive; p compression positive; the base
 // normal stress sigma compression positive, the base shear stress tau along +x; displacements in the
 // global frame with z up, so a clump moving down (compaction) has du_z < 0.
 //
@@ -37,7 +37,7 @@ namespace anticrack::dem
   /// every optional series is empty or as long as time.
   void validate(const TestHistory &history);
 
-  // p and q of the stress samples: dem/lab/stress_invariants.h (seed 002 Eqs. 9-11).
+  // p and q of the stress samples: dem/lab/stress_invariants.h (Ritter et al. 2020, Eqs. 9-11).
 
   /// q of every sample of the history.
   std::vector<double> von_mises_series(const TestHistory &history);
@@ -56,7 +56,7 @@ namespace anticrack::dem
     Index window_end = 0;           ///< last sample of the searched range (inclusive)
   };
 
-  /// Failure point by seed 002's two-step criterion ("Failure identification", Eq. 8).
+  /// Failure point by Ritter et al.'s (2020) two-step criterion ("Failure identification", Eq. 8).
   ///   E_k*(i) = |v_c(i)|^2 / max_j |v_c(j)|^2.
   /// Window (our precise reading of "the strain range where E_k* < zeta"): let m be the first sample
   /// of the global maximum of |v_c|^2 (E_k*(m) = 1, the run-away after failure). The window is
@@ -72,12 +72,12 @@ namespace anticrack::dem
   /// Stress measure whose peak defines failure.
   enum class Measure
   {
-    von_mises,   ///< q of the Love-Weber stress (seed 002)
-    base_shear,  ///< |tau| at the base (seed 000, shear-dominated loading)
+    von_mises,   ///< q of the Love-Weber stress (Ritter et al. 2020)
+    base_shear,  ///< |tau| at the base (Bobillier et al. 2020, shear-dominated loading)
     base_normal  ///< sigma at the base, compression positive; its peak is the largest |sigma| (compression or tension)
   };
 
-  /// Failure as the maximum of the measure over the whole history (seed 000: "the maximum stress
+  /// Failure as the maximum of the measure over the whole history (Bobillier et al. 2020: "the maximum stress
   /// before catastrophic failure"; first sample on ties). The window is the whole history. Throws
   /// std::invalid_argument if the chosen base series is not recorded.
   FailurePoint failure_by_peak(const TestHistory &history, Measure measure);
@@ -85,7 +85,7 @@ namespace anticrack::dem
   /// The series of a measure, one value per sample (q, |tau| or sigma).
   std::vector<double> measure_series(const TestHistory &history, Measure measure);
 
-  /// Secant modulus (seed 000, response to reviewer: "secant modulus up to 70 % of the peak stress"):
+  /// Secant modulus (Bobillier et al. 2020, response to reviewer: "secant modulus up to 70 % of the peak stress"):
   ///   E = sigma_f / eps_f,
   /// the slope of the line from the origin (eps, sigma) = (0, 0) to the first point where the stress
   /// reaches fraction * stress[peak_index]. That point is interpolated linearly between the samples
@@ -96,7 +96,7 @@ namespace anticrack::dem
   double secant_modulus(const std::vector<double> &strain, const std::vector<double> &stress_measure,
                         Index peak_index, double fraction = 0.7);
 
-  /// Softening ratio R = sigma_residual / sigma_peak (seed 000, "softening ratio"), with sigma_peak =
+  /// Softening ratio R = sigma_residual / sigma_peak (Bobillier et al. 2020, "softening ratio"), with sigma_peak =
   /// stress[peak_index] and sigma_residual the arithmetic mean of the last ceil(residual_fraction * n)
   /// samples (the tail of the history, standing for the brittle-crushing phase; uniform sampling is
   /// assumed). Throws std::invalid_argument if the tail reaches back to the peak, if the peak is zero
@@ -104,7 +104,7 @@ namespace anticrack::dem
   double softening_ratio(const std::vector<double> &stress_measure, Index peak_index,
                          double residual_fraction = 0.1);
 
-  /// Plastic flow angle (seed 002 Eq. 18 / PHYSICS.md §1.5) from the clump displacement increment
+  /// Plastic flow angle (Ritter et al. 2020, Eq. 18 / docs/physics.md §1.5) from the clump displacement increment
   /// du = u(failure_index + window) - u(failure_index) just after failure:
   ///   theta = atan2(du_z, du_x)  in radians, in (-pi, pi].
   /// With z up: du_z < 0 (compaction, "anticrack") gives theta < 0, du_z > 0 (dilation) theta > 0;

@@ -1,12 +1,12 @@
-// A virtual-laboratory loading programme (PHYSICS.md 1.5): the part of a test that steers the
+// A virtual-laboratory loading programme (docs/physics.md §1.5): the part of a test that steers the
 // boundaries while the DEM system runs. The run calls control() every control_interval() steps
 // (after the step count reached a multiple of it) and stops once finished() says so; everything
 // else (measurements, outputs, checkpoints) belongs to the run.
 //
-// Protocols: dem/lab/load_control.h (the adaptive clump force ramp of the mixed-mode test, seed 002),
-// dem/lab/lab_tests.h (triaxial test with six servo walls, seed 004; Brazilian disc and uniaxial
-// compression between platens, seed 003; simple shear at constant normal stress, seed 001;
-// tilted-gravity actuator, seed 000).
+// Protocols: dem/lab/load_control.h (the adaptive clump force ramp of the mixed-mode test, Ritter et al. 2020),
+// dem/lab/lab_tests.h (triaxial test with six servo walls, Elyashiv et al. 2020; Brazilian disc and uniaxial
+// compression between platens, Zhao & Feng 2022; simple shear at constant normal stress, Mede et al. 2018;
+// tilted-gravity actuator, Bobillier et al. 2020).
 #pragma once
 
 #include "dem/core/system.h"

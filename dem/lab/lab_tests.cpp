@@ -259,7 +259,7 @@ namespace anticrack::dem
   void TriaxialTest::update_areas_and_gains(DemSystem &system) const
   {
     // The faces shrink and grow with the box: the lateral areas follow the axial shortening and the
-    // target force sigma_c A must use the current area (seed 004 keeps sigma_2 = sigma_3 constant).
+    // target force sigma_c A must use the current area (Elyashiv et al. (2020) keep sigma_2 = sigma_3 constant).
     const Vec3 length = box_length(system);
     for (int face = 0; face < 6; ++face)
     {
@@ -309,7 +309,7 @@ namespace anticrack::dem
       }
       if (!converged)
         return;
-      // Stage (c) of seed 004: strains from here on are relative to the consolidated box.
+      // Stage (c) of Elyashiv et al. (2020): strains from here on are relative to the consolidated box.
       stage_ = TriaxialStage::axial_loading;
       consolidation_end_step_ = system.step_count;
       reference_height_ = now.box_length.z();
@@ -331,7 +331,7 @@ namespace anticrack::dem
       const bool reached = (reference_height_ - height) / reference_height_ >= settings_.final_axial_strain;
       if (reached)
         stage_ = TriaxialStage::done;
-      // Both z walls move towards the centre at strain_rate H / 2 (symmetric loading, seed 004), so
+      // Both z walls move towards the centre at strain_rate H / 2 (symmetric loading, Elyashiv et al. 2020), so
       // that dH/dt = -strain_rate H; they stop once the final strain is reached.
       const double speed = reached ? 0.0 : settings_.axial_strain_rate * height / 2;
       for (const int face : {z_lower, z_upper})

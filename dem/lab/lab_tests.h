@@ -1,21 +1,21 @@
-// Virtual-laboratory rock and soil tests driven by walls (PHYSICS.md 1.5), as LabProtocols
+// Virtual-laboratory rock and soil tests driven by walls (docs/physics.md §1.5), as LabProtocols
 // (dem/lab/lab_protocol.h):
-//   * TriaxialTest: a cuboid sample between six servo-controlled walls (seed 004, "Numerical
+//   * TriaxialTest: a cuboid sample between six servo-controlled walls (Elyashiv et al. 2020, "Numerical
 //     characterization of cohesive and non-cohesive 'sediments' ... using 3D DEM triaxial
 //     experiments", section 3.3): (b) isotropic consolidation to the confining pressure,
 //     (c) axial loading by the two z walls at a constant axial strain rate while the four lateral
-//     walls hold the confining pressure, until the prescribed axial strain (20 % in seed 004).
-//   * PlatenCompression: two walls (platens) approach each other at constant speed (seed 003,
+//     walls hold the confining pressure, until the prescribed axial strain (20 % in Elyashiv et al. 2020).
+//   * PlatenCompression: two walls (platens) approach each other at constant speed (Zhao & Feng 2022,
 //     Zhao & Feng, layered carbonaceous slate, section 4: the lower plate fixed and the upper one moving at 0.1 mm/min; here both move,
 //     symmetrically): uniaxial compression of a prism (bedded or not, dem/sample/bedding.h) or the
 //     Brazilian splitting of a disc lying between them; the test ends after the peak force, when the
 //     force has dropped below a fraction of the peak ("linear elasticity, then instantaneous splitting
-//     and falling", seed 003 section 4.3).
+//     and falling", Zhao & Feng 2022, section 4.3).
 //   * Specimen carving (carve_cylinder, carve_box): cuts a disc or a prism out of a packing.
 //
 // Sign convention: stresses and forces reported here are compressive positive (the walls push on
 // the sample), strains compressive positive (shortening, volume loss), as in soil mechanics and in
-// seed 004's figures; the Love-Weber tensor of dem/lab/measurements.h is tension positive.
+// Elyashiv et al.'s (2020) figures; the Love-Weber tensor of dem/lab/measurements.h is tension positive.
 //
 // Protocols follow the life cycle of dem/lab/load_control.h: construct after the walls exist, call
 // start(system) once after system.initialise() (it needs the time step) and before the first step
@@ -84,18 +84,18 @@ namespace anticrack::dem
   /// (compressive positive): sin(phi) = (sigma_1 - sigma_3) / (sigma_1 + sigma_3) (Mohr-Coulomb).
   double mobilised_friction_angle(double major, double minor);
 
-  /// Splitting tensile strength of a Brazilian disc [Pa]: sigma_t = 2 F / (pi D t) (ISRM 1978; seed
-  /// 003 section 5), F the failure load [N], D the diameter [m], t the thickness [m].
+  /// Splitting tensile strength of a Brazilian disc [Pa]: sigma_t = 2 F / (pi D t) (ISRM 1978;
+  /// Zhao & Feng 2022, section 5), F the failure load [N], D the diameter [m], t the thickness [m].
   double brazilian_tensile_strength(double force, double diameter, double thickness);
 
   // ---------------------------------------------------------------------------------------------
-  // Triaxial test (seed 004)
+  // Triaxial test (Elyashiv et al. 2020)
 
   struct TriaxialSettings
   {
-    double confining_pressure = 1e5;   ///< sigma_c [Pa], > 0 (seed 004: 100, 250, 500 kPa)
+    double confining_pressure = 1e5;   ///< sigma_c [Pa], > 0 (Elyashiv et al. 2020: 100, 250, 500 kPa)
     double axial_strain_rate = 0;      ///< d(eps_axial)/dt [1/s], > 0
-    double final_axial_strain = 0.2;   ///< the test ends at this axial strain [-], in (0, 1) (seed 004: 20 %)
+    double final_axial_strain = 0.2;   ///< the test ends at this axial strain [-], in (0, 1) (Elyashiv et al. 2020: 20 %)
     double consolidation_tolerance = 0.01; ///< |sigma_wall - sigma_c| / sigma_c for consolidation [-], in (0, 1)
     /// Kinetic / elastic energy (contacts, walls and bonds) below which the consolidated sample counts
     /// as at rest [-], > 0
@@ -180,7 +180,7 @@ namespace anticrack::dem
   };
 
   // ---------------------------------------------------------------------------------------------
-  // Platen compression: uniaxial compression and Brazilian disc (seed 003)
+  // Platen compression: uniaxial compression and Brazilian disc (Zhao & Feng 2022)
 
   struct PlatenSettings
   {

@@ -1,10 +1,10 @@
-// Quasi-static load control of the virtual laboratory (PHYSICS.md 1.5): a load ramp whose rate adapts,
+// Quasi-static load control of the virtual laboratory (docs/physics.md §1.5): a load ramp whose rate adapts,
 // fast while the specimen responds elastically and slow while it is close to failure.
 //
-// Load-controlled tests (seed 002's clump force F(t) = Fdot t d) are quasi-static only if the
+// Load-controlled tests (Ritter et al.'s (2020) clump force F(t) = Fdot t d) are quasi-static only if the
 // specimen has time to carry every load increment to the base: the base reaction must follow the
-// applied load and the inertial number I = gamma_dot d sqrt(rho/p) must stay small (I < 1e-4 in seed
-// 002). A constant rate slow enough for the weakest moment of the test (bonds breaking one after
+// applied load and the inertial number I = gamma_dot d sqrt(rho/p) must stay small (I < 1e-4 in
+// Ritter et al. 2020). A constant rate slow enough for the weakest moment of the test (bonds breaking one after
 // the other just before the peak) wastes most of the run in the elastic range. The controller below
 // therefore decides, every `interval` steps, between two rates:
 //   * slow (slow_fraction x fast rate) while bonds break or while the base reaction lags the applied
@@ -66,16 +66,16 @@ namespace anticrack::dem
     clump.applied_force.extrapolate_linearly = true;
   }
 
-  /// The mixed-mode test's loading programme (seed 002): the clump force ramps along `direction`,
+  /// The mixed-mode test's loading programme (Ritter et al. 2020): the clump force ramps along `direction`,
   /// at a constant rate or adaptively (RampControlSettings), until the clump has moved by
   /// `stop_displacement` (0: never; the run's step limit ends it).
   ///
-  /// Tilted-gravity actuator (seed 000): with `actuator_gravity` g > 0 the load is the weight of an
+  /// Tilted-gravity actuator (Bobillier et al. 2020): with `actuator_gravity` g > 0 the load is the weight of an
   /// actuator whose density grows, under gravity g `direction` acting on every sphere (start() sets
   /// the system's gravity). Between two control steps the weight gained so far is an applied force
   /// ramp; at each control step it is moved into the clump's mass (and inertia) and the ramp restarts
   /// from zero: the load m g + F(t) is continuous, and the actuator's inertia grows with its weight
-  /// as in seed 000's linear density increase.
+  /// as in Bobillier et al.'s (2020) linear density increase.
   class ClumpForceRamp : public LabProtocol
   {
   public:

@@ -1,4 +1,4 @@
-// Micro-to-macro measurements on a DEM state (PHYSICS.md §1.5): the Love-Weber stress tensor, the
+// Micro-to-macro measurements on a DEM state (docs/physics.md §1.5): the Love-Weber stress tensor, the
 // fabric tensor and coordination numbers. They read the loads of the last step, so call them after
 // DemSystem::step().
 #pragma once
@@ -10,7 +10,7 @@
 
 namespace anticrack::dem
 {
-  /// Love-Weber stress over the volume V (tension positive, PHYSICS.md §0):
+  /// Love-Weber stress over the volume V (tension positive, docs/physics.md §0):
   ///   sigma = -(1/V) sum_pairs F_j (x) l  -  (1/V) sum_p m v (x) v
   /// with F_j the force a pair exerts on its particle j (contact and bond together) and l the branch
   /// vector x_j + shift - x_i, so that pushing spheres give compression. Sphere-wall contacts are

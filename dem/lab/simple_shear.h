@@ -1,4 +1,4 @@
-// Displacement-controlled simple shear at constant normal stress (seed 001; PHYSICS.md 1.5), on a
+// Displacement-controlled simple shear at constant normal stress (Mede et al. 2018; docs/physics.md §1.5), on a
 // layered specimen: fixed base, tested layer, rigid top platen (a clump), lateral periodicity.
 //
 // Stage 1, consolidation: the platen's rotation and its x and y velocities are held at zero; the

@@ -1,4 +1,4 @@
-// Stress invariants (PHYSICS.md §0): mean pressure p = -tr(sigma)/3 (compression positive) and von
+// Stress invariants (docs/physics.md §0): mean pressure p = -tr(sigma)/3 (compression positive) and von
 // Mises stress q = sqrt(3/2 s:s) with the deviator s = sigma + p I; sigma tension positive.
 #pragma once
 

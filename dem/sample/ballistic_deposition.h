@@ -1,4 +1,4 @@
-// Ballistic-deposition sample generators (PHYSICS.md §1.4).
+// Ballistic-deposition sample generators (docs/physics.md §1.4).
 //
 // Spheres fall one at a time along -z at a uniformly random (x, y) in a box that is periodic along
 // x and y, onto the base plane z = box_lower.z and the spheres deposited before them.

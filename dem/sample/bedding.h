@@ -1,4 +1,4 @@
-// Bedding (seed 003, layered slate): a family of parallel planes n.x = offset + k spacing, each the
+// Bedding (Zhao & Feng 2022, layered slate): a family of parallel planes n.x = offset + k spacing, each the
 // middle of a band of the given thickness; bonds whose centre-to-centre segment meets a band get the
 // band's strengths (weaker cement along the bedding), the others keep theirs.
 #pragma once

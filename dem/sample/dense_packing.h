@@ -1,5 +1,5 @@
 // Dense random packings by radius expansion: the "prepared loose or dense" rock and sediment
-// samples of seed paper 004 (Potyondy & Cundall 2004, Int. J. Rock Mech. Min. Sci. 41:1329, §3.1,
+// samples of Elyashiv et al. 2020 (Potyondy & Cundall 2004, Int. J. Rock Mech. Min. Sci. 41:1329, §3.1,
 // material genesis steps 1-3; PFC's radius expansion, YADE's isotropic compaction).
 //
 // The friction coefficient active while the packing forms sets its density: frictionless spheres

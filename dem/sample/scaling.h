@@ -1,7 +1,7 @@
 // Homothetic scaling of a sample: every length by a factor s, with moduli, strengths and densities
 // unchanged. Stresses, strains and failure envelopes of the scaled sample are then those of the
 // original (forces scale by s^2, masses by s^3, times by s: the critical step sqrt(m/k) grows by s),
-// which lets a calibration done at one grain size serve another (seed 000 scales its grains this way).
+// which lets a calibration done at one grain size serve another (Bobillier et al. (2020) scale their grains this way).
 #pragma once
 
 #include "dem/core/system.h"

@@ -48,7 +48,7 @@ namespace anticrack::dem::shs
       std::ostringstream message;
       message << "sticky hard spheres: stickiness tau = " << tau << " at volume fraction phi = " << phi
               << " is below the admissible minimum tau_min(phi) = " << tau_min
-              << " (PHYSICS.md 1.4); use tau >= tau_min or a lower volume fraction";
+              << " (docs/physics.md §1.4); use tau >= tau_min or a lower volume fraction";
       throw SetupError(message.str());
     }
     // Smaller root, written to avoid cancellation: lambda = 2c / (-b + sqrt(disc)).
@@ -519,7 +519,7 @@ namespace anticrack::dem::shs
           << ", tau = " << report.stickiness << " (z = " << 2.0 * static_cast<double>(report.contacts) / n
           << " bonded partners per sphere; the largest cluster holds " << 100 * report.largest_cluster_fraction
           << " % of the spheres and does not wrap around the periodic box). A non-percolating sample carries "
-             "no load (seed 002): raise the coordination number (lower tau) or the volume fraction";
+             "no load (Ritter et al. 2020): raise the coordination number (lower tau) or the volume fraction";
       throw SetupError(why.str());
     }
 

@@ -1,5 +1,5 @@
 // Baxter's sticky hard spheres (SHS): the Percus-Yevick relations between volume fraction phi,
-// stickiness tau (smaller = stickier) and mean coordination number z (PHYSICS.md §1.4; Baxter 1968,
+// stickiness tau (smaller = stickier) and mean coordination number z (docs/physics.md §1.4; Baxter 1968,
 // J. Chem. Phys. 49:2770; Seaton & Glandt 1987, J. Chem. Phys. 86:4668). The sampler that builds
 // SHS samples uses them to pick tau for a target z and to refuse unphysical requests.
 //

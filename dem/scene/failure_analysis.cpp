@@ -83,7 +83,7 @@ namespace anticrack::dem
       const auto &steps = column(history, "step");
       result["criterion"] = shear_controlled ?
                               "peak of the base shear stress tau (displacement-controlled simple shear)" :
-                              "seed 002: max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
+                              "Ritter et al. (2020): max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
       result["failure"] = point_json(a.failure, steps);
       result["peak_q"] = point_json(a.peak_q, steps);
       if (a.peak_loading)

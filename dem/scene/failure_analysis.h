@@ -1,6 +1,6 @@
-// Failure analysis of a finished run (the virtual lab's yield point, PHYSICS.md §1.5): the history's
+// Failure analysis of a finished run (the virtual lab's yield point, docs/physics.md §1.5): the history's
 // Love-Weber stress, actuator motion and base stresses become a dem::TestHistory, and
-// dem::analyse_failure picks the failure point (seed 002's kinetic-energy window, then max q), the
+// dem::analyse_failure picks the failure point (Ritter et al.'s (2020) kinetic-energy window, then max q), the
 // peaks, the secant modulus, the softening ratio and the plastic flow angle. The result goes into
 // summary.json.
 #pragma once

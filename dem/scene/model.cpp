@@ -112,7 +112,7 @@ namespace anticrack::dem
         model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
         if (d.sample.actuator_count > 0)
         {
-          // Seed 000's actuator: a cohesionless (rolling) deposit of larger spheres on the layer.
+          // Bobillier et al.'s (2020) actuator: a cohesionless (rolling) deposit of larger spheres on the layer.
           dem::BallisticDepositionSpec actuator = spec;
           actuator.rule = dem::DepositionRule::rolling;
           actuator.particle_count = d.sample.actuator_count;
@@ -205,7 +205,7 @@ namespace anticrack::dem
                         sample.bond_radius.empty() ? 0.0 : sample.bond_radius[b]);
     }
 
-    /// Fixed base and loaded clump (PHYSICS.md 1.5). Both start at rest.
+    /// Fixed base and loaded clump (docs/physics.md §1.5). Both start at rest.
     void add_boundary_particles(const SceneParameters &scene, DemModel &model)
     {
       const auto &bp = scene.dem.boundary;

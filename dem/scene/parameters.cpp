@@ -151,11 +151,11 @@ namespace anticrack::dem
     {
       prm.enter_subsection("Material");
       prm.declare_entry("Density [kg/m^3]", "1e4", Patterns::Double(0),
-                        "rho: density of the spheres (seed 002 uses 10 000 kg/m^3 without "
+                        "rho: density of the spheres (Ritter et al. (2020) use 10 000 kg/m^3 without "
                         "gravity to speed up quasi-static tests). Units: kg/m^3.");
       prm.declare_entry("Contact law", "linear", Patterns::Selection("linear|hertz-mindlin"),
                         "Force-overlap law of sphere-sphere and sphere-wall contacts "
-                        "(PHYSICS.md 1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
+                        "(docs/physics.md §1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
                         "L = R_i + R_j, k_s = k_n / kappa; `hertz-mindlin` has "
                         "F_n = 4/3 E* sqrt(R*) delta^(3/2) and k_t = 8 G* sqrt(R* delta). Both "
                         "cap the tangential force by Coulomb's law |F_s| <= mu F_n.");
@@ -200,7 +200,7 @@ namespace anticrack::dem
       prm.enter_subsection("Bond");
       prm.declare_entry("Enabled", "true", Patterns::Bool(),
                         "Whether touching spheres are joined by parallel bonds (Potyondy & "
-                        "Cundall 2004; PHYSICS.md 1.2) when the sample is built.");
+                        "Cundall 2004; docs/physics.md §1.2) when the sample is built.");
       prm.declare_entry("Modulus [Pa]", "1e9", Patterns::Double(0),
                         "E_bar: bond modulus, k_n_bar = E_bar / L per unit area with "
                         "L = R_i + R_j. Units: Pa.");
@@ -257,22 +257,22 @@ namespace anticrack::dem
                         "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
                         "and the rest come from this scene). `sticky hard spheres`: N spheres of "
                         "radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at "
-                        "volume fraction phi and stickiness tau (PHYSICS.md 1.4) in a periodic cube "
+                        "volume fraction phi and stickiness tau (docs/physics.md §1.4) in a periodic cube "
                         "of edge L = (N 4/3 pi R^3 / phi)^(1/3) (or of edge Box edge [m], which then "
                         "sets R) with its lower corner at the origin: DEM/Domain's corners are "
                         "ignored and replaced by this cube, sampled periodic in x, y and z; axes "
                         "missing from DEM/Domain/Periodic axes are opened after sampling (no bond "
-                        "crosses them: seed 002's specimen is periodic in x and y only), and every "
+                        "crosses them: Ritter et al.'s (2020) specimen is periodic in x and y only), and every "
                         "pair inside the well (gap <= 2 delta R) is bonded, whatever DEM/Bond/Gap "
                         "tolerance says. `ballistic deposition`: N spheres dropped one by one along "
                         "-z onto the base z = DEM/Domain lower z inside the DEM/Domain box, "
                         "laterally periodic while depositing; the domain's upper z is raised to the "
                         "deposit's top if needed; with DEM/Domain/Periodic axes = x, y the specimen "
-                        "stays laterally periodic (seed 002), with none its sides are opened after "
-                        "deposition, like a box whose side walls are removed (seed 000); bonds use "
+                        "stays laterally periodic (Ritter et al. 2020), with none its sides are opened after "
+                        "deposition, like a box whose side walls are removed (Bobillier et al. 2020); bonds use "
                         "DEM/Bond/Gap tolerance. `dense random packing`: N spheres (radius R +- w) grown "
                         "in the DEM/Domain box with friction Formation friction until the mean stress is "
-                        "Packing pressure [Pa] (seed 004: the formation friction sets the density; "
+                        "Packing pressure [Pa] (Elyashiv et al. 2020: the formation friction sets the density; "
                         "frictionless ~0.64, rough ~0.56); open axes are walled while it forms; "
                         "touching pairs are bonded (Gap tolerance); Disc diameter [m] > 0 then carves a "
                         "disc with its axis along y for the Brazilian test. The generators are seeded by "
@@ -319,7 +319,7 @@ namespace anticrack::dem
                         "Dimensionless.");
       prm.declare_entry("Box edge [m]", "0", Patterns::Double(0),
                         "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
-                        "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (seed 002 keeps "
+                        "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (Ritter et al. (2020) keep "
                         "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
                         "Units: m.");
       prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
@@ -341,12 +341,12 @@ namespace anticrack::dem
                         "(ballistic deposition, dense random packing). Units: m.");
       prm.declare_entry("Actuator layer count", "0", Patterns::Integer(0),
                         "N_a > 0: after the deposit, N_a spheres of radius Actuator layer radius [m] are "
-                        "dropped on top by the rolling rule (seed 000's cohesionless actuator layer) and "
+                        "dropped on top by the rolling rule (Bobillier et al.'s (2020) cohesionless actuator layer) and "
                         "become the loading clump (DEM/Boundary particles/Clump above [m] and Actuator "
                         "thickness [mean radii] must then be empty); they are bonded to the layer where "
                         "they touch it (ballistic deposition only).");
       prm.declare_entry("Actuator layer radius [m]", "0.01", Patterns::Double(0),
-                        "Radius of the actuator layer's spheres (seed 000: 10 mm). Units: m.");
+                        "Radius of the actuator layer's spheres (Bobillier et al. 2020: 10 mm). Units: m.");
       prm.declare_entry("Formation friction", "0", Patterns::Double(0),
                         "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
                         "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
@@ -512,10 +512,10 @@ namespace anticrack::dem
                               "history.h5. Empty for none. Units: m.");
       declare_optional_double(prm, "Clump above [m]",
                               "Spheres whose centre has z above this form one rigid clump (the loading "
-                              "platen of PHYSICS.md 1.5). Empty for none. Units: m.");
+                              "platen of docs/physics.md §1.5). Empty for none. Units: m.");
       declare_optional_double(prm, "Base thickness [mean radii]",
                               "t_b: alternative to Fix below [m] in units of the mean radius R: spheres "
-                              "whose centre lies below the domain's lower z + t_b R are fixed (seed 002: "
+                              "whose centre lies below the domain's lower z + t_b R are fixed (Ritter et al. 2020: "
                               "t_b = 3, 'z_p0 < 3r'). Empty for none.");
       declare_optional_double(prm, "Actuator thickness [mean radii]",
                               "t_a: alternative to Clump above [m] in units of the mean radius R: spheres "
@@ -555,17 +555,17 @@ namespace anticrack::dem
       prm.declare_entry("Test", "clump force",
                         Patterns::Selection("clump force|tilted gravity|simple shear|triaxial|platen compression"),
                         "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
-                        "F(t) = Fdot t d at its centre of mass (seed 002's mixed-mode test). `tilted "
-                        "gravity`: seed 000's actuator, whose density grows linearly under gravity of "
+                        "F(t) = Fdot t d at its centre of mass (Ritter et al.'s (2020) mixed-mode test). `tilted "
+                        "gravity`: Bobillier et al.'s (2020) actuator, whose density grows linearly under gravity of "
                         "magnitude |DEM/Integration/Gravity| along d = Clump force direction (tilted by psi), "
                         "acting on every sphere; Clump force rate [N/s] is the growth rate of the "
-                        "actuator's weight. `simple shear`: seed 001's test at constant normal stress: the "
+                        "actuator's weight. `simple shear`: Mede et al.'s (2018) test at constant normal stress: the "
                         "clump (a platen) is pressed with Normal stress [Pa], then driven along +x at "
-                        "Shear velocity [m/s], free along z, to Final shear strain. `triaxial`: seed 004's "
+                        "Shear velocity [m/s], free along z, to Final shear strain. `triaxial`: Elyashiv et al.'s (2020) "
                         "test in a box of six servo walls (added on the domain's faces; DEM/Walls must be "
                         "inactive and no axis periodic): isotropic consolidation to Confining pressure "
                         "[Pa], then the z walls close at Axial strain rate [1/s] to Final axial strain "
-                        "while the lateral walls hold the confinement. `platen compression`: seed 003's "
+                        "while the lateral walls hold the confinement. `platen compression`: Zhao & Feng's (2022) "
                         "uniaxial compression or Brazilian disc test: DEM/Walls/z- and z+ (must be "
                         "active) move towards each other at Platen speed [m/s] each, until the force has "
                         "fallen below Post-peak fraction of its peak (or Final axial strain).");
@@ -586,7 +586,7 @@ namespace anticrack::dem
                         "on the force direction) above which the ramp slows. Dimensionless.");
       prm.declare_entry("Stop strain", "0", Patterns::Double(0),
                         "End the run once the clump has moved by this fraction of the specimen's "
-                        "initial height (|u_clump| / H0; seed 002 follows the collapse to ~8 %); "
+                        "initial height (|u_clump| / H0; Ritter et al. (2020) follow the collapse to ~8 %); "
                         "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
       prm.declare_entry("Normal stress [Pa]", "1e4", Patterns::Double(0),
                         "sigma_n: compressive normal stress on the platen (simple shear). Units: Pa.");
@@ -597,11 +597,11 @@ namespace anticrack::dem
       prm.declare_entry("Final shear strain", "0.1", Patterns::Double(0),
                         "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
       prm.declare_entry("Confining pressure [Pa]", "1e5", Patterns::Double(0),
-                        "sigma_c of the triaxial test (seed 004: 100, 250, 500 kPa). Units: Pa.");
+                        "sigma_c of the triaxial test (Elyashiv et al. 2020: 100, 250, 500 kPa). Units: Pa.");
       prm.declare_entry("Axial strain rate [1/s]", "1", Patterns::Double(0),
                         "Axial strain rate of the triaxial test's loading stage. Units: 1/s.");
       prm.declare_entry("Final axial strain", "0.2", Patterns::Double(0, 1),
-                        "Axial strain at which the triaxial test ends (seed 004: 0.2); the platen test's "
+                        "Axial strain at which the triaxial test ends (Elyashiv et al. 2020: 0.2); the platen test's "
                         "strain limit. Dimensionless.");
       prm.declare_entry("Max servo speed [m/s]", "0", Patterns::Double(0),
                         "Cap on the triaxial servo walls' speed; 0 = 10 x strain rate x the largest box "
@@ -647,7 +647,7 @@ namespace anticrack::dem
     {
       prm.enter_subsection("Bedding");
       prm.declare_entry("Enabled", "false", Patterns::Bool(),
-                        "Give the bonds that cross bedding planes their own strengths (seed 003's layered "
+                        "Give the bonds that cross bedding planes their own strengths (Zhao & Feng's (2022) layered "
                         "slate; dem/sample/bedding.h).");
       prm.declare_entry("Inclination [deg]", "0", Patterns::Double(-90, 90),
                         "theta: angle between the bedding planes and the x-y plane (rotation about y): "
@@ -736,7 +736,7 @@ namespace anticrack::dem
       prm.enter_subsection("Campaign");
       prm.declare_entry("Loading angles [deg]", "", Patterns::List(Patterns::Double(-180, 360)),
                         "psi: loading angles of the mixed-mode test, the clump force direction being "
-                        "(sin psi, 0, -cos psi): 0 = compression, 90 = shear, 180 = tension (seed 002). "
+                        "(sin psi, 0, -cos psi): 0 = compression, 90 = shear, 180 = tension (Ritter et al. 2020). "
                         "Empty: the scene is a single run; otherwise `anticrack run` runs every angle x "
                         "realization x microstructure as a separate test (DEM/Boundary particles/Clump "
                         "force direction is then ignored) and writes campaign.h5. Units: degrees.");
@@ -980,7 +980,7 @@ namespace anticrack::dem
             problems.add("DEM/Sample/Stickiness", s.stickiness,
                          "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
                            " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
-                           " (allowed: tau >= tau_min(phi), PHYSICS.md 1.4); raise tau or lower phi");
+                           " (allowed: tau >= tau_min(phi), docs/physics.md §1.4); raise tau or lower phi");
           if (use_z)
             try
             {

@@ -111,7 +111,7 @@ namespace anticrack::dem
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]
-      Index actuator_count = 0;         ///< > 0: spheres of a rolling actuator layer on top (seed 000)
+      Index actuator_count = 0;         ///< > 0: spheres of a rolling actuator layer on top (Bobillier et al. 2020)
       double actuator_radius = 0;       ///< [m]
       // dense random packing
       double formation_friction = 0;    ///< mu while the packing forms
@@ -179,11 +179,11 @@ namespace anticrack::dem
     {
       enum class Test
       {
-        clump_force,    ///< force ramp on the clump (seed 002)
-        tilted_gravity, ///< growing actuator weight under gravity tilted by psi (seed 000)
-        simple_shear,   ///< platen driven along x at constant normal stress (seed 001)
-        triaxial,       ///< six servo walls: consolidation, then axial strain (seed 004)
-        platen_compression ///< z walls approach each other: uniaxial compression, Brazilian disc (seed 003)
+        clump_force,    ///< force ramp on the clump (Ritter et al. 2020)
+        tilted_gravity, ///< growing actuator weight under gravity tilted by psi (Bobillier et al. 2020)
+        simple_shear,   ///< platen driven along x at constant normal stress (Mede et al. 2018)
+        triaxial,       ///< six servo walls: consolidation, then axial strain (Elyashiv et al. 2020)
+        platen_compression ///< z walls approach each other: uniaxial compression, Brazilian disc (Zhao & Feng 2022)
       };
       Test test = Test::clump_force;
       bool adaptive = false;
@@ -207,7 +207,7 @@ namespace anticrack::dem
     };
 
     /// subsection DEM/Bedding: bonds crossing a family of parallel planes get their own strengths
-    /// (seed 003, dem/sample/bedding.h).
+    /// (Zhao & Feng 2022, dem/sample/bedding.h).
     struct Bedding
     {
       bool enabled = false;

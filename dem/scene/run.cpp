@@ -237,11 +237,11 @@ namespace anticrack::dem
         h.add_column(std::string("clump_applied_force_") + a, "N", "applied force F(t) on the clump");
       h.add_column("clump_normal_stress", "Pa", "-F_z(t) / A with A the x-y area of the domain");
       h.add_column("clump_shear_stress", "Pa", "F_x(t) / A with A the x-y area of the domain");
-      h.add_column("clump_kinetic_energy", "J", "1/2 m |v|^2 + 1/2 w.I w of the clump (seed 002's failure window)");
+      h.add_column("clump_kinetic_energy", "J", "1/2 m |v|^2 + 1/2 w.I w of the clump (Ritter et al.'s (2020) failure window)");
       h.add_column("normal_strain", "-", "-u_z / H0: clump displacement over the initial sample height, compression positive");
       h.add_column("shear_strain", "-", "u_x / H0: clump displacement along x over the initial sample height");
     }
-    // Micro-to-macro measures (PHYSICS.md 1.5), over the sample volume (dem/lab/measurements.h).
+    // Micro-to-macro measures (docs/physics.md §1.5), over the sample volume (dem/lab/measurements.h).
     for (const char *c : {"xx", "yy", "zz", "xy", "xz", "yz"})
       h.add_column(std::string("love_stress_") + c, "Pa",
                    "Love-Weber stress sigma_" + std::string(c) + " (tension positive) over the sample volume");
@@ -259,7 +259,7 @@ namespace anticrack::dem
 
   double DemRun::inertial_number(const dem::Mat3 &stress) const
   {
-    // I = gamma_dot d sqrt(rho / P) (seed 002), with the strain rate taken as the actuator's speed
+    // I = gamma_dot d sqrt(rho / P) (Ritter et al. 2020), with the strain rate taken as the actuator's speed
     // (clump or fastest wall) over the sample height. The confining stress P of shear flows is
     // generalised to any loading angle as the stress magnitude s = sqrt(sigma:sigma / 3), which is
     // |p| under isotropic stress and does not vanish in pure shear, where p does.
@@ -774,7 +774,7 @@ namespace anticrack::dem
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
       d["specimen"] = {{"height_m", initial_sample_height_}, {"layer_thickness_m", initial_layer_thickness_}};
-      // The yield point of this test (seed 002's failure criterion) and its companions.
+      // The yield point of this test (Ritter et al.'s (2020) failure criterion) and its companions.
       d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
                                                    scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
     }
@@ -787,7 +787,7 @@ namespace anticrack::dem
       Json results = Json::object();
       for (const auto &[name, value] : protocol_->results(system_))
         results[name] = value;
-      // Brazilian disc (seed 003): splitting tensile strength 2 F / (pi D t), t the disc's thickness
+      // Brazilian disc (Zhao & Feng 2022): splitting tensile strength 2 F / (pi D t), t the disc's thickness
       // (the domain's y length: the disc axis is y).
       const double diameter = scene_.dem.sample.disc_diameter;
       if (diameter > 0 && results.contains("peak_force_N"))

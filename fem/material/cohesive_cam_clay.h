@@ -1,7 +1,7 @@
 // Cohesive Cam-Clay plasticity at a material point (small strain, 3D): the constitutive core of the
-// FE solver (PHYSICS.md §2; Gaume et al. 2018, Nat. Commun. 9:3047; seed 002 Eq. 1).
+// FE solver (docs/physics.md §2; Gaume et al. 2018, Nat. Commun. 9:3047; Ritter et al. 2020, Eq. 1).
 //
-// Conventions (PHYSICS.md §0): stress and strain tensors are tension-positive; the mean pressure
+// Conventions (docs/physics.md §0): stress and strain tensors are tension-positive; the mean pressure
 // p = −tr σ / 3 is compression-positive; s = σ + p I, q = sqrt(3/2 s:s). Plane strain is a 3D strain
 // with ε_zz = ε_xz = ε_yz = 0 (plane_strain()); σ_zz follows from the 3D update.
 //
@@ -22,7 +22,7 @@
 //   densification  σ = σ_cc − p_d I,   p_d = K_d ⟨−tr ε − ε_d⟩,   ⟨x⟩ = max(x, 0),
 //                  σ_cc the Cam-Clay stress above, ε the TOTAL strain; off when ε_d = 0.
 //
-// Residual response after collapse (PHYSICS.md §2: a collapsed weak layer must not invert
+// Residual response after collapse (docs/physics.md §2: a collapsed weak layer must not invert
 // elements). Two pieces act together:
 //  * the floor p0_floor is the residual strength: once the layer has collapsed (collapse law) p0
 //    sits there, and the Cam-Clay part keeps flowing plastically at the small stress of the floor
@@ -51,7 +51,7 @@
 // whatever the confinement (no pressure-dependent friction of the compacted grains).
 //
 // Return mapping (backward Euler, closest point in the energy norm). With the trial state (p_tr, q_tr)
-// and c = 2 K M² Δγ, d = 1 + 6 G (1 + 2β) Δγ, PHYSICS.md §2 gives
+// and c = 2 K M² Δγ, d = 1 + 6 G (1 + 2β) Δγ, docs/physics.md §2 gives
 //   q = q_tr / d,   p = (p_tr + c p_c) / (1 + c)   ⇔   p − p_c = (p_tr − p_c) / (1 + c),
 // so for fixed p0, y(Δγ) = (1 + 2β) q_tr²/d² + M² (p_tr − p_c)²/(1 + c)² − M² a² decreases strictly
 // from y_tr > 0 to −M² a² < 0. The deviatoric direction of the trial stress is kept (radial return
@@ -66,7 +66,7 @@
 
 namespace anticrack::fem
 {
-  /// How the volumetric plastic strain accumulator α evolves (PHYSICS.md §2).
+  /// How the volumetric plastic strain accumulator α evolves (docs/physics.md §2).
   enum class HardeningLaw
   {
     signed_volumetric, ///< α += tr Δε_p: compaction hardens, dilation softens

@@ -27,7 +27,7 @@ namespace anticrack::fem
     prm.declare_entry("Critical state slope M", "1", Double(0), "slope of the critical state line");
     prm.declare_entry("Hardening law", "collapse", Selection("collapse|signed"),
                       "collapse: every plastic volume change softens (weak layers); signed: compaction "
-                      "hardens, dilation softens (PHYSICS.md 2)");
+                      "hardens, dilation softens (docs/physics.md §2)");
     prm.declare_entry("Hardening factor xi", "10", Double(0), "xi of p0 = K sinh(xi max(-alpha, 0))");
     prm.declare_entry("Residual strength ratio", "0.2", Double(0, 1), "residual / peak strength");
     prm.declare_entry("Reference thickness [m]", "0.03", Double(0), "thickness of the calibrated specimen");

@@ -25,11 +25,11 @@ namespace anticrack::fem
     double p0 = 0;                  ///< compressive tip of the cohesive Cam-Clay surface [Pa]
     double beta = 0;                ///< tensile tip at −β p0
     double M = 0;                   ///< critical-state slope
-    std::string hardening_law;      ///< collapse | signed (PHYSICS.md §2)
+    std::string hardening_law;      ///< collapse | signed (docs/physics.md §2)
     double hardening_factor = 0;    ///< ξ of p0 = K sinh(ξ max(−α, 0))
     double residual_strength_ratio = 0; ///< floor of p0 over its initial value
     /// [m] thickness of the calibrated specimen: the length over which the measured softening
-    /// strain acts (seed 000 thickness scaling; the FE's crack band scales ξ with it).
+    /// strain acts (Bobillier et al.'s (2020) thickness scaling; the FE's crack band scales ξ with it).
     double reference_thickness = 0;
   };
 

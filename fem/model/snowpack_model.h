@@ -8,7 +8,7 @@
 // slope, `Weak layer elements` through the weak layer, slab and substratum elements of the target
 // heights. Cell material ids are layer indices (layer_substratum, layer_weak, then slab layers from
 // the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
-// quadrature point (PHYSICS.md §0); the base (normal coordinate 0) is fixed.
+// quadrature point (docs/physics.md §0); the base (normal coordinate 0) is fixed.
 //
 // Softening regularisation (crack band, Bažant & Oh 1983): the hardening factor of a cohesive
 // Cam-Clay cell is ξ_e = ξ h_e / h_ref, with h_e the cell's height normal to the slope and h_ref

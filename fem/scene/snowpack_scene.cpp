@@ -33,13 +33,13 @@ namespace anticrack::fem
     {
       prm.declare_entry("Thickness [m]", default_thickness, Double(0), "layer thickness measured normal to the slope");
       prm.declare_entry("Model", default_model, Selection("elastic|cohesive cam-clay"),
-                        "constitutive model: linear elastic, or cohesive Cam-Clay with softening (PHYSICS.md 2)");
+                        "constitutive model: linear elastic, or cohesive Cam-Clay with softening (docs/physics.md §2)");
       prm.declare_entry("Material file", "", Anything(),
                         "material file of a calibration (`anticrack calibrate`, subsection Material), relative "
                         "to the scene's directory; when given it replaces the inline material entries below");
       prm.declare_entry("Collapse height [m]", "0", Double(0),
                         "how far the faces of a collapsing layer approach before its grains lock up (0: no "
-                        "lock-up); weak layers collapse by 3-5 mm of 10-30 mm (PHYSICS.md 2)");
+                        "lock-up); weak layers collapse by 3-5 mm of 10-30 mm (docs/physics.md §2)");
       prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
                         "bulk modulus of the lock-up once the collapse height is used up");
       declare_material_entries(prm);

@@ -2,7 +2,7 @@
 // the output of a finite-element run, read from a deal.II parameter file (.prm). A scene is a
 // snowpack scene when it has a top-level `subsection Snowpack` (is_snowpack_scene()).
 //
-// Geometry (PHYSICS.md §3). The model is built in slope-parallel coordinates: x runs along the slope,
+// Geometry (docs/physics.md §3). The model is built in slope-parallel coordinates: x runs along the slope,
 // downslope positive, from the upslope end of the column (x = 0) to its downslope end (x = L); the
 // last axis (y in 2D, z in 3D) is normal to the slope, pointing out of the snowpack, with 0 at the
 // base of the substratum; in 3D, y spans the column width. Gravity is g (sin ψ e_x − cos ψ e_n).
@@ -33,7 +33,7 @@ namespace anticrack::fem
     enum class Model
     {
       elastic,           ///< linear elastic (E, ν)
-      cohesive_cam_clay  ///< elasticity + cohesive Cam-Clay with softening (PHYSICS.md §2)
+      cohesive_cam_clay  ///< elasticity + cohesive Cam-Clay with softening (docs/physics.md §2)
     };
     std::string label;          ///< "slab layer 1", "weak layer", "substratum" (for messages)
     double thickness = 0;       ///< [m]

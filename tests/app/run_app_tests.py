@@ -561,7 +561,7 @@ def bad_input_generators(work):
 # ------------------------------------------------------------------------------------ campaigns
 def campaign_scene(angles, check_mode="none", microstructures="", **changes):
     """scenes/shs_yield_surface.prm shrunk 8-fold: N = 256 spheres in a 5 mm cube (the same sphere
-    radius, 0.33 mm, as seed 002's 2048 in 1 cm), one realization, force rates scaled with the
+    radius, 0.33 mm, as Ritter et al.'s (2020) 2048 in 1 cm), one realization, force rates scaled with the
     4x smaller cross-section (100 N/s fast, 6.25 N/s slow). A test takes ~50 000 steps."""
     text = open(os.path.join(SOURCE, "scenes", "shs_yield_surface.prm")).read()
     return edit_scene(text, {
@@ -580,7 +580,7 @@ def failure_points(directory):
 @case
 def campaign_envelope(work):
     """A campaign at 0, 90 and 180 degrees fails in compression, shear and tension: the envelope is
-    closed, compressive strength > tensile and shear strengths (seed 002), and campaign.h5 holds
+    closed, compressive strength > tensile and shear strengths (Ritter et al. 2020), and campaign.h5 holds
     every history and a failure-point table consistent with the tests' own summaries."""
     scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 90, 180"))
     stdout, _ = anticrack("check", scene, cwd=work)
@@ -600,7 +600,7 @@ def campaign_envelope(work):
           f"tension failure (sigma, tau, p) = ({sigma[2]}, {tau[2]}, {p[2]})")
     check(sigma[0] > max(-sigma[2], tau[1]), f"compressive strength {sigma[0]} not above tension {-sigma[2]} and shear {tau[1]}")
     check(np.all(q > 0) and np.all(np.isfinite(fp["love_stress"])), f"q = {q}")
-    # Quasi-static loading as failure approaches (seed 002: I < 1e-4; the rate decisions of the
+    # Quasi-static loading as failure approaches (Ritter et al. 2020: I < 1e-4; the rate decisions of the
     # adaptive ramp cause short transients of a few 1e-4, hence the bound).
     check(np.all(fp["max_inertial_number"] < 1e-3), f"inertial numbers {fp['max_inertial_number']}")
     with h5py.File(os.path.join(out, "campaign.h5"), "r") as f:
@@ -664,7 +664,7 @@ def linear_fit_r2(x, y):
 
 @case
 def macro_linear_in_micro(work):
-    """Seed 000 Eqs. 5-8 on a small sweep in compression (one sample): the macroscopic strength is
+    """Eqs. 5-8 of Bobillier et al. (2020) on a small sweep in compression (one sample): the macroscopic strength is
     linear in the bond strength and the secant modulus linear in the particle modulus (E_c = E_bar),
     R^2 > 0.98 each, and both lines pass near the origin (the bonded network has no other scale)."""
     factors = [0.5, 1.0, 1.5, 2.0]
@@ -691,7 +691,7 @@ def macro_linear_in_micro(work):
 
 @case
 def tilted_gravity_equals_force_ramp(work):
-    """Seed 000's actuator (density growing under gravity tilted by psi) and seed 002's clump force
+    """Bobillier et al.'s (2020) actuator (density growing under gravity tilted by psi) and Ritter et al.'s (2020) clump force
     ramp load the same specimen at psi = 45 degrees: the failure point lies on the loading
     direction (tau / sigma within 10 % of tan psi) and its (p, q) within 10 % of the force ramp's.
     The two are not the same experiment: at failure the actuator weighs ~1000x its initial mass, so
@@ -716,7 +716,7 @@ def tilted_gravity_equals_force_ramp(work):
 
 @case
 def simple_shear_constant_normal_stress(work):
-    """Seed 001's simple shear of the bonded specimen at sigma_n = 5 kPa (strain rate 1/s): after
+    """Mede et al.'s (2018) simple shear of the bonded specimen at sigma_n = 5 kPa (strain rate 1/s): after
     consolidation the base normal stress stays at sigma_n (mean over the shearing within 5 %) while
     the platen shears the specimen; the shear stress peaks (failure = peak tau) and the test ends
     at the requested shear strain."""
@@ -809,7 +809,7 @@ def brazilian_disc_small(work):
 @case
 def bedded_compression_weaker(work):
     """scenes/bedded_uniaxial_compression.prm shrunk to a 3 x 3 x 6 mm prism: weak bedding bands at 45
-    degrees lower the uniaxial strength below that of the intact prism (seed 003: the minimum of the
+    degrees lower the uniaxial strength below that of the intact prism (Zhao & Feng 2022: the minimum of the
     U-shaped strength-inclination curve lies at 30-60 degrees), and bedding bands as strong as the
     rock change nothing (same peak force to the bit: the bands only change strengths)."""
     peaks = {}
@@ -1037,12 +1037,12 @@ def calibrate_synthetic(work):
 
 @case
 def calibrate_scaling_laws(work):
-    """Four synthetic microstructures whose surfaces follow seed 002's power laws in nu_c = z phi and
-    whose Young's moduli follow seed 000's Eq. 7 in the particle modulus: `calibrate` recovers the
+    """Four synthetic microstructures whose surfaces follow Ritter et al.'s (2020) power laws in nu_c = z phi and
+    whose Young's moduli follow Eq. 7 of Bobillier et al. (2020) in the particle modulus: `calibrate` recovers the
     exponents, prefactors and the micro-macro slope, writes one material file per microstructure and
     the scaling plot."""
-    h, kappa, k, lam = 2.81e-3, 3.59, 1.38e-3, 3.09      # seed 002 Eqs. 2-3
-    beta0, beta1 = 7.3e4, 0.014                          # seed 000 Eq. 7
+    h, kappa, k, lam = 2.81e-3, 3.59, 1.38e-3, 3.09      # Eqs. 2-3 of Ritter et al. (2020)
+    beta0, beta1 = 7.3e4, 0.014                          # Eq. 7 of Bobillier et al. (2020)
     micro = []
     for phi, z, modulus in [(0.3, 2.5, 2e8), (0.35, 3.5, 5e8), (0.4, 4.5, 1e9), (0.45, 5.5, 2e9)]:
         nu_c, bond = z * phi, 1e6
@@ -1096,7 +1096,7 @@ def calibrate_scene_small(work):
     """`calibrate SCENE` runs the scene's campaign (5 angles, N = 256) into DIR/campaign. Its failure
     points reach only q/p of a confined specimen and do not bend over towards the tips in (p, q): the
     (p, q) material is refused with the advice to use --fe-plane sigma-tau, which then calibrates a
-    closed surface with the compressive tip beyond the tensile one (seed 002: beta < 1) into a
+    closed surface with the compressive tip beyond the tensile one (Ritter et al. 2020: beta < 1) into a
     material file the solver reads; the second call only resumes the campaign."""
     # The microstructure variant restates the scene's own force rate through a path whose unit holds
     # a '/' ([N/s]): overrides split subsections outside brackets only.

@@ -1,5 +1,5 @@
-// Tests of fem/cohesive_cam_clay: the cohesive Cam-Clay material point (PHYSICS.md §2). Strength
-// tips and the peak shear against the closed forms of the surface, one return against the PHYSICS.md
+// Tests of fem/material/cohesive_cam_clay: the cohesive Cam-Clay material point (docs/physics.md §2). Strength
+// tips and the peak shear against the closed forms of the surface, one return against the docs/physics.md
 // formulas for q(Δγ) and p(Δγ), the hardening laws against the hydrostatic closed form, consistency
 // over random strain paths, the tangent against central differences, plane strain against rotated 3D
 // strains, extreme parameters and parameter checks.
@@ -301,7 +301,7 @@ namespace
 
   TEST(CamClayReturn, OneStepMatchesTheClosedForm)
   {
-    // One plastic step from the initial state without hardening: with the returned Δγ, PHYSICS.md §2
+    // One plastic step from the initial state without hardening: with the returned Δγ, docs/physics.md §2
     // gives q = q_tr/(1 + 6GΔγ(1 + 2β)), p = (p_tr + 2KΔγM² p_c)/(1 + 2KΔγM²); s keeps the direction
     // of s_tr; Δε_p = Δγ ∂y/∂σ; σ = C : (ε − ε_p).
     for (const double beta : {0.0, 0.3, 1.0})
@@ -607,7 +607,7 @@ namespace
   TEST(CamClayTangent, IsSymmetricWithoutHardeningOnly)
   {
     // Associative perfect plasticity has a major-symmetric algorithmic tangent; hardening breaks it
-    // (PHYSICS.md §2). A sign or factor error in the coupling terms breaks the first property.
+    // (docs/physics.md §2). A sign or factor error in the coupling terms breaks the first property.
     SymmetricTensor<2, 3> strain;
     strain[0][0] = -2e-2;
     strain[1][1] = 0.5e-2;

@@ -1,4 +1,4 @@
-// Tests of the residual response after collapse in fem/cohesive_cam_clay: the residual floor of p0
+// Tests of the residual response after collapse in fem/material/cohesive_cam_clay: the residual floor of p0
 // and the densification lock-up σ = σ_cc − K_d ⟨−tr ε − ε_d⟩ I (header, "Residual response after
 // collapse"). Hydrostatic collapse to the floor and lock-up against the closed form, the Cam-Clay
 // history unchanged by the lock-up (bit-for-bit), the tangent against central differences with the

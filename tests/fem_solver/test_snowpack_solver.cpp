@@ -1,4 +1,4 @@
-// Physics tests of the FE solver on whole snowpack models (fem/snowpack_model, quasi_static,
+// Physics tests of the FE solver on whole snowpack models (fem/model/snowpack_model, quasi_static,
 // explicit_dynamics, snowpack_run): patch test, gravity equilibrium against ρ g h, the energy
 // release rate of a saw cut against the beam on an elastic foundation, the P-wave arrival time, and
 // small dynamic PSTs in which the crack runs through and in which it arrests. Serial (1 rank);
@@ -219,7 +219,7 @@ namespace
   // ------------------------------------------------------------------------------------------
   // P-wave arrival: a long column released under gravity from rest with a fixed base. Every point
   // falls freely, v = −g t, until the wave from the base arrives at t = z / c_p, c_p =
-  // sqrt((K + 4G/3)/ρ) (uniaxial strain, PHYSICS.md §0), after which v = −g z / c_p stays constant
+  // sqrt((K + 4G/3)/ρ) (uniaxial strain, docs/physics.md §0), after which v = −g z / c_p stays constant
   // (d'Alembert). The arrival is taken where |v| first falls 1 % below g t; the discrete front
   // rises over a few elements, which delays it by about 2 h / c_p, within the 4 % tolerance at 80
   // elements over the height (a wrong modulus, e.g. E instead of K + 4G/3 at ν = 0.3, is 35 % off).

@@ -1,7 +1,7 @@
 // Tests of the failure envelopes (params/yield_envelopes.h) and their fits (params/envelope_fit.h):
 // geometry of the radius functions, parametrisations, recovery of known parameters from synthetic
 // failure points, calibration of the confidence intervals, model selection, degenerate data, and the
-// strength scaling of seed 000.
+// strength scaling of Bobillier et al. (2020).
 #include "params/calibration_error.h"
 #include "params/envelope_fit.h"
 #include "params/yield_envelopes.h"
@@ -30,10 +30,10 @@ namespace
     return v;
   }
 
-  // Reference parameters of each family, in the range the seeds report (Pa).
+  // Reference parameters of each family, in the range the source papers report (Pa).
   const Eigen::VectorXd cam_clay_truth = vector_of({15e3, 0.5, 0.8});            // p0, beta, M
   const Eigen::VectorXd cap_truth = vector_of({5e3, 30, 10e3, 25e3});            // c, phi [deg], n_k, n_c
-  const Eigen::VectorXd polynomial_truth = vector_of({766, 0.25, -1.97e-4});     // seed 000 Eq. 9, shear > 0
+  const Eigen::VectorXd polynomial_truth = vector_of({766, 0.25, -1.97e-4});     // Eq. 9 of Bobillier et al. (2020), shear > 0
 
   Eigen::VectorXd truth_of(EnvelopeKind kind)
   {
@@ -184,7 +184,7 @@ TEST(YieldEnvelopes, RadiusAgreesWithShearOfTheEnvelope)
   }
 }
 
-// Tips and peak of the Cam-Clay ellipse (PHYSICS.md §2). The closed forms are exact up to round-off
+// Tips and peak of the Cam-Clay ellipse (docs/physics.md §2). The closed forms are exact up to round-off
 // (1e-12 relative); the grid search for the peak can only land below it, by at most
 // peak * (grid step / semi-axis)^2 / 2 = 2e-7 for 2001 points over the ellipse.
 TEST(CohesiveCamClay, TipsPeakShearAndYieldFunction)
@@ -261,7 +261,7 @@ TEST(YieldEnvelopes, ParametrisationJacobianAndInitialGuesses)
   EXPECT_NE(convex.reason.find("b2"), std::string::npos) << convex.reason;
 }
 
-// Homothetic scaling (seed 000 Eq. 10, corrected): every radius, in particular both tips, scales by
+// Homothetic scaling (Bobillier et al. 2020, Eq. 10, corrected): every radius, in particular both tips, scales by
 // the strength ratio. Round-off only: 1e-12 relative.
 TEST(QuadraticPolynomial, ScalingMovesBothTipsByTheStrengthRatio)
 {
@@ -282,9 +282,9 @@ TEST(QuadraticPolynomial, ScalingMovesBothTipsByTheStrengthRatio)
   EXPECT_THROW(scale_polynomial(polynomial_truth, 0), std::invalid_argument);
 }
 
-// The note in scale_polynomial's documentation: seed 000's envelope, with the shear taken positive,
+// The note in scale_polynomial's documentation: Bobillier et al.'s (2020) envelope, with the shear taken positive,
 // has its compressive tip next to the quoted reference strength 2650 Pa (tips printed to 1 Pa).
-TEST(QuadraticPolynomial, Seed000EnvelopeTips)
+TEST(QuadraticPolynomial, BobillierEnvelopeTips)
 {
   const auto model = make_envelope(EnvelopeKind::quadratic_polynomial);
   EXPECT_NEAR(model->radius(0, polynomial_truth), 2706, 1);
@@ -295,7 +295,7 @@ TEST(QuadraticPolynomial, Seed000EnvelopeTips)
 // -----------------------------------------------------------------------------------------------------
 // Fits
 
-// Seed 002's design: 9 loading angles from 0 to 180 degrees, 3 realizations, here with Gaussian radial
+// Ritter et al.'s (2020) design: 9 loading angles from 0 to 180 degrees, 3 realizations, here with Gaussian radial
 // scatter of 3 % of p0 (450 Pa) at every angle, the constant variance the covariance intervals assume
 // (with scatter proportional to the radius they are too narrow for p0, see envelope_fit.h). One fixed
 // data set: the truth must lie in the 95 % covariance and bootstrap intervals (a broken fit or interval

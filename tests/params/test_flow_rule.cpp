@@ -1,4 +1,4 @@
-// Tests of params/flow_rule: seed 002's normalisation (Eqs. 4-6), loading and flow angles in the
+// Tests of params/flow_rule: Ritter et al.'s (2020) normalisation (Eqs. 4-6), loading and flow angles in the
 // normalised plane (Eqs. 12-19), the transition angle (Eq. 7) and the measures of associativity.
 // Hand-computed cases are worked out in the comments; the geometric construction of psi* is checked
 // against Eq. 19 and the associative flow angle against the slope of Eq. 1 by implicit
@@ -49,7 +49,7 @@ namespace
     std::mt19937_64 engine;
   };
 
-  /// Seed 002 Eq. 1 divided by M^2 p0^2 (dimensionless): 0 on the surface.
+  /// Eq. 1 of Ritter et al. (2020) divided by M^2 p0^2 (dimensionless): 0 on the surface.
   double yield_function(double sigma, double tau, const CamClayParameters &c)
   {
     return (tau * tau * (1 + 2 * c.beta) + c.M * c.M * (sigma - c.p0) * (sigma + c.beta * c.p0))
@@ -192,7 +192,7 @@ TEST(LoadingAngle, Eq19ClosedFormMatchesGeometry)
 
 TEST(TransitionAngle, Eq7LimitsAndApex)
 {
-  // Seed 002: beta = 0 gives arctan M (critical state line), beta = 1 gives pi/2.
+  // Ritter et al. (2020): beta = 0 gives arctan M (critical state line), beta = 1 gives pi/2.
   EXPECT_NEAR(transition_loading_angle({1e5, 0.0, 0.8}), std::atan(0.8), round_off);
   EXPECT_NEAR(transition_loading_angle({1e5, 1.0, 0.8}), pi / 2, round_off);
   // beta = 0.3, M = 0.8: tan psi+- = 0.8 * 1.3/(0.7 sqrt(1.6)) = 1.04/0.885438 = 1.174560,
@@ -239,7 +239,7 @@ TEST(FlowAngle, AssociativeFlowIsNormalToEq1)
 {
   // associative_flow_angle goes through psi*, Eq. 16 and the inverse of Eq. 18; the slope of Eq. 1
   // at the failure point by implicit differentiation must give the same angle. Compaction below the
-  // transition angle, expansion above (seed 002 Results and Discussion).
+  // transition angle, expansion above (Ritter et al. 2020, Results and Discussion).
   for (const CamClayParameters &c : parameter_sets)
     {
       const double transition = transition_loading_angle(c);

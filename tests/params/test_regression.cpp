@@ -1,6 +1,6 @@
 // Tests of params/regression: least-squares lines and power laws with t-intervals, sample
 // statistics and the thickness scaling of micro-macro laws. Reference values are computed by hand
-// (in the comments) or are the seeds' published coefficients used as synthetic truth.
+// (in the comments) or are the source papers' published coefficients used as synthetic truth.
 #include "params/calibration_error.h"
 #include "params/regression.h"
 
@@ -53,14 +53,14 @@ namespace
     return (2 * probability - 1) / std::sqrt(2 * probability * (1 - probability));
   }
 
-  // Seed 000 Eq. (7), weak layer: E_wl,macro = beta_0 + beta_1 E_particle.
-  constexpr double seed000_beta0 = 7.3e4;  // [Pa]
-  constexpr double seed000_beta1 = 0.014;
-  // Seed 002 Eqs. (2)-(3): sigma_0/sigma_bond = h nu_c^kappa, beta sigma_0/sigma_bond = k nu_c^lambda.
-  constexpr double seed002_h = 2.81e-3;
-  constexpr double seed002_kappa = 3.59;
-  constexpr double seed002_k = 1.38e-3;
-  constexpr double seed002_lambda = 3.09;
+  // Eq. (7) of Bobillier et al. (2020), weak layer: E_wl,macro = beta_0 + beta_1 E_particle.
+  constexpr double bobillier_beta0 = 7.3e4;  // [Pa]
+  constexpr double bobillier_beta1 = 0.014;
+  // Eqs. (2)-(3) of Ritter et al. (2020): sigma_0/sigma_bond = h nu_c^kappa, beta sigma_0/sigma_bond = k nu_c^lambda.
+  constexpr double ritter_h = 2.81e-3;
+  constexpr double ritter_kappa = 3.59;
+  constexpr double ritter_k = 1.38e-3;
+  constexpr double ritter_lambda = 3.09;
 } // namespace
 
 TEST(StudentT, TableValue)
@@ -75,23 +75,23 @@ TEST(StudentT, TableValue)
   EXPECT_THROW(student_t_quantile(0.975, 0), CalibrationError);
 }
 
-TEST(FitLine, ExactSeed000WeakLayerModulusRecovered)
+TEST(FitLine, ExactBobillierWeakLayerModulusRecovered)
 {
-  // Nine particle moduli (seed 000 used nine) on E_macro = 7.3e4 Pa + 0.014 E_particle. Exact data
+  // Nine particle moduli (Bobillier et al. (2020) used nine) on E_macro = 7.3e4 Pa + 0.014 E_particle. Exact data
   // must come back to round-off: 1e-12 relative leaves ~1e3 ulps for the sums over nine points.
   const std::vector<double> particle_modulus = evenly_spaced(1e7, 9e7, 9);
   std::vector<double> macro_modulus;
   for (double e : particle_modulus)
-    macro_modulus.push_back(seed000_beta0 + seed000_beta1 * e);
+    macro_modulus.push_back(bobillier_beta0 + bobillier_beta1 * e);
 
   const LinearFit fit = fit_line(particle_modulus, macro_modulus, 0.95, "E_wl,macro vs E_particle");
-  EXPECT_NEAR(fit.intercept, seed000_beta0, 1e-12 * seed000_beta0);
-  EXPECT_NEAR(fit.slope, seed000_beta1, 1e-12 * seed000_beta1);
+  EXPECT_NEAR(fit.intercept, bobillier_beta0, 1e-12 * bobillier_beta0);
+  EXPECT_NEAR(fit.slope, bobillier_beta1, 1e-12 * bobillier_beta1);
   EXPECT_NEAR(fit.r_squared, 1.0, 1e-12);
   EXPECT_EQ(fit.n, 9);
   // Residuals are round-off of values ~1e6 Pa.
   EXPECT_LT(fit.residual_standard_deviation, 1e-12 * 1.3e6);
-  EXPECT_NEAR(fit(5e7), seed000_beta0 + seed000_beta1 * 5e7, 1e-12 * 1e6);
+  EXPECT_NEAR(fit(5e7), bobillier_beta0 + bobillier_beta1 * 5e7, 1e-12 * 1e6);
 }
 
 TEST(FitLine, HandComputedSmallData)
@@ -117,21 +117,21 @@ TEST(FitLine, HandComputedSmallData)
 
 TEST(FitLine, NoisyDataTruthInsideInterval)
 {
-  // Seed 000's weak-layer line with 2 % scatter (sd 2e4 Pa on ~1e6 Pa), fixed seed: the 95 %
+  // Bobillier et al.'s (2020) weak-layer line with 2 % scatter (sd 2e4 Pa on ~1e6 Pa), fixed seed: the 95 %
   // intervals must hold the truth, and the estimates must be close to it (within 4 standard
   // errors, which a correct fit misses with probability 6e-5).
   NormalDeviates noise(20240531);
   const std::vector<double> particle_modulus = evenly_spaced(1e7, 9e7, 9);
   std::vector<double> macro_modulus;
   for (double e : particle_modulus)
-    macro_modulus.push_back(seed000_beta0 + seed000_beta1 * e + 2e4 * noise());
+    macro_modulus.push_back(bobillier_beta0 + bobillier_beta1 * e + 2e4 * noise());
 
   const LinearFit fit = fit_line(particle_modulus, macro_modulus);
-  EXPECT_TRUE(fit.slope_ci.contains(seed000_beta1))
+  EXPECT_TRUE(fit.slope_ci.contains(bobillier_beta1))
     << "[" << fit.slope_ci.lower << ", " << fit.slope_ci.upper << "]";
-  EXPECT_TRUE(fit.intercept_ci.contains(seed000_beta0))
+  EXPECT_TRUE(fit.intercept_ci.contains(bobillier_beta0))
     << "[" << fit.intercept_ci.lower << ", " << fit.intercept_ci.upper << "]";
-  EXPECT_NEAR(fit.slope, seed000_beta1, 4 * fit.slope_standard_error);
+  EXPECT_NEAR(fit.slope, bobillier_beta1, 4 * fit.slope_standard_error);
   EXPECT_GT(fit.r_squared, 0.99);
   EXPECT_LT(fit.r_squared, 1.0);
 }
@@ -185,45 +185,45 @@ TEST(FitLine, RejectsBadData)
     }
 }
 
-TEST(FitPowerLaw, ExactSeed002ScalingRecovered)
+TEST(FitPowerLaw, ExactRitterScalingRecovered)
 {
-  // Seed 002 Eq. 2 (h = 2.81e-3, kappa = 3.59) and Eq. 3 (k = 1.38e-3, lambda = 3.09) on contact
+  // Ritter et al. 2020, Eq. 2 (h = 2.81e-3, kappa = 3.59) and Eq. 3 (k = 1.38e-3, lambda = 3.09) on contact
   // densities 0.6-2.4: exact data back to round-off (1e-12 relative; the logs are O(1)).
   const std::vector<double> contact_density = evenly_spaced(0.6, 2.4, 10);
   std::vector<double> compressive, tensile;
   for (double nu : contact_density)
     {
-      compressive.push_back(seed002_h * std::pow(nu, seed002_kappa));
-      tensile.push_back(seed002_k * std::pow(nu, seed002_lambda));
+      compressive.push_back(ritter_h * std::pow(nu, ritter_kappa));
+      tensile.push_back(ritter_k * std::pow(nu, ritter_lambda));
     }
   const PowerLawFit compressive_fit = fit_power_law(contact_density, compressive, 0.95, "sigma_0");
-  EXPECT_NEAR(compressive_fit.prefactor, seed002_h, 1e-12 * seed002_h);
-  EXPECT_NEAR(compressive_fit.exponent, seed002_kappa, 1e-12 * seed002_kappa);
+  EXPECT_NEAR(compressive_fit.prefactor, ritter_h, 1e-12 * ritter_h);
+  EXPECT_NEAR(compressive_fit.exponent, ritter_kappa, 1e-12 * ritter_kappa);
   EXPECT_NEAR(compressive_fit.r_squared_log, 1.0, 1e-12);
   EXPECT_NEAR(compressive_fit.r_squared, 1.0, 1e-12);
-  EXPECT_NEAR(compressive_fit(2.0), seed002_h * std::pow(2.0, seed002_kappa), 1e-12 * 0.03);
+  EXPECT_NEAR(compressive_fit(2.0), ritter_h * std::pow(2.0, ritter_kappa), 1e-12 * 0.03);
 
   const PowerLawFit tensile_fit = fit_power_law(contact_density, tensile, 0.95, "beta sigma_0");
-  EXPECT_NEAR(tensile_fit.prefactor, seed002_k, 1e-12 * seed002_k);
-  EXPECT_NEAR(tensile_fit.exponent, seed002_lambda, 1e-12 * seed002_lambda);
+  EXPECT_NEAR(tensile_fit.prefactor, ritter_k, 1e-12 * ritter_k);
+  EXPECT_NEAR(tensile_fit.exponent, ritter_lambda, 1e-12 * ritter_lambda);
 }
 
 TEST(FitPowerLaw, NoisyDataIntervalsAndRSquared)
 {
-  // Seed 002 Eq. 2 with 10 % multiplicative scatter, three realisations at each of 7 contact
-  // densities (seed 002 simulated three per microstructure), fixed seed.
+  // Eq. 2 of Ritter et al. (2020) with 10 % multiplicative scatter, three realisations at each of 7 contact
+  // densities (Ritter et al. (2020) simulated three per microstructure), fixed seed.
   NormalDeviates noise(42);
   std::vector<double> contact_density, strength;
   for (double nu : evenly_spaced(0.6, 2.4, 7))
     for (int realisation = 0; realisation < 3; ++realisation)
       {
         contact_density.push_back(nu);
-        strength.push_back(seed002_h * std::pow(nu, seed002_kappa) * std::exp(0.1 * noise()));
+        strength.push_back(ritter_h * std::pow(nu, ritter_kappa) * std::exp(0.1 * noise()));
       }
   const PowerLawFit fit = fit_power_law(contact_density, strength, 0.95, "sigma_0/sigma_bond");
-  EXPECT_TRUE(fit.exponent_ci.contains(seed002_kappa))
+  EXPECT_TRUE(fit.exponent_ci.contains(ritter_kappa))
     << "[" << fit.exponent_ci.lower << ", " << fit.exponent_ci.upper << "]";
-  EXPECT_TRUE(fit.prefactor_ci.contains(seed002_h))
+  EXPECT_TRUE(fit.prefactor_ci.contains(ritter_h))
     << "[" << fit.prefactor_ci.lower << ", " << fit.prefactor_ci.upper << "]";
   // The prefactor interval is exp of a symmetric interval: symmetric in the logarithm, so the
   // prefactor is its geometric mean (round-off only), and asymmetric about the prefactor itself.
@@ -262,10 +262,10 @@ TEST(FitPowerLaw, ExponentIntervalCoverage)
     {
       std::vector<double> y;
       for (double xi : x)
-        y.push_back(seed002_h * std::pow(xi, seed002_kappa) * std::exp(0.2 * noise()));
+        y.push_back(ritter_h * std::pow(xi, ritter_kappa) * std::exp(0.2 * noise()));
       const PowerLawFit fit = fit_power_law(x, y);
-      exponent_covered += fit.exponent_ci.contains(seed002_kappa);
-      prefactor_covered += fit.prefactor_ci.contains(seed002_h);
+      exponent_covered += fit.exponent_ci.contains(ritter_kappa);
+      prefactor_covered += fit.prefactor_ci.contains(ritter_h);
     }
   EXPECT_GE(exponent_covered, 0.92 * sets);
   EXPECT_LE(exponent_covered, 0.98 * sets);
@@ -296,7 +296,7 @@ TEST(FitPowerLaw, RejectsBadData)
 
 TEST(Describe, SpreadOfM)
 {
-  // M of three microstructures, 0.6, 0.8 and 1.0 (seed 002's range and mean): mean 0.8, sample sd
+  // M of three microstructures, 0.6, 0.8 and 1.0 (Ritter et al.'s (2020) range and mean): mean 0.8, sample sd
   // sqrt((0.04 + 0 + 0.04)/2) = 0.2, 95 % interval 0.8 +- t_{0.975,2} 0.2/sqrt(3).
   const SampleStatistics statistics = describe({0.6, 0.8, 1.0}, 0.95, "M");
   EXPECT_NEAR(statistics.mean, 0.8, 1e-15);
@@ -312,7 +312,7 @@ TEST(Describe, SpreadOfM)
   EXPECT_THROW(describe({0.8, std::numeric_limits<double>::quiet_NaN()}), CalibrationError);
 }
 
-TEST(ThicknessScaling, Seed000HomotheticLayers)
+TEST(ThicknessScaling, BobillierHomotheticLayers)
 {
   // value/(h_ref/h): a layer half as thick as the 3 cm reference has half the value.
   EXPECT_DOUBLE_EQ(scale_to_thickness(1e5, 0.015, 0.03), 5e4);
@@ -321,12 +321,12 @@ TEST(ThicknessScaling, Seed000HomotheticLayers)
   EXPECT_THROW(scale_to_thickness(1e5, -0.01, 0.03), CalibrationError);
   EXPECT_THROW(scale_to_thickness(1e5, 0.01, 0.0), CalibrationError);
 
-  // Seed 000's weak-layer modulus law fitted on exact data, used at 6 cm:
+  // Bobillier et al.'s (2020) weak-layer modulus law fitted on exact data, used at 6 cm:
   // (7.3e4 + 0.014 * 5e7)/(0.03/0.06) = 7.73e5 * 2 = 1.546e6 Pa.
   const std::vector<double> particle_modulus = evenly_spaced(1e7, 9e7, 9);
   std::vector<double> macro_modulus;
   for (double e : particle_modulus)
-    macro_modulus.push_back(seed000_beta0 + seed000_beta1 * e);
+    macro_modulus.push_back(bobillier_beta0 + bobillier_beta1 * e);
   MicroMacroLaw law;
   law.fit = fit_line(particle_modulus, macro_modulus);
   law.reference_thickness = 0.03;

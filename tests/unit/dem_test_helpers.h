@@ -1,5 +1,5 @@
 // Shared set-up for the DEM physics tests: materials, two-particle systems with prescribed motion,
-// bonded lattices, walls, closed-form bond constants (PHYSICS.md §1.2) and small comparison
+// bonded lattices, walls, closed-form bond constants (docs/physics.md §1.2) and small comparison
 // helpers. Everything a test checks against is computed here from the formulas, never read back
 // from the engine's own constants.
 #pragma once
@@ -87,7 +87,7 @@ namespace anticrack::dem::test
     return c;
   }
 
-  /// Linear contact stiffness of PHYSICS.md §1.1, k_n = E_c pi min(R)^2 / (R_i + R_j).
+  /// Linear contact stiffness of docs/physics.md §1.1, k_n = E_c pi min(R)^2 / (R_i + R_j).
   inline double linear_contact_kn(const ContactParameters &p, double ri, double rj)
   {
     const double r = std::min(ri, rj);

@@ -1,4 +1,4 @@
-// Ballistic-deposition generators (PHYSICS.md §1.4): solid fractions and coordination of sticky
+// Ballistic-deposition generators (docs/physics.md §1.4): solid fractions and coordination of sticky
 // (Lubachevsky et al. 1992, ~0.15, 2 contacts) and rolling (Visscher & Bolsterli 1972, ~0.58)
 // deposits, overlap-free geometry, reproducibility and input checks.
 #include "dem/sample/ballistic_deposition.h"
@@ -124,7 +124,7 @@ namespace anticrack::dem
     EXPECT_GE(s.domain.upper.z(), rep.height);
   }
 
-  // A thin layer (seed 000's weak layer is ~6 diameters thick) is thinner than the two default
+  // A thin layer (Bobillier et al.'s (2020) weak layer is ~6 diameters thick) is thinner than the two default
   // margins of 4 diameters: its bulk slab must still exist (the middle half of the thickness) and
   // measure the sticky solid fraction, not report 0.
   TEST(BallisticDeposition, ThinLayerKeepsItsMiddleHalfAsBulk)

@@ -1,4 +1,4 @@
-// Contact laws (PHYSICS.md §1.1): Coulomb sliding threshold and friction dissipation (kinematic on a
+// Contact laws (docs/physics.md §1.1): Coulomb sliding threshold and friction dissipation (kinematic on a
 // wall, and dynamic on an inclined plane), Hertz normal force and Mindlin tangential stiffness.
 
 #include "dem_test_helpers.h"

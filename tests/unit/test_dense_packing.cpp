@@ -1,4 +1,4 @@
-// Dense random packings by radius expansion (dem/sample/dense_packing.h, seed paper 004): the formation
+// Dense random packings by radius expansion (dem/sample/dense_packing.h, Elyashiv et al. 2020): the formation
 // friction sets the density, from random close packing (frictionless, phi ~ 0.64, isostatic z* = 6)
 // down towards random loose packing (mu = 1, phi ~ 0.55-0.56, z* -> 4); seeds reproduce packings;
 // bad specs are refused naming the field; open axes keep the spheres inside the box.

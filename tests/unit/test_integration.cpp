@@ -1,4 +1,4 @@
-// Time integration (PHYSICS.md §1.3): the leapfrog under constant force, and detection of a time
+// Time integration (docs/physics.md §1.3): the leapfrog under constant force, and detection of a time
 // step above the critical one (refused up front, or caught by the stability check).
 
 #include "dem_test_helpers.h"

@@ -1,6 +1,6 @@
 // Virtual-laboratory tests driven by walls (dem/lab/lab_tests.h): servo consolidation and the triaxial
-// test of seed 004, the Brazilian disc and the uniaxial compression of a prism between platens of
-// seed 003, specimen carving and argument checking.
+// test of Elyashiv et al. (2020), the Brazilian disc and the uniaxial compression of a prism between platens of
+// Zhao & Feng (2022), specimen carving and argument checking.
 //
 // Samples come from dem/sample/dense_packing.h (random packings formed by radius growth between
 // frictionless walls, so that their faces are flat where walls or platens will sit). They are
@@ -44,10 +44,10 @@ namespace
     return false;
   }
 
-  // --- granular samples (seed 004: density 2650 kg/m^3, contact friction mu_p = 0.5)
+  // --- granular samples (Elyashiv et al. 2020: density 2650 kg/m^3, contact friction mu_p = 0.5)
 
   constexpr double granular_friction = 0.5;
-  constexpr double confining_pressure = 1e5; // seed 004's lowest confinement, 100 kPa
+  constexpr double confining_pressure = 1e5; // Elyashiv et al.'s (2020) lowest confinement, 100 kPa
 
   Material granular_material()
   {
@@ -55,14 +55,14 @@ namespace
     m.density = 2650;
     m.contact.law = ContactLaw::linear;
     // sigma_c / E_c = 1e-3: overlaps ~0.2 % of the radius, stiff enough for rigid-grain behaviour
-    // (the regime of seed 004's sand), soft enough for a large time step.
+    // (the regime of Elyashiv et al.'s (2020) sand), soft enough for a large time step.
     m.contact.contact_modulus = 1e8;
     m.contact.stiffness_ratio = 2.5;
     m.contact.friction = granular_friction;
     return m;
   }
 
-  /// Frictionless sphere-wall law with the spheres' stiffness (seed 004 section 3.1: "solid and
+  /// Frictionless sphere-wall law with the spheres' stiffness (Elyashiv et al. 2020, section 3.1: "solid and
   /// frictionless boundary walls", as in Potyondy & Cundall 2004).
   ContactParameters frictionless_wall(const Material &m)
   {
@@ -71,7 +71,7 @@ namespace
     return c;
   }
 
-  /// 400 spheres (R = 1 mm +- 20 %) formed without friction (the dense state, seed 004's
+  /// 400 spheres (R = 1 mm +- 20 %) formed without friction (the dense state, Elyashiv et al.'s (2020)
   /// mu_ini = 0.1 is close) in a closed cube at 20 kPa, a fifth of the confining pressure, so that
   /// the consolidation has real work to do. Formed once and copied by the tests.
   const DemSystem &granular_packing()
@@ -101,7 +101,7 @@ namespace
     TriaxialSettings t;
     t.confining_pressure = confining_pressure;
     // Inertial number I = rate d sqrt(rho / p) = 1 x 2e-3 x sqrt(2650 / 1e5) = 3.3e-4 < 1e-3:
-    // quasi-static (GDR MiDi 2004, Eur. Phys. J. E 14:341; seed 002 asks for < 1e-4 for its failure
+    // quasi-static (GDR MiDi 2004, Eur. Phys. J. E 14:341; Ritter et al. (2020) ask for < 1e-4 for its failure
     // points; here doubling the rate changed the peak deviator by ~4 %, within the scatter of a
     // 400-sphere sample). It also sets the servo lag of the lateral walls, which follow the
     // dilation at ~rate x L / 2: error = speed / gain ~ 1 % of sigma_c A.
@@ -135,7 +135,7 @@ namespace
     return sum / (3 * volume);
   }
 
-  // --- bonded rock samples (seed 003: brittle bonded-particle model)
+  // --- bonded rock samples (Zhao & Feng 2022: brittle bonded-particle model)
 
   constexpr double bond_tensile_strength = 5e6; // sigma_bar_c [Pa]
 
@@ -215,7 +215,7 @@ namespace
   }
 } // namespace
 
-// Stage (b) of seed 004: the six servo walls bring a packing formed at 20 kPa to sigma_c = 100 kPa.
+// Stage (b) of Elyashiv et al. (2020): the six servo walls bring a packing formed at 20 kPa to sigma_c = 100 kPa.
 // Checks: the stage ends (consolidation criteria of TriaxialSettings met) within 20000 steps; at that
 // moment every wall is within the 1 % consolidation tolerance (the criterion itself); the sample
 // interior carries the same pressure: the Love-Weber mean stress over the box volume plus the
@@ -262,8 +262,8 @@ TEST(LabTests, ServoConsolidationReachesConfiningPressure)
   EXPECT_LT(p_love_weber / sigma_c, 0.95);
 }
 
-// Seed 004's triaxial test on the dense packing above, sigma_c = 100 kPa, to 5 % axial strain (seed
-// 004 goes to 20 %; the peak of a dense sample comes within the first few percent).
+// Elyashiv et al.'s (2020) triaxial test on the dense packing above, sigma_c = 100 kPa, to 5 % axial strain
+// (Elyashiv et al. (2020) go to 20 %; the peak of a dense sample comes within the first few percent).
 // Checks and their reasons:
 //  * the run stops at the requested strain, within the strain of two control intervals
 //    (rate x interval x dt each) past it;
@@ -280,7 +280,7 @@ TEST(LabTests, ServoConsolidationReachesConfiningPressure)
 //    stress-dilatancy);
 //  * the peak mobilised friction angle sin(phi) = (s1 - s3) / (s1 + s3) lies in 15-40 degrees:
 //    freely rotating spheres with mu = 0.5 reach a critical-state angle of about 20-25 degrees and
-//    a dense peak of about 25-35 degrees (Thornton 2000, Geotechnique 50:43; seed 004's Table 2 gives
+//    a dense peak of about 25-35 degrees (Thornton 2000, Geotechnique 50:43; Table 2 of Elyashiv et al. 2020 gives
 //    macro-friction coefficients 0.35-0.64 for mu_p = 0.5, i.e. 19-33 degrees); the bracket leaves
 //    room for the scatter of a small sample.
 // The protocol state restored into a fresh TriaxialTest (a checkpoint) reproduces the measurement.
@@ -358,7 +358,7 @@ TEST(LabTests, TriaxialDeviatorPeaksAtSensibleFrictionAngle)
   EXPECT_EQ(resumed.consolidation_end_step(), test.consolidation_end_step());
 }
 
-// Brazilian splitting (seed 003 section 5): a bonded disc, D = 20 mm across x-z, cut from a slab
+// Brazilian splitting (Zhao & Feng 2022, section 5): a bonded disc, D = 20 mm across x-z, cut from a slab
 // that is periodic along its thickness y (t = 8 mm; a plane-strain disc without free faces along y,
 // so t is exact in sigma_t = 2 F / (pi D t)), compressed across its diameter by two frictionless
 // platens. Checks: the disc breaks (finished() by the post-peak criterion, the force at the end
@@ -425,10 +425,10 @@ TEST(LabTests, BrazilianDiscSplitsAtBondScaleStrength)
   EXPECT_LE(ratio, 1.0);
 }
 
-// Uniaxial compression of a bonded prism (10 x 10 x 20 mm) between frictionless platens (seed 003
+// Uniaxial compression of a bonded prism (10 x 10 x 20 mm) between frictionless platens (Zhao & Feng 2022
 // section 4; Potyondy & Cundall 2004's UCS test). Checks: a linear elastic start, the secant moduli
 // to 30 % and 60 % of the peak (dem/lab/failure_point.h) agree within 10 % (the bonded packing is
-// linear until bonds start to break, seed 003 Fig. 10: "linear elasticity and instantaneous
+// linear until bonds start to break, Zhao & Feng 2022, Fig. 10: "linear elasticity and instantaneous
 // splitting"; 10 % allows for the seating of the platens and the first scattered breaks before
 // 60 %); a peak and a post-peak drop below half the peak before 5 % strain (brittle failure).
 TEST(LabTests, PlatenCompressionOfBondedPrismIsLinearThenBreaks)

@@ -1,4 +1,4 @@
-// Parallel bond (PHYSICS.md §1.2): closed-form elastic response, breakage at the strength envelope,
+// Parallel bond (docs/physics.md §1.2): closed-form elastic response, breakage at the strength envelope,
 // permanence of breakage, and objectivity under rigid rotation.
 //
 // Every test here is kinematic: both particles have blocked DOFs and prescribed velocities, so the

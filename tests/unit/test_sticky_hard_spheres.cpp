@@ -1,5 +1,5 @@
 // Percus-Yevick relations of sticky hard spheres (dem/sample/sticky_hard_spheres.h) against the reference
-// values of PHYSICS.md §1.4 and against their own inverse.
+// values of docs/physics.md §1.4 and against their own inverse.
 
 #include "dem/sample/sticky_hard_spheres.h"
 #include "dem/core/types.h"
@@ -13,7 +13,7 @@
 
 using namespace anticrack::dem;
 
-// PHYSICS.md §1.4 quotes z = 2.74 at (phi, tau) = (0.3, 0.2) and z = 5.84 at (0.5, 0.1), to the
+// docs/physics.md §1.4 quotes z = 2.74 at (phi, tau) = (0.3, 0.2) and z = 5.84 at (0.5, 0.1), to the
 // printed digits: tolerance half a unit of the last digit.
 TEST(StickyHardSpheres, PercusYevickCoordinationMatchesReferenceValues)
 {
@@ -306,7 +306,7 @@ TEST(StickyHardSpheresSampler, ClusterMovesKeepTheDenseStickyStateNearPercusYevi
   EXPECT_TRUE(r.percolating);
 }
 
-// A sample whose bonded network does not span the box carries no load (seed 002): refused, with the
+// A sample whose bonded network does not span the box carries no load (Ritter et al. 2020): refused, with the
 // reason and the way out. phi = 0.1, tau = 1 is far below percolation (z ~ 0.2).
 TEST(StickyHardSpheresSampler, NonPercolatingSampleIsRefused)
 {
