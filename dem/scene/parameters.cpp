@@ -3,6 +3,7 @@
 
 #include "util/sha256.h"
 #include "util/input_error.h"
+#include "util/problems.h"
 #include "dem/sample/sticky_hard_spheres.h"
 
 #include <deal.II/base/exceptions.h>
@@ -817,32 +818,6 @@ namespace anticrack::dem
   // --------------------------------------------------------------------------- validation
   namespace
   {
-    /// Collects every problem of a scene so that the user sees them all in one go.
-    class Problems
-    {
-    public:
-      template <typename T>
-      void add(const std::string &entry, const T &value, const std::string &why)
-      {
-        std::ostringstream s;
-        s.precision(8);
-        s << entry << " = " << value << ": " << why;
-        list_.push_back(s.str());
-      }
-      void add(const std::string &text) { list_.push_back(text); }
-      [[nodiscard]] bool empty() const { return list_.empty(); }
-      [[nodiscard]] std::string text() const
-      {
-        std::string out;
-        for (const auto &p : list_)
-          out += "  - " + p + "\n";
-        return out;
-      }
-
-    private:
-      std::vector<std::string> list_;
-    };
-
     std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
 
     void validate(const SceneParameters &scene, Problems &problems)
@@ -1301,10 +1276,9 @@ namespace anticrack::dem
     scene.parameters_sha256 = util::sha256_hex(scene.canonical_parameters);
     scene.resume_key_sha256 = resume_key(prm);
 
-    Problems problems;
+    Problems problems("scene file <" + file + ">");
     validate(scene, problems);
-    if (!problems.empty())
-      throw InputError("Invalid scene file <" + file + ">:\n" + problems.text());
+    problems.throw_if_any();
     return scene;
   }
 

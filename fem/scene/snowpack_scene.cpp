@@ -1,6 +1,7 @@
 #include "fem/scene/snowpack_scene.h"
 
 #include "util/input_error.h"
+#include "util/problems.h"
 #include "util/sha256.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -75,29 +76,6 @@ namespace anticrack::fem
         layer.material.name = label;
       return layer;
     }
-
-    /// Collects the problems of a scene so that all of them are reported at once.
-    class Problems
-    {
-    public:
-      explicit Problems(std::string file) : file_(std::move(file)) {}
-      void add(const std::string &entry, const std::string &message)
-      {
-        text_ << "\n  " << entry << ": " << message;
-        ++count_;
-      }
-      void throw_if_any() const
-      {
-        if (count_ > 0)
-          throw InputError("Invalid scene file <" + file_ + ">: " + std::to_string(count_) + " problem" +
-                           (count_ > 1 ? "s" : "") + text_.str());
-      }
-
-    private:
-      std::string file_;
-      std::ostringstream text_;
-      unsigned int count_ = 0;
-    };
 
     std::string number(double value)
     {
@@ -426,7 +404,7 @@ namespace anticrack::fem
     }
 
     // --- what single patterns cannot check
-    Problems problems(file);
+    Problems problems("scene file <" + file + ">");
     for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
       check_layer(s.slab_layers[k], "Snowpack/" + slab_layer_section(k), false,
                   band_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
