@@ -152,14 +152,20 @@ int main(int argc, char **argv)
 
   // --- params
   std::string format = "prm";
-  auto *params = app.add_subcommand("params", "Print every scene parameter with its default, pattern and "
+  auto *params = app.add_subcommand("params", "Print the entries a scene can set, each with its default, pattern and "
                                               "documentation");
-  bool snowpack_parameters = false;
-  params->add_flag("--snowpack", snowpack_parameters, "The entries of a snowpack (FE) scene instead of a DEM scene");
+  std::string params_kind = "dem", params_scene;
+  bool snowpack_parameters = false, every_variant = false;
+  params->add_option("scene", params_scene, "A scene file: list what this scene (its kind and variants) can set")
+    ->check(CLI::ExistingFile);
+  params->add_option("--scene", params_kind, "The kind of scene: " + scene_kind_names())->capture_default_str();
+  params->add_flag("--snowpack", snowpack_parameters, "Same as --scene snowpack");
+  params->add_flag("--every-variant", every_variant,
+                   "The entries of every variant (DEM/Sample/Type, DEM/Loading/Test), not only the default one; "
+                   "the listing is then documentation, not a valid scene");
   params->add_option("--format", format, "prm (a complete scene with comments), description, or json")
     ->check(CLI::IsMember({"prm", "description", "json"}))
     ->capture_default_str();
-
   // --- bench
   BenchOptions bench_options;
   auto *bench = app.add_subcommand("bench", "Benchmarks");
@@ -207,7 +213,7 @@ int main(int argc, char **argv)
       print_scene_parameters(std::cout, format == "json"        ? ParameterFormat::json :
                                         format == "description" ? ParameterFormat::description :
                                                                   ParameterFormat::prm,
-                             snowpack_parameters ? "snowpack" : "dem");
+                             snowpack_parameters ? "snowpack" : params_kind, params_scene, every_variant);
       return exit_success;
     }
     if (*bench_dem_command)

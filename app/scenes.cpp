@@ -1,5 +1,6 @@
 #include "app/scenes.h"
 
+#include "coupling/calibration_scene.h"
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "dem/scene/run.h"
@@ -10,16 +11,32 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace anticrack::app
 {
   namespace
   {
-    /// A DEM scene read and checked, with its runnable component.
-    dem::SceneParameters read_dem_scene(const std::string &file)
+    /// Declares the DEM entries of `kind`, for `file`'s variants (see SceneKind::declare).
+    void declare_dem(dealii::ParameterHandler &prm, const dem::SceneKind kind, const std::string &file,
+                     const bool every_variant)
     {
-      dem::SceneParameters scene = dem::read_scene(file);
+      dem::Declaration declaration;
+      if (!file.empty())
+        declaration = dem::scene_declaration(file, kind);
+      else if (!every_variant)
+        declaration.sample_type = declaration.loading_test = 0; // the first of each: the entries' defaults
+      declaration.kind = kind;
+      dem::declare_dem_scene(prm, declaration);
+    }
+
+    /// A DEM scene of `kind`, read and checked, with its runnable component.
+    dem::SceneParameters read_dem_scene(const std::string &file, const dem::SceneKind kind)
+    {
+      dem::SceneParameters scene = dem::read_scene(file, kind);
       dem::require_dem_component(scene);
       return scene;
     }
@@ -28,46 +45,86 @@ namespace anticrack::app
     {
       const char *name;
       const char *what;
-      void (*declare)(dealii::ParameterHandler &prm);
+      /// Declares what a scene of this kind can set: that of `file` (its variants), or without a
+      /// file the default variants (a valid scene), or with `every_variant` all of them.
+      void (*declare)(dealii::ParameterHandler &prm, const std::string &file, bool every_variant);
       void (*check)(const std::string &file, int threads);
       int (*run)(const RunOptions &options);
     };
 
     // One row per kind; a new kind is a row here and its module's declare / check / run.
-    const std::array<SceneKind, 3> scene_kinds{{
+    const std::array<SceneKind, 4> scene_kinds{{
       {"dem", "one DEM run: a virtual-laboratory test or a free simulation (subsection DEM)",
-       dem::declare_dem_scene,
-       [](const std::string &file, const int threads) { dem::check_dem_scene(read_dem_scene(file), threads); },
-       [](const RunOptions &options) { return dem::run_dem_scene(read_dem_scene(options.scene_file), options); }},
+       [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
+       { declare_dem(prm, dem::SceneKind::dem, file, every); },
+       [](const std::string &file, const int threads)
+       { dem::check_dem_scene(read_dem_scene(file, dem::SceneKind::dem), threads); },
+       [](const RunOptions &options)
+       { return dem::run_dem_scene(read_dem_scene(options.scene_file, dem::SceneKind::dem), options); }},
       {"campaign", "the DEM test at every loading angle x realization x microstructure (subsection Campaign)",
-       dem::declare_dem_scene,
+       [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
+       { declare_dem(prm, dem::SceneKind::campaign, file, every); },
        [](const std::string &file, const int threads)
        {
-         const dem::SceneParameters scene = read_dem_scene(file);
+         const dem::SceneParameters scene = read_dem_scene(file, dem::SceneKind::campaign);
          dem::check_dem_scene(scene, threads);
          dem::describe_campaign(std::cout, scene);
        },
-       [](const RunOptions &options) { return dem::run_campaign(read_dem_scene(options.scene_file), options); }},
+       [](const RunOptions &options)
+       { return dem::run_campaign(read_dem_scene(options.scene_file, dem::SceneKind::campaign), options); }},
+      {"calibration", "a campaign and the continuum material calibrated from it (subsections Campaign, Calibration)",
+       coupling::declare_calibration_scene, coupling::check_calibration_scene, coupling::run_calibration_scene},
       {"snowpack", "a layered snowpack and its saw test with the FE solver (subsection Snowpack)",
-       fem::declare_snowpack_scene,
-       [](const std::string &file, int) { fem::check_snowpack_scene(file); }, fem::run_snowpack_scene},
+       [](dealii::ParameterHandler &prm, const std::string &, bool) { fem::declare_snowpack_scene(prm); },
+       [](const std::string &file, int) { fem::check_snowpack_scene(file); },
+       fem::run_snowpack_scene},
     }};
 
-    const SceneKind &kind_named(const std::string &name)
+    const SceneKind &kind_named(const std::string &name, const std::string &where)
     {
       for (const SceneKind &kind : scene_kinds)
         if (name == kind.name)
           return kind;
-      throw InputError("unknown scene kind `" + name + "` (allowed: " + scene_kind_names() + ")");
+      throw InputError(where + "unknown scene kind `" + name + "` (allowed: " + scene_kind_names() + ")");
     }
 
-    /// The kind of a scene file: a top-level `subsection Snowpack` makes a snowpack scene, a
-    /// DEM scene with loading angles a campaign.
+    std::string file_text(const std::string &file)
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in)
+        throw InputError("Cannot read the scene file <" + file + ">.");
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+
+    /// The first pass: the kind a scene file says it is (`set Scene = KIND`), or for a scene
+    /// written before that entry, the kind its subsections suggest (a top-level Snowpack: a
+    /// snowpack scene; Campaign/Loading angles: a campaign; otherwise one DEM run), with a note
+    /// on rank 0. A file that sets nothing is refused: it would run every default.
     const SceneKind &kind_of(const std::string &file)
     {
-      if (fem::is_snowpack_scene(file))
-        return kind_named("snowpack");
-      return kind_named(read_dem_scene(file).campaign.enabled() ? "campaign" : "dem");
+      const std::vector<ParameterSetting> settings = scan_parameter_settings(file_text(file));
+      if (settings.empty())
+        throw InputError("The scene file <" + file + "> sets nothing: a scene says what it is (set Scene = " +
+                         scene_kind_names() + ") and sets the entries of that kind (`anticrack params --scene "
+                         "KIND` lists them).");
+      std::string inferred = "dem";
+      for (const ParameterSetting &setting : settings)
+      {
+        if (setting.path.size() == 1 && setting.path.front() == "Scene")
+          return kind_named(setting.value, "Scene file <" + file + ">, line " + std::to_string(setting.line) +
+                                             ", Scene: ");
+        if (setting.path.front() == "Snowpack")
+          inferred = "snowpack";
+        else if (inferred == "dem" && setting.path == std::vector<std::string>{"Campaign", "Loading angles [deg]"} &&
+                 !setting.value.empty())
+          inferred = "campaign";
+      }
+      if (const char *rank = std::getenv("OMPI_COMM_WORLD_RANK"); !rank || std::string(rank) == "0")
+        std::cerr << "anticrack: note: " << file << " does not say what it is; read as a `" << inferred
+                  << "` scene (add `set Scene = " << inferred << "` to say so)\n";
+      return kind_named(inferred, "");
     }
   } // namespace
 
@@ -80,12 +137,13 @@ namespace anticrack::app
     return exit_success;
   }
 
-  void print_scene_parameters(std::ostream &out, const ParameterFormat format, const std::string &kind_name)
+  void print_scene_parameters(std::ostream &out, const ParameterFormat format, const std::string &kind_name,
+                              const std::string &scene_file, const bool every_variant)
   {
-    const SceneKind &kind = kind_named(kind_name);
+    const SceneKind &kind = scene_file.empty() ? kind_named(kind_name, "") : kind_of(scene_file);
     dealii::ParameterHandler prm;
-    kind.declare(prm);
-    print_parameter_documentation(out, format, prm, kind.name);
+    kind.declare(prm, scene_file, every_variant);
+    print_parameter_documentation(out, format, prm, kind.name, !every_variant || !scene_file.empty());
   }
 
   std::string scene_kind_names()

@@ -1,9 +1,12 @@
 #include "coupling/calibrate.h"
 
+#include "coupling/calibration_scene.h"
+
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "util/input_error.h"
 #include "fem/material/material_file.h"
+#include "util/parameter_files.h"
 #include "util/run_summary.h"
 #include "params/calibration_error.h"
 #include "params/calibration_output.h"
@@ -47,7 +50,11 @@ namespace anticrack::coupling
     /// the campaign file; returns "" on ranks other than 0 or when the campaign failed (exit code set).
     std::string campaign_of_scene(const CalibrateOptions &options, int &exit_code)
     {
-      const dem::SceneParameters scene = dem::read_scene(options.input);
+      // A calibration scene says so; any other scene with a campaign is read as a campaign.
+      const dem::SceneKind kind =
+        scene_kind_in_file(options.input) == "calibration" ? dem::SceneKind::calibration : dem::SceneKind::campaign;
+      const dem::SceneParameters scene = dem::read_scene(
+        options.input, kind, {}, kind == dem::SceneKind::calibration ? CalibrationParameters::declare_parameters : nullptr);
       dem::require_dem_component(scene);
       if (!scene.campaign.enabled())
         throw InputError(options.input + ": the scene has no campaign (Campaign/Loading angles [deg] is empty); "

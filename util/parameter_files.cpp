@@ -1,9 +1,12 @@
 #include "util/parameter_files.h"
 
+#include "util/input_error.h"
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
 #include <ostream>
 #include <sstream>
 
@@ -53,8 +56,106 @@ namespace anticrack
     }
   } // namespace
 
+  std::string ParameterSetting::path_text() const
+  {
+    std::string text;
+    for (const std::string &part : path)
+      text += (text.empty() ? "" : "/") + part;
+    return text;
+  }
+
+  std::vector<ParameterSetting> scan_parameter_settings(const std::string &text)
+  {
+    const auto trim = [](const std::string &s) {
+      const auto first = s.find_first_not_of(" \t\r");
+      if (first == std::string::npos)
+        return std::string();
+      return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+    };
+    std::vector<ParameterSetting> settings;
+    std::vector<std::string> subsections;
+    std::istringstream in(text);
+    std::string raw;
+    unsigned int line_number = 0;
+    while (std::getline(in, raw))
+    {
+      const unsigned int first_line = ++line_number;
+      std::string line = raw.substr(0, raw.find('#'));
+      // A trailing backslash joins the next line (deal.II does the same before parsing).
+      while (!line.empty() && trim(line).size() && trim(line).back() == '\\' && std::getline(in, raw))
+      {
+        ++line_number;
+        line = trim(line);
+        line.pop_back();
+        line = trim(line) + " " + trim(raw.substr(0, raw.find('#')));
+      }
+      line = trim(line);
+      if (line.empty())
+        continue;
+      std::istringstream words(line);
+      std::string keyword;
+      words >> keyword;
+      if (keyword == "subsection")
+        subsections.push_back(trim(line.substr(keyword.size())));
+      else if (keyword == "end" && !subsections.empty())
+        subsections.pop_back();
+      else if (keyword == "set")
+      {
+        const std::string rest = line.substr(keyword.size());
+        const auto equal = rest.find('=');
+        ParameterSetting setting;
+        setting.path = subsections;
+        setting.path.push_back(trim(rest.substr(0, equal)));
+        setting.value = equal == std::string::npos ? "" : trim(rest.substr(equal + 1));
+        setting.line = first_line;
+        settings.push_back(std::move(setting));
+      }
+    }
+    return settings;
+  }
+
+  std::string scene_kind_in_file(const std::string &file)
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+      throw InputError("cannot read the scene file <" + file + ">");
+    std::ostringstream text;
+    text << in.rdbuf();
+    for (const ParameterSetting &setting : scan_parameter_settings(text.str()))
+      if (setting.path.size() == 1 && setting.path.front() == "Scene")
+        return setting.value;
+    return "";
+  }
+
+  namespace
+  {
+    void collect_entries(const nlohmann::ordered_json &node, std::vector<std::string> &path,
+                         std::set<std::vector<std::string>> &entries)
+    {
+      for (const auto &[name, child] : node.items())
+      {
+        path.push_back(name);
+        if (child.contains("default_value"))
+          entries.insert(path);
+        else
+          collect_entries(child, path, entries);
+        path.pop_back();
+      }
+    }
+  } // namespace
+
+  std::set<std::vector<std::string>> declared_entries(const dealii::ParameterHandler &prm)
+  {
+    std::ostringstream json;
+    prm.print_parameters(json, ParameterHandler::JSON);
+    std::set<std::vector<std::string>> entries;
+    std::vector<std::string> path;
+    collect_entries(nlohmann::ordered_json::parse(json.str()), path, entries);
+    return entries;
+  }
+
   void print_parameter_documentation(std::ostream &out, const ParameterFormat format, const ParameterHandler &prm,
-                                     const std::string &kind)
+                                     const std::string &kind, const bool valid_scene)
   {
     switch (format)
     {
@@ -64,7 +165,9 @@ namespace anticrack
         prm.print_parameters(json, ParameterHandler::JSON | ParameterHandler::KeepDeclarationOrder);
         out << "# Every anticrack " << kind << " "
             << "scene parameter with its documentation, allowed values and default.\n"
-            << "# SI units unless the name says otherwise. This listing is itself a valid scene.\n\n";
+            << "# SI units unless the name says otherwise. "
+            << (valid_scene ? "This listing is itself a valid scene.\n\n" :
+                              "Every variant is listed: a scene sets the entries of its own.\n\n");
         print_documented_prm(out, nlohmann::ordered_json::parse(json.str()), "");
         break;
       }

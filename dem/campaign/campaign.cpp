@@ -328,7 +328,7 @@ namespace anticrack::dem
           overrides.emplace_back((split_parameter_path(entry).size() == 1 ? "DEM/Sample/" : "DEM/") + entry, value);
         try
         {
-          scenes.push_back(read_scene(scene.file, overrides));
+          scenes.push_back(read_scene(scene.file, scene.kind, overrides, scene.declare_more));
         }
         catch (const InputError &e)
         {

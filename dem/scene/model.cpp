@@ -24,19 +24,7 @@
 
 namespace anticrack::dem
 {
-  std::string to_string(const dem::WallControl control)
-  {
-    switch (control)
-    {
-      case dem::WallControl::fixed:
-        return "fixed";
-      case dem::WallControl::velocity:
-        return "velocity";
-      case dem::WallControl::servo:
-        return "servo";
-    }
-    return "unknown";
-  }
+  std::string to_string(const dem::WallControl control) { return parameters::wall_control_names().name(control); }
 
   int apply_thread_count(const int threads)
   {

@@ -3,6 +3,7 @@
 
 #include "util/sha256.h"
 #include "util/input_error.h"
+#include "util/parameter_files.h"
 #include "util/problems.h"
 #include "dem/sample/sticky_hard_spheres.h"
 
@@ -17,8 +18,10 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 #include <type_traits>
+#include <utility>
 
 namespace anticrack::dem
 {
@@ -247,12 +250,57 @@ namespace anticrack::dem
     }
 
     // ------------------------------------------------------------------------------- Sample
-    void Sample::declare_parameters(ParameterHandler &prm)
+    const EnumTable<Sample::Type> &Sample::type_names()
     {
+      static const EnumTable<Type> names{{"simple cubic lattice", Type::simple_cubic_lattice},
+                                         {"snapshot", Type::snapshot},
+                                         {"sticky hard spheres", Type::sticky_hard_spheres},
+                                         {"ballistic deposition", Type::ballistic_deposition},
+                                         {"dense random packing", Type::dense_random_packing}};
+      return names;
+    }
+
+    bool Sample::has_entry(const Type type, const std::string &entry)
+    {
+      // Which sample types read each entry (dem/scene/model.cpp builds the sample); an entry not
+      // listed here belongs to every type.
+      using T = Type;
+      static const std::map<std::string, std::vector<Type>> types_of_entry{
+        {"Lattice size", {T::simple_cubic_lattice}},
+        {"Radius [m]", {T::simple_cubic_lattice, T::sticky_hard_spheres, T::ballistic_deposition, T::dense_random_packing}},
+        {"Spacing [m]", {T::simple_cubic_lattice}},
+        {"Origin [m]", {T::simple_cubic_lattice}},
+        {"Snapshot file", {T::snapshot}},
+        {"Particle count", {T::sticky_hard_spheres, T::ballistic_deposition, T::dense_random_packing}},
+        {"Volume fraction", {T::sticky_hard_spheres}},
+        {"Stickiness", {T::sticky_hard_spheres}},
+        {"Target coordination number", {T::sticky_hard_spheres}},
+        {"Well width", {T::sticky_hard_spheres}},
+        {"Box edge [m]", {T::sticky_hard_spheres}},
+        {"Sweeps", {T::sticky_hard_spheres}},
+        {"Cluster move fraction", {T::sticky_hard_spheres}},
+        {"Deposition rule", {T::ballistic_deposition}},
+        {"Radius half width [m]", {T::ballistic_deposition, T::dense_random_packing}},
+        {"Actuator layer count", {T::ballistic_deposition}},
+        {"Actuator layer radius [m]", {T::ballistic_deposition}},
+        {"Formation friction", {T::dense_random_packing}},
+        {"Packing pressure [Pa]", {T::dense_random_packing}},
+        {"Disc diameter [m]", {T::dense_random_packing}},
+      };
+      const auto types = types_of_entry.find(entry);
+      return types == types_of_entry.end() ||
+             std::find(types->second.begin(), types->second.end(), type) != types->second.end();
+    }
+
+    void Sample::declare_parameters(ParameterHandler &prm, const std::optional<Type> type)
+    {
+      const auto declare = [&](const std::string &name, const std::string &default_value,
+                               const Patterns::PatternBase &pattern, const std::string &documentation) {
+        if (!type || has_entry(*type, name))
+          prm.declare_entry(name, default_value, pattern, documentation);
+      };
       prm.enter_subsection("Sample");
-      prm.declare_entry("Type", "simple cubic lattice",
-                        Patterns::Selection("simple cubic lattice|snapshot|sticky hard spheres|"
-                                            "ballistic deposition|dense random packing"),
+      prm.declare_entry("Type", "simple cubic lattice", Patterns::Selection(type_names().pattern()),
                         "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
                         "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
                         "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
@@ -279,53 +327,54 @@ namespace anticrack::dem
                         "disc with its axis along y for the Brazilian test. The generators are seeded by "
                         "DEM/Random seed and run again by `anticrack check`, which prints their "
                         "statistics.");
-      prm.declare_entry("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
+      declare("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
                         "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
-      prm.declare_entry("Radius [m]", "1e-3", Patterns::Double(0),
+      declare("Radius [m]", "1e-3", Patterns::Double(0),
                         "R: sphere radius, at most half the spacing (lattice); the radius of every "
                         "sphere (sticky hard spheres); the mean radius (ballistic deposition). "
                         "Units: m.");
-      prm.declare_entry("Spacing [m]", "2e-3", Patterns::Double(0),
+      declare("Spacing [m]", "2e-3", Patterns::Double(0),
                         "s: distance between neighbouring centres; s = 2R makes touching spheres "
                         "(lattice only). Units: m.");
-      declare_vector(prm, "Origin [m]", "0, 0, 0",
+      if (!type || has_entry(*type, "Origin [m]"))
+        declare_vector(prm, "Origin [m]", "0, 0, 0",
                      "Lower corner of the lattice's bounding box; the lattice occupies "
                      "[origin, origin + n s] and must lie inside the domain. Units: m.");
-      prm.declare_entry("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
+      declare("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
                         "a: every velocity component starts uniformly random in [-a, a] (seeded "
                         "by DEM/Random seed; fixed and clumped spheres start at rest). Units: m/s.");
-      prm.declare_entry("Snapshot file", "", Patterns::Anything(),
+      declare("Snapshot file", "", Patterns::Anything(),
                         "HDF5 snapshot (snapshots/snapshot_NNNNNN.h5 of an earlier run) to take "
                         "the spheres from when Type = snapshot. A relative path is relative to "
                         "the working directory.");
-      prm.declare_entry("Particle count", "512", Patterns::Integer(1),
+      declare("Particle count", "512", Patterns::Integer(1),
                         "N: number of spheres (sticky hard spheres: at least 8; ballistic "
                         "deposition).");
-      prm.declare_entry("Volume fraction", "0.3", Patterns::Double(0, 0.55),
+      declare("Volume fraction", "0.3", Patterns::Double(0, 0.55),
                         "phi: solid volume fraction of the sticky-hard-sphere sample, in (0, 0.55] "
                         "(sticky hard spheres only). Dimensionless.");
-      prm.declare_entry("Stickiness", "0.2", Patterns::Double(0),
+      declare("Stickiness", "0.2", Patterns::Double(0),
                         "tau: Baxter stickiness parameter (smaller = stickier), at least "
                         "tau_min(phi) = (14 phi^2 - 4 phi - 1) / (12 (2 phi^2 - phi - 1)); 0 = take "
                         "tau from the target coordination number (sticky hard spheres only). "
                         "Dimensionless.");
-      prm.declare_entry("Target coordination number", "0", Patterns::Double(0),
+      declare("Target coordination number", "0", Patterns::Double(0),
                         "z: mean number of bonded neighbours wanted; > 0 selects tau from the "
                         "Percus-Yevick relation z = 2 phi lambda(phi, tau) and requires Stickiness = 0; "
                         "0 = use Stickiness (sticky hard spheres only). Dimensionless.");
-      prm.declare_entry("Well width", "0.03", Patterns::Double(0, 0.1),
+      declare("Well width", "0.03", Patterns::Double(0, 0.1),
                         "delta / sigma: width of the square well that represents Baxter's adhesion, "
                         "relative to the diameter sigma = 2 R, in (0, 0.1]; pairs in the well "
                         "(gap <= delta sigma) become bonds (sticky hard spheres only). "
                         "Dimensionless.");
-      prm.declare_entry("Box edge [m]", "0", Patterns::Double(0),
+      declare("Box edge [m]", "0", Patterns::Double(0),
                         "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
                         "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (Ritter et al. (2020) keep "
                         "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
                         "Units: m.");
-      prm.declare_entry("Sweeps", "5000", Patterns::Integer(1),
+      declare("Sweeps", "5000", Patterns::Integer(1),
                         "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
-      prm.declare_entry("Cluster move fraction", "0", Patterns::Double(0, 1),
+      declare("Cluster move fraction", "0", Patterns::Double(0, 1),
                         "fraction of Monte Carlo trial moves that translate a whole cluster of "
                         "spheres in each other's well (pairs in the well linked with the contact "
                         "probability 1 - exp(-eps/kT), Swendsen-Wang; detailed balance kept because "
@@ -333,28 +382,28 @@ namespace anticrack::dem
                         "spheres and for clusters that wrap around the box); helps dense, sticky "
                         "states with finite clusters equilibrate, not a network that already spans the "
                         "box (sticky hard spheres only). Must be below 1. Dimensionless.");
-      prm.declare_entry("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
+      declare("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
                         "`sticky`: a falling sphere stops at its first contact (bulk solid fraction "
                         "~0.15); `rolling`: it rolls to a three-point rest (~0.58) (ballistic "
                         "deposition only).");
-      prm.declare_entry("Radius half width [m]", "0", Patterns::Double(0),
+      declare("Radius half width [m]", "0", Patterns::Double(0),
                         "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
                         "(ballistic deposition, dense random packing). Units: m.");
-      prm.declare_entry("Actuator layer count", "0", Patterns::Integer(0),
+      declare("Actuator layer count", "0", Patterns::Integer(0),
                         "N_a > 0: after the deposit, N_a spheres of radius Actuator layer radius [m] are "
                         "dropped on top by the rolling rule (Bobillier et al.'s (2020) cohesionless actuator layer) and "
                         "become the loading clump (DEM/Boundary particles/Clump above [m] and Actuator "
                         "thickness [mean radii] must then be empty); they are bonded to the layer where "
                         "they touch it (ballistic deposition only).");
-      prm.declare_entry("Actuator layer radius [m]", "0.01", Patterns::Double(0),
+      declare("Actuator layer radius [m]", "0.01", Patterns::Double(0),
                         "Radius of the actuator layer's spheres (Bobillier et al. 2020: 10 mm). Units: m.");
-      prm.declare_entry("Formation friction", "0", Patterns::Double(0),
+      declare("Formation friction", "0", Patterns::Double(0),
                         "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
                         "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
-      prm.declare_entry("Packing pressure [Pa]", "1e5", Patterns::Double(0),
+      declare("Packing pressure [Pa]", "1e5", Patterns::Double(0),
                         "Mean stress at which the dense random packing is complete, in (0, 1e-2 x "
                         "contact modulus) (dense random packing only). Units: Pa.");
-      prm.declare_entry("Disc diameter [m]", "0", Patterns::Double(0),
+      declare("Disc diameter [m]", "0", Patterns::Double(0),
                         "D > 0: keep only the spheres within the disc of diameter D, axis along y, "
                         "centred in the domain's x-z section (Brazilian test; dense random packing "
                         "only). 0 = no carving. Units: m.");
@@ -364,33 +413,51 @@ namespace anticrack::dem
     void Sample::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Sample");
-      const std::string type_name = prm.get("Type");
-      type = type_name == "snapshot"             ? Type::snapshot :
-             type_name == "sticky hard spheres"  ? Type::sticky_hard_spheres :
-             type_name == "ballistic deposition" ? Type::ballistic_deposition :
-             type_name == "dense random packing" ? Type::dense_random_packing :
-                                                   Type::simple_cubic_lattice;
-      lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
-      radius = prm.get_double("Radius [m]");
-      spacing = prm.get_double("Spacing [m]");
-      origin = get_triple<Vec3>(prm, "Origin [m]");
-      velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
-      snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
-      particle_count = prm.get_integer("Particle count");
-      volume_fraction = prm.get_double("Volume fraction");
-      stickiness = prm.get_double("Stickiness");
-      target_coordination = prm.get_double("Target coordination number");
-      well_width = prm.get_double("Well width");
-      sweeps = prm.get_integer("Sweeps");
-      cluster_move_fraction = prm.get_double("Cluster move fraction");
-      box_edge = prm.get_double("Box edge [m]");
-      rolling = prm.get("Deposition rule") == "rolling";
-      radius_half_width = prm.get_double("Radius half width [m]");
-      actuator_count = prm.get_integer("Actuator layer count");
-      actuator_radius = prm.get_double("Actuator layer radius [m]");
-      formation_friction = prm.get_double("Formation friction");
-      packing_pressure = prm.get_double("Packing pressure [Pa]");
-      disc_diameter = prm.get_double("Disc diameter [m]");
+      type = type_names().value(prm.get("Type"));
+      // Entries of other sample types are not declared for this scene: they keep their defaults.
+      const auto uses = [&](const std::string &entry) { return has_entry(type, entry); };
+      if (uses("Lattice size"))
+        lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
+      if (uses("Radius [m]"))
+        radius = prm.get_double("Radius [m]");
+      if (uses("Spacing [m]"))
+        spacing = prm.get_double("Spacing [m]");
+      if (uses("Origin [m]"))
+        origin = get_triple<Vec3>(prm, "Origin [m]");
+      if (uses("Initial velocity amplitude [m/s]"))
+        velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
+      if (uses("Snapshot file"))
+        snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
+      if (uses("Particle count"))
+        particle_count = prm.get_integer("Particle count");
+      if (uses("Volume fraction"))
+        volume_fraction = prm.get_double("Volume fraction");
+      if (uses("Stickiness"))
+        stickiness = prm.get_double("Stickiness");
+      if (uses("Target coordination number"))
+        target_coordination = prm.get_double("Target coordination number");
+      if (uses("Well width"))
+        well_width = prm.get_double("Well width");
+      if (uses("Sweeps"))
+        sweeps = prm.get_integer("Sweeps");
+      if (uses("Cluster move fraction"))
+        cluster_move_fraction = prm.get_double("Cluster move fraction");
+      if (uses("Box edge [m]"))
+        box_edge = prm.get_double("Box edge [m]");
+      if (uses("Deposition rule"))
+        rolling = prm.get("Deposition rule") == "rolling";
+      if (uses("Radius half width [m]"))
+        radius_half_width = prm.get_double("Radius half width [m]");
+      if (uses("Actuator layer count"))
+        actuator_count = prm.get_integer("Actuator layer count");
+      if (uses("Actuator layer radius [m]"))
+        actuator_radius = prm.get_double("Actuator layer radius [m]");
+      if (uses("Formation friction"))
+        formation_friction = prm.get_double("Formation friction");
+      if (uses("Packing pressure [Pa]"))
+        packing_pressure = prm.get_double("Packing pressure [Pa]");
+      if (uses("Disc diameter [m]"))
+        disc_diameter = prm.get_double("Disc diameter [m]");
       prm.leave_subsection();
     }
 
@@ -443,13 +510,21 @@ namespace anticrack::dem
     }
 
     // -------------------------------------------------------------------------------- Walls
+    const EnumTable<dem::WallControl> &wall_control_names()
+    {
+      static const EnumTable<dem::WallControl> names{{"fixed", dem::WallControl::fixed},
+                                                     {"velocity", dem::WallControl::velocity},
+                                                     {"servo", dem::WallControl::servo}};
+      return names;
+    }
+
     void WallFace::declare_parameters(ParameterHandler &prm)
     {
       prm.declare_entry("Active", "false", Patterns::Bool(),
                         "Whether a planar wall sits on this face of the domain, pushing spheres "
                         "inwards with the contact law of DEM/Material (linear law: L = R, "
                         "A = pi R^2).");
-      prm.declare_entry("Control", "fixed", Patterns::Selection("fixed|velocity|servo"),
+      prm.declare_entry("Control", "fixed", Patterns::Selection(wall_control_names().pattern()),
                         "`fixed`: the wall stays put. `velocity`: it moves at `Velocity` along "
                         "its inward normal. `servo`: its normal velocity is "
                         "gain (sigma_target A - F_n), capped at `Max speed`, with A the face area.");
@@ -467,9 +542,7 @@ namespace anticrack::dem
     void WallFace::parse_parameters(ParameterHandler &prm)
     {
       active = prm.get_bool("Active");
-      const std::string c = prm.get("Control");
-      control = c == "fixed" ? dem::WallControl::fixed :
-                c == "velocity" ? dem::WallControl::velocity : dem::WallControl::servo;
+      control = wall_control_names().value(prm.get("Control"));
       velocity = prm.get_double("Velocity [m/s]");
       target_stress = prm.get_double("Target stress [Pa]");
       servo_gain = prm.get_double("Servo gain [m/(s N)]");
@@ -550,11 +623,53 @@ namespace anticrack::dem
     }
 
     // ------------------------------------------------------------------------------ Loading
-    void Loading::declare_parameters(ParameterHandler &prm)
+    const EnumTable<Loading::Test> &Loading::test_names()
     {
+      static const EnumTable<Test> names{{"clump force", Test::clump_force},
+                                         {"tilted gravity", Test::tilted_gravity},
+                                         {"simple shear", Test::simple_shear},
+                                         {"triaxial", Test::triaxial},
+                                         {"platen compression", Test::platen_compression}};
+      return names;
+    }
+
+    bool Loading::has_entry(const Test test, const std::string &entry)
+    {
+      // Which tests read each entry (dem/scene/model.cpp makes the loading protocol); an entry not
+      // listed here belongs to every test.
+      using T = Test;
+      static const std::map<std::string, std::vector<Test>> tests_of_entry{
+        {"Adaptive rate", {T::clump_force, T::tilted_gravity}},
+        {"Slow rate fraction", {T::clump_force, T::tilted_gravity}},
+        {"Control interval [steps]", {T::clump_force, T::tilted_gravity, T::simple_shear}},
+        {"Rate recovery factor", {T::clump_force, T::tilted_gravity}},
+        {"Lag tolerance", {T::clump_force, T::tilted_gravity}},
+        {"Stop strain", {T::clump_force, T::tilted_gravity}},
+        {"Normal stress [Pa]", {T::simple_shear}},
+        {"Shear velocity [m/s]", {T::simple_shear}},
+        {"Consolidation time [s]", {T::simple_shear}},
+        {"Final shear strain", {T::simple_shear}},
+        {"Confining pressure [Pa]", {T::triaxial}},
+        {"Axial strain rate [1/s]", {T::triaxial}},
+        {"Final axial strain", {T::triaxial, T::platen_compression}},
+        {"Max servo speed [m/s]", {T::triaxial}},
+        {"Platen speed [m/s]", {T::platen_compression}},
+        {"Post-peak fraction", {T::platen_compression}},
+      };
+      const auto tests = tests_of_entry.find(entry);
+      return tests == tests_of_entry.end() ||
+             std::find(tests->second.begin(), tests->second.end(), test) != tests->second.end();
+    }
+
+    void Loading::declare_parameters(ParameterHandler &prm, const std::optional<Test> test)
+    {
+      const auto declare = [&](const std::string &name, const std::string &default_value,
+                               const Patterns::PatternBase &pattern, const std::string &documentation) {
+        if (!test || has_entry(*test, name))
+          prm.declare_entry(name, default_value, pattern, documentation);
+      };
       prm.enter_subsection("Loading");
-      prm.declare_entry("Test", "clump force",
-                        Patterns::Selection("clump force|tilted gravity|simple shear|triaxial|platen compression"),
+      prm.declare_entry("Test", "clump force", Patterns::Selection(test_names().pattern()),
                         "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
                         "F(t) = Fdot t d at its centre of mass (Ritter et al.'s (2020) mixed-mode test). `tilted "
                         "gravity`: Bobillier et al.'s (2020) actuator, whose density grows linearly under gravity of "
@@ -570,46 +685,46 @@ namespace anticrack::dem
                         "uniaxial compression or Brazilian disc test: DEM/Walls/z- and z+ (must be "
                         "active) move towards each other at Platen speed [m/s] each, until the force has "
                         "fallen below Post-peak fraction of its peak (or Final axial strain).");
-      prm.declare_entry("Adaptive rate", "false", Patterns::Bool(),
+      declare("Adaptive rate", "false", Patterns::Bool(),
                         "Adapt the clump force rate (dem/lab/load_control.h): DEM/Boundary particles/Clump "
                         "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
                         "the base reaction lags the applied force, the rate drops to Slow rate "
                         "fraction x fast, and recovers by Rate recovery factor per quiet interval. "
                         "false = constant rate.");
-      prm.declare_entry("Slow rate fraction", "0.1", Patterns::Double(0, 1),
+      declare("Slow rate fraction", "0.1", Patterns::Double(0, 1),
                         "f_s: slow rate / fast rate, in (0, 1]. Dimensionless.");
-      prm.declare_entry("Control interval [steps]", "100", Patterns::Integer(1),
+      declare("Control interval [steps]", "100", Patterns::Integer(1),
                         "Steps between two rate decisions.");
-      prm.declare_entry("Rate recovery factor", "1.25", Patterns::Double(1),
+      declare("Rate recovery factor", "1.25", Patterns::Double(1),
                         "Growth of the rate per quiet control interval, > 1. Dimensionless.");
-      prm.declare_entry("Lag tolerance", "0.02", Patterns::Double(0),
+      declare("Lag tolerance", "0.02", Patterns::Double(0),
                         "Relative lag |F_applied - R_base| / |F_applied| of the base reaction (projected "
                         "on the force direction) above which the ramp slows. Dimensionless.");
-      prm.declare_entry("Stop strain", "0", Patterns::Double(0),
+      declare("Stop strain", "0", Patterns::Double(0),
                         "End the run once the clump has moved by this fraction of the specimen's "
                         "initial height (|u_clump| / H0; Ritter et al. (2020) follow the collapse to ~8 %); "
                         "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
-      prm.declare_entry("Normal stress [Pa]", "1e4", Patterns::Double(0),
+      declare("Normal stress [Pa]", "1e4", Patterns::Double(0),
                         "sigma_n: compressive normal stress on the platen (simple shear). Units: Pa.");
-      prm.declare_entry("Shear velocity [m/s]", "1e-3", Patterns::Double(0),
+      declare("Shear velocity [m/s]", "1e-3", Patterns::Double(0),
                         "v: platen velocity along +x while shearing (simple shear). Units: m/s.");
-      prm.declare_entry("Consolidation time [s]", "1e-3", Patterns::Double(0),
+      declare("Consolidation time [s]", "1e-3", Patterns::Double(0),
                         "Duration of the normal-force ramp before shearing (simple shear). Units: s.");
-      prm.declare_entry("Final shear strain", "0.1", Patterns::Double(0),
+      declare("Final shear strain", "0.1", Patterns::Double(0),
                         "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
-      prm.declare_entry("Confining pressure [Pa]", "1e5", Patterns::Double(0),
+      declare("Confining pressure [Pa]", "1e5", Patterns::Double(0),
                         "sigma_c of the triaxial test (Elyashiv et al. 2020: 100, 250, 500 kPa). Units: Pa.");
-      prm.declare_entry("Axial strain rate [1/s]", "1", Patterns::Double(0),
+      declare("Axial strain rate [1/s]", "1", Patterns::Double(0),
                         "Axial strain rate of the triaxial test's loading stage. Units: 1/s.");
-      prm.declare_entry("Final axial strain", "0.2", Patterns::Double(0, 1),
+      declare("Final axial strain", "0.2", Patterns::Double(0, 1),
                         "Axial strain at which the triaxial test ends (Elyashiv et al. 2020: 0.2); the platen test's "
                         "strain limit. Dimensionless.");
-      prm.declare_entry("Max servo speed [m/s]", "0", Patterns::Double(0),
+      declare("Max servo speed [m/s]", "0", Patterns::Double(0),
                         "Cap on the triaxial servo walls' speed; 0 = 10 x strain rate x the largest box "
                         "length. Units: m/s.");
-      prm.declare_entry("Platen speed [m/s]", "0.01", Patterns::Double(0),
+      declare("Platen speed [m/s]", "0.01", Patterns::Double(0),
                         "Speed of each platen towards the other (platen compression). Units: m/s.");
-      prm.declare_entry("Post-peak fraction", "0.5", Patterns::Double(0, 1),
+      declare("Post-peak fraction", "0.5", Patterns::Double(0, 1),
                         "The platen test ends once the force has fallen below this fraction of its peak. "
                         "Dimensionless.");
       prm.leave_subsection();
@@ -618,28 +733,41 @@ namespace anticrack::dem
     void Loading::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
-      const std::string test_name = prm.get("Test");
-      test = test_name == "tilted gravity" ? Test::tilted_gravity :
-             test_name == "simple shear"   ? Test::simple_shear :
-             test_name == "triaxial"       ? Test::triaxial :
-             test_name == "platen compression" ? Test::platen_compression :
-                                             Test::clump_force;
-      adaptive = prm.get_bool("Adaptive rate");
-      ramp.slow_fraction = prm.get_double("Slow rate fraction");
-      ramp.interval = prm.get_integer("Control interval [steps]");
-      ramp.recovery_factor = prm.get_double("Rate recovery factor");
-      ramp.lag_tolerance = prm.get_double("Lag tolerance");
-      stop_strain = prm.get_double("Stop strain");
-      normal_stress = prm.get_double("Normal stress [Pa]");
-      shear_velocity = prm.get_double("Shear velocity [m/s]");
-      consolidation_time = prm.get_double("Consolidation time [s]");
-      final_shear_strain = prm.get_double("Final shear strain");
-      confining_pressure = prm.get_double("Confining pressure [Pa]");
-      axial_strain_rate = prm.get_double("Axial strain rate [1/s]");
-      final_axial_strain = prm.get_double("Final axial strain");
-      max_servo_speed = prm.get_double("Max servo speed [m/s]");
-      platen_speed = prm.get_double("Platen speed [m/s]");
-      post_peak_fraction = prm.get_double("Post-peak fraction");
+      test = test_names().value(prm.get("Test"));
+      // Entries of other tests are not declared for this scene: they keep their defaults.
+      const auto uses = [&](const std::string &entry) { return has_entry(test, entry); };
+      if (uses("Adaptive rate"))
+        adaptive = prm.get_bool("Adaptive rate");
+      if (uses("Slow rate fraction"))
+        ramp.slow_fraction = prm.get_double("Slow rate fraction");
+      if (uses("Control interval [steps]"))
+        ramp.interval = prm.get_integer("Control interval [steps]");
+      if (uses("Rate recovery factor"))
+        ramp.recovery_factor = prm.get_double("Rate recovery factor");
+      if (uses("Lag tolerance"))
+        ramp.lag_tolerance = prm.get_double("Lag tolerance");
+      if (uses("Stop strain"))
+        stop_strain = prm.get_double("Stop strain");
+      if (uses("Normal stress [Pa]"))
+        normal_stress = prm.get_double("Normal stress [Pa]");
+      if (uses("Shear velocity [m/s]"))
+        shear_velocity = prm.get_double("Shear velocity [m/s]");
+      if (uses("Consolidation time [s]"))
+        consolidation_time = prm.get_double("Consolidation time [s]");
+      if (uses("Final shear strain"))
+        final_shear_strain = prm.get_double("Final shear strain");
+      if (uses("Confining pressure [Pa]"))
+        confining_pressure = prm.get_double("Confining pressure [Pa]");
+      if (uses("Axial strain rate [1/s]"))
+        axial_strain_rate = prm.get_double("Axial strain rate [1/s]");
+      if (uses("Final axial strain"))
+        final_axial_strain = prm.get_double("Final axial strain");
+      if (uses("Max servo speed [m/s]"))
+        max_servo_speed = prm.get_double("Max servo speed [m/s]");
+      if (uses("Platen speed [m/s]"))
+        platen_speed = prm.get_double("Platen speed [m/s]");
+      if (uses("Post-peak fraction"))
+        post_peak_fraction = prm.get_double("Post-peak fraction");
       prm.leave_subsection();
     }
 
@@ -685,7 +813,7 @@ namespace anticrack::dem
     }
 
     // ---------------------------------------------------------------------------------- DEM
-    void Dem::declare_parameters(ParameterHandler &prm)
+    void Dem::declare_parameters(ParameterHandler &prm, const Declaration &declaration)
     {
       prm.enter_subsection("DEM");
       prm.declare_entry("Steps", "1000", Patterns::Integer(1),
@@ -700,11 +828,14 @@ namespace anticrack::dem
       Domain::declare_parameters(prm);
       Material::declare_parameters(prm);
       Bond::declare_parameters(prm);
-      Sample::declare_parameters(prm);
+      const auto variant = [](const std::optional<int> value, auto type) {
+        return value ? std::optional<decltype(type)>(static_cast<decltype(type)>(*value)) : std::nullopt;
+      };
+      Sample::declare_parameters(prm, variant(declaration.sample_type, Sample::Type{}));
       Integration::declare_parameters(prm);
       Walls::declare_parameters(prm);
       BoundaryParticles::declare_parameters(prm);
-      Loading::declare_parameters(prm);
+      Loading::declare_parameters(prm, variant(declaration.loading_test, Loading::Test{}));
       Bedding::declare_parameters(prm);
       prm.leave_subsection();
     }
@@ -732,6 +863,14 @@ namespace anticrack::dem
   namespace parameters
   {
     // ----------------------------------------------------------------------------- Campaign
+    const EnumTable<Campaign::QuasiStaticCheck> &Campaign::check_names()
+    {
+      static const EnumTable<QuasiStaticCheck> names{{"none", QuasiStaticCheck::none},
+                                                     {"first realization", QuasiStaticCheck::first_realization},
+                                                     {"all", QuasiStaticCheck::all}};
+      return names;
+    }
+
     void Campaign::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Campaign");
@@ -750,7 +889,7 @@ namespace anticrack::dem
                         "number = 3.5`). An entry with a '/' is a path below DEM, so that material "
                         "sweeps run the same way (`Bond/Tensile strength [Pa] = 2e6, Bond/Cohesion [Pa] = "
                         "2e6`). Empty: the scene's own sample is the one microstructure.");
-      prm.declare_entry("Quasi-static check", "none", Patterns::Selection("none|first realization|all"),
+      prm.declare_entry("Quasi-static check", "none", Patterns::Selection(check_names().pattern()),
                         "Which tests are repeated with every loading rate divided by Quasi-static "
                         "slowdown, to show that the failure point does not depend on the rate: none, "
                         "every angle and microstructure of the first realization, or all tests.");
@@ -787,32 +926,50 @@ namespace anticrack::dem
         }
         microstructures.push_back(entries);
       }
-      const std::string check = prm.get("Quasi-static check");
-      quasi_static_check = check == "all"                 ? QuasiStaticCheck::all :
-                           check == "first realization" ? QuasiStaticCheck::first_realization :
-                                                          QuasiStaticCheck::none;
+      quasi_static_check = check_names().value(prm.get("Quasi-static check"));
       quasi_static_slowdown = prm.get_double("Quasi-static slowdown");
       quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
       prm.leave_subsection();
     }
   } // namespace parameters
 
-  void SceneParameters::declare_parameters(ParameterHandler &prm)
+  const EnumTable<SceneKind> &scene_kind_names()
   {
+    static const EnumTable<SceneKind> names{
+      {"dem", SceneKind::dem}, {"campaign", SceneKind::campaign}, {"calibration", SceneKind::calibration}};
+    return names;
+  }
+
+  void SceneParameters::declare_parameters(ParameterHandler &prm, const Declaration &declaration)
+  {
+    // The kind is read by app/scenes.cpp before this declaration; declaring it here lets the file
+    // say it, and makes `anticrack params --scene KIND` print a scene of that kind.
+    const std::string kind = scene_kind_names().name(declaration.kind.value_or(SceneKind::dem));
+    prm.declare_entry("Scene", kind,
+                      Patterns::Selection(declaration.kind ? kind : scene_kind_names().pattern()),
+                      "What the scene is: `dem` one DEM run, `campaign` the DEM test at every loading "
+                      "angle x realization x microstructure (subsection Campaign), `calibration` a "
+                      "campaign and the continuum material calibrated from it (subsection Calibration). "
+                      "Snowpack (FE) scenes say `snowpack`. A scene without it is read as the kind its "
+                      "subsections suggest, with a note.");
     prm.declare_entry("Components", "dem", Patterns::MultipleSelection("dem"),
-                      "What the scene runs: `dem` is the bonded-particle simulation (calibration "
-                      "and finite elements will be added as further components).");
+                      "Kept for scenes written before `Scene`: `dem` is the bonded-particle simulation.");
     parameters::Output::declare_parameters(prm);
-    parameters::Dem::declare_parameters(prm);
-    parameters::Campaign::declare_parameters(prm);
+    parameters::Dem::declare_parameters(prm, declaration);
+    if (declaration.declares_campaign())
+      parameters::Campaign::declare_parameters(prm);
+    if (declaration.declare_more)
+      declaration.declare_more(prm);
   }
 
   void SceneParameters::parse_parameters(ParameterHandler &prm)
   {
+    kind = scene_kind_names().value(prm.get("Scene"));
     components = dealii::Utilities::split_string_list(prm.get("Components"), ',');
     output.parse_parameters(prm);
     dem.parse_parameters(prm);
-    campaign.parse_parameters(prm);
+    if (kind != SceneKind::dem)
+      campaign.parse_parameters(prm);
   }
 
   // --------------------------------------------------------------------------- validation
@@ -1164,6 +1321,10 @@ namespace anticrack::dem
           problems.add("DEM/Loading/Adaptive rate", "true",
                        "adapts a force ramp; simple shear is displacement-controlled (set false)");
       }
+      if (scene.kind != SceneKind::dem && !scene.campaign.enabled())
+        problems.add("Campaign/Loading angles [deg]", "(empty)",
+                     "a " + scene_kind_names().name(scene.kind) + " scene runs the test at these angles: give at "
+                     "least one (or make it one run: set Scene = dem, without subsection Campaign)");
       if (scene.campaign.enabled() && d.loading.test == LoadingTest::simple_shear)
         problems.add("Campaign/Loading angles [deg]", "(set)",
                      "campaigns run load-controlled tests at loading angles; simple shear has none");
@@ -1223,18 +1384,114 @@ namespace anticrack::dem
     return parts;
   }
 
-  SceneParameters read_scene(const std::string &file,
-                             const std::vector<std::pair<std::string, std::string>> &overrides)
+  namespace
+  {
+    using Overrides = std::vector<std::pair<std::string, std::string>>;
+
+    /// The kind, DEM/Sample/Type and DEM/Loading/Test of a scene (overrides included): the
+    /// variants whose entries it may set. A first pass that skips every other entry.
+    Declaration declaration_of(const std::string &bytes, const std::string &file, const SceneKind kind,
+                               const Overrides &overrides)
+    {
+      using parameters::Loading;
+      using parameters::Sample;
+      ParameterHandler prm;
+      prm.enter_subsection("DEM");
+      prm.enter_subsection("Sample");
+      prm.declare_entry("Type", "simple cubic lattice", Patterns::Selection(Sample::type_names().pattern()));
+      prm.leave_subsection();
+      prm.enter_subsection("Loading");
+      prm.declare_entry("Test", "clump force", Patterns::Selection(Loading::test_names().pattern()));
+      prm.leave_subsection();
+      prm.leave_subsection();
+      std::istringstream input(bytes);
+      prm.parse_input(input, file, "", /*skip_undefined=*/true);
+      for (const auto &[path, value] : overrides)
+        if (path == "Sample/Type" || path == "DEM/Sample/Type" || path == "Loading/Test" || path == "DEM/Loading/Test")
+        {
+          const auto parts = split_parameter_path(path.rfind("DEM/", 0) == 0 ? path : "DEM/" + path);
+          prm.enter_subsection(parts[0]);
+          prm.enter_subsection(parts[1]);
+          prm.set(parts[2], value);
+          prm.leave_subsection();
+          prm.leave_subsection();
+        }
+      Declaration declaration;
+      declaration.kind = kind;
+      prm.enter_subsection("DEM");
+      prm.enter_subsection("Sample");
+      declaration.sample_type = static_cast<int>(Sample::type_names().value(prm.get("Type")));
+      prm.leave_subsection();
+      prm.enter_subsection("Loading");
+      declaration.loading_test = static_cast<int>(Loading::test_names().value(prm.get("Test")));
+      prm.leave_subsection();
+      prm.leave_subsection();
+      return declaration;
+    }
+
+    /// Why an entry that some DEM scene may set does not belong to this one.
+    std::string foreign_entry_reason(const std::vector<std::string> &path, const Declaration &declaration)
+    {
+      using parameters::Loading;
+      using parameters::Sample;
+      const std::string kind = scene_kind_names().name(*declaration.kind);
+      if (path.front() == "Campaign")
+        return "subsection Campaign belongs to scenes of kind campaign or calibration (set Scene = campaign); "
+               "this is a `" + kind + "` scene";
+      const auto alternatives = [](const auto &names, auto has_entry, const std::string &entry) {
+        std::string list;
+        for (const auto &[name, value] : names.rows())
+          if (has_entry(value, entry))
+            list += (list.empty() ? "`" : ", `") + std::string(name) + "`";
+        return list;
+      };
+      if (path.size() == 3 && path[0] == "DEM" && path[1] == "Sample")
+        return "belongs to DEM/Sample/Type = " + alternatives(Sample::type_names(), Sample::has_entry, path[2]) +
+               ", not to this scene's `" +
+               Sample::type_names().name(static_cast<Sample::Type>(*declaration.sample_type)) + "`";
+      if (path.size() == 3 && path[0] == "DEM" && path[1] == "Loading")
+        return "belongs to DEM/Loading/Test = " + alternatives(Loading::test_names(), Loading::has_entry, path[2]) +
+               ", not to this scene's `" +
+               Loading::test_names().name(static_cast<Loading::Test>(*declaration.loading_test)) + "`";
+      return "does not belong to a `" + kind + "` scene";
+    }
+
+    /// Every entry the file sets that its kind and variants do not declare, though another kind or
+    /// variant does; entries no DEM scene knows are left to the ParameterHandler's own message.
+    void collect_foreign_entries(const std::string &bytes, const Declaration &declaration, Problems &problems)
+    {
+      ParameterHandler specific, every_kind_and_variant;
+      SceneParameters::declare_parameters(specific, declaration);
+      SceneParameters::declare_parameters(every_kind_and_variant, Declaration{});
+      const auto declared = declared_entries(specific);
+      const auto known = declared_entries(every_kind_and_variant);
+      bool campaign_reported = false; // a foreign subsection Campaign is named once, not per entry
+      for (const ParameterSetting &setting : scan_parameter_settings(bytes))
+        if (!declared.count(setting.path) && known.count(setting.path) &&
+            !(setting.path.front() == "Campaign" && std::exchange(campaign_reported, true)))
+          problems.add(setting.path_text() + " (line " + std::to_string(setting.line) + ")",
+                       foreign_entry_reason(setting.path, declaration));
+    }
+  } // namespace
+
+  SceneParameters read_scene(const std::string &file, const SceneKind kind, const Overrides &overrides,
+                             void (*declare_more)(dealii::ParameterHandler &prm))
   {
     SceneParameters scene;
     scene.file = file;
+    scene.declare_more = declare_more;
     const std::string bytes = read_file_bytes(file);
     scene.file_sha256 = util::sha256_hex(bytes);
 
     ParameterHandler prm;
-    SceneParameters::declare_parameters(prm);
     try
     {
+      Declaration declaration = declaration_of(bytes, file, kind, overrides);
+      declaration.declare_more = declare_more;
+      Problems foreign("scene file <" + file + ">");
+      collect_foreign_entries(bytes, declaration, foreign);
+      foreign.throw_if_any();
+      SceneParameters::declare_parameters(prm, declaration);
       std::istringstream input(bytes);
       prm.parse_input(input, file);
       for (const auto &[path, value] : overrides)
@@ -1265,6 +1522,10 @@ namespace anticrack::dem
       throw InputError("Invalid scene file <" + file + ">:\n" + info.str() +
                        "\n(`anticrack params` lists every entry with its pattern.)");
     }
+    catch (const InputError &)
+    {
+      throw;
+    }
     catch (const std::exception &e)
     {
       throw InputError("Invalid scene file <" + file + ">: " + e.what());
@@ -1288,7 +1549,32 @@ namespace anticrack::dem
       throw InputError("Scene <" + scene.file + "> has no runnable component (Components = dem).");
   }
 
-  void declare_dem_scene(dealii::ParameterHandler &prm) { SceneParameters::declare_parameters(prm); }
+  Declaration scene_declaration(const std::string &file, const SceneKind kind,
+                                void (*declare_more)(dealii::ParameterHandler &prm))
+  {
+    Declaration declaration = scene_declaration(file, kind);
+    declaration.declare_more = declare_more;
+    return declaration;
+  }
+
+  Declaration scene_declaration(const std::string &file, const SceneKind kind)
+  {
+    try
+    {
+      return declaration_of(read_file_bytes(file), file, kind, {});
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
+    }
+  }
+
+  void declare_dem_scene(dealii::ParameterHandler &prm, const Declaration &declaration)
+  {
+    SceneParameters::declare_parameters(prm, declaration);
+  }
 
   nlohmann::ordered_json scene_info(const SceneParameters &scene)
   {

@@ -17,6 +17,7 @@
 #include "dem/core/system.h"
 #include "dem/core/types.h"
 #include "dem/core/walls.h"
+#include "util/enum_table.h"
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,37 @@ namespace dealii
 
 namespace anticrack::dem
 {
+  /// The scene kinds that read DEM scenes (app/scenes.cpp has the table of all kinds).
+  enum class SceneKind
+  {
+    dem,         ///< one run
+    campaign,    ///< + subsection Campaign
+    calibration  ///< + subsection Campaign and subsection Calibration (coupling/)
+  };
+  const EnumTable<SceneKind> &scene_kind_names();
+
+  namespace parameters
+  {
+    struct Sample;
+    struct Loading;
+  }
+
+  /// What a declaration of the DEM scene entries is for: one scene kind and one variant of each
+  /// selection that has variants (DEM/Sample/Type, DEM/Loading/Test), so that a scene can set only
+  /// what it uses; or, where a member is empty, every kind or variant (the documentation that
+  /// `anticrack params` prints, and the union a foreign entry is looked up in).
+  struct Declaration
+  {
+    std::optional<SceneKind> kind;
+    std::optional<int> sample_type; ///< a parameters::Sample::Type
+    std::optional<int> loading_test; ///< a parameters::Loading::Test
+    /// Entries another module adds to scenes of this kind (subsection Calibration of a calibration
+    /// scene, coupling/calibration_scene.h): declared beside the DEM's, parsed by that module.
+    void (*declare_more)(dealii::ParameterHandler &prm) = nullptr;
+
+    [[nodiscard]] bool declares_campaign() const { return !kind || *kind != SceneKind::dem; }
+  };
+
   namespace parameters
   {
     /// subsection Output: what is written during a run and how often.
@@ -118,7 +150,12 @@ namespace anticrack::dem
       double packing_pressure = 1e5;    ///< [Pa]
       double disc_diameter = 0;         ///< [m], > 0 carves a disc (axis y) for the Brazilian test
 
-      static void declare_parameters(dealii::ParameterHandler &prm);
+      static const EnumTable<Type> &type_names();
+      /// Whether `entry` of DEM/Sample belongs to samples of `type` (Type is declared for all).
+      static bool has_entry(Type type, const std::string &entry);
+
+      /// Declares Type and the entries of `type` (every entry of every type if empty).
+      static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Type> type);
       void parse_parameters(dealii::ParameterHandler &prm);
     };
 
@@ -130,6 +167,9 @@ namespace anticrack::dem
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
     };
+
+    /// The names of the wall controls in a scene file (DEM/Walls/<face>/Control).
+    const EnumTable<dem::WallControl> &wall_control_names();
 
     /// subsection DEM/Walls/<face>: a planar wall on one face of the domain box.
     struct WallFace
@@ -202,7 +242,12 @@ namespace anticrack::dem
       double platen_speed = 1e-2;        ///< [m/s]
       double post_peak_fraction = 0.5;
 
-      static void declare_parameters(dealii::ParameterHandler &prm);
+      static const EnumTable<Test> &test_names();
+      /// Whether `entry` of DEM/Loading belongs to the test `test` (Test is declared for all).
+      static bool has_entry(Test test, const std::string &entry);
+
+      /// Declares Test and the entries of `test` (every entry of every test if empty).
+      static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Test> test);
       void parse_parameters(dealii::ParameterHandler &prm);
     };
 
@@ -234,7 +279,7 @@ namespace anticrack::dem
       Loading loading;
       Bedding bedding;
 
-      static void declare_parameters(dealii::ParameterHandler &prm);
+      static void declare_parameters(dealii::ParameterHandler &prm, const Declaration &declaration);
       void parse_parameters(dealii::ParameterHandler &prm);
     };
   } // namespace parameters
@@ -262,6 +307,7 @@ namespace anticrack::dem
 
       [[nodiscard]] bool enabled() const { return !loading_angles_deg.empty(); }
 
+      static const EnumTable<QuasiStaticCheck> &check_names();
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
     };
@@ -280,12 +326,14 @@ namespace anticrack::dem
     std::string resume_key_sha256;
 
     // --- content
+    SceneKind kind = SceneKind::dem;
+    void (*declare_more)(dealii::ParameterHandler &prm) = nullptr; ///< as read (Declaration::declare_more)
     std::vector<std::string> components;
     parameters::Output output;
     parameters::Dem dem;
     parameters::Campaign campaign;
 
-    static void declare_parameters(dealii::ParameterHandler &prm);
+    static void declare_parameters(dealii::ParameterHandler &prm, const Declaration &declaration);
     void parse_parameters(dealii::ParameterHandler &prm);
   };
 
@@ -296,14 +344,24 @@ namespace anticrack::dem
   /// Reads, parses and validates a scene file; throws InputError with a complete message.
   /// `overrides` (entry path with '/' between subsections, value) are set after the file is read,
   /// as if the file said so: a campaign's microstructures are the scene with other sample entries.
-  SceneParameters read_scene(const std::string &file,
-                             const std::vector<std::pair<std::string, std::string>> &overrides = {});
+  /// `kind`: what the scene file says it is (`set Scene = ...`), or the kind app/scenes.cpp
+  /// inferred for a scene that does not say; an entry that belongs to another kind or to another
+  /// variant (DEM/Sample/Type, DEM/Loading/Test) is refused with a message that names both.
+  /// `declare_more`: see Declaration::declare_more.
+  SceneParameters read_scene(const std::string &file, SceneKind kind,
+                             const std::vector<std::pair<std::string, std::string>> &overrides = {},
+                             void (*declare_more)(dealii::ParameterHandler &prm) = nullptr);
 
   /// Throws InputError unless the scene has a runnable component (Components = dem).
   void require_dem_component(const SceneParameters &scene);
 
-  /// Declares every entry of a DEM scene (what `anticrack params` lists for it).
-  void declare_dem_scene(dealii::ParameterHandler &prm);
+  /// What a scene file of `kind` declares: its kind and the variants it chose (DEM/Sample/Type,
+  /// DEM/Loading/Test; their defaults where it does not choose).
+  Declaration scene_declaration(const std::string &file, SceneKind kind);
+  Declaration scene_declaration(const std::string &file, SceneKind kind, void (*declare_more)(dealii::ParameterHandler &prm));
+
+  /// Declares the entries of a DEM scene (what `anticrack params` lists).
+  void declare_dem_scene(dealii::ParameterHandler &prm, const Declaration &declaration);
 
   /// Provenance for summary.json: the scene file (as given and absolute), its SHA-256 and those of
   /// the canonical parameters and of the resume key.

@@ -236,6 +236,32 @@ def expect_bad_input(work, scene, *needles):
 
 
 @case
+def scene_kinds(work):
+    """A scene says its kind (`set Scene = ...`) and sets only the entries of its kind and variants:
+    an empty scene is refused, a scene without `Scene` is read as the kind it suggests (with a
+    note), subsection Campaign in a `dem` scene and an entry of another sample type are refused
+    naming the kind or the variant (exit 2, nothing written); `params SCENE` lists what that
+    scene can set."""
+    expect_bad_input(work, write(os.path.join(work, "empty.prm"), "# no entries\n"), "sets nothing")
+    mixed = open(os.path.join(SOURCE, "scenes", "mixed_mode_clump.prm")).read()
+    campaign = open(os.path.join(SOURCE, "scenes", "shs_yield_surface.prm")).read()
+    expect_bad_input(work, write(os.path.join(work, "foreign_campaign.prm"), edit_scene(campaign, {"Scene": "dem"})),
+                     "Campaign/Loading angles [deg]", "belongs to scenes of kind campaign", "`dem` scene")
+    expect_bad_input(work, write(os.path.join(work, "foreign_sample.prm"),
+                                 edit_scene(mixed, {}, insert={"DEM/Sample": ["set Volume fraction = 0.3"]})),
+                     "DEM/Sample/Volume fraction", "`sticky hard spheres`", "`simple cubic lattice`")
+    unsaid = write(os.path.join(work, "unsaid.prm"), edit_scene(mixed, {}, remove=["Scene"]))
+    _, stderr = anticrack("check", unsaid)
+    check("note" in stderr and "`dem` scene" in stderr, f"no note on the inferred kind:\n{stderr}")
+    listing, _ = anticrack("params", os.path.join(SOURCE, "scenes", "shs_sample.prm"))
+    check("set Volume fraction" in listing and "set Lattice size" not in listing
+          and not re.search(r"^\s*subsection Campaign", listing, re.M),
+          "`params SCENE` of a sticky-hard-sphere scene lists entries of another variant or kind")
+    listing, _ = anticrack("params", "--scene", "campaign")
+    check("subsection Campaign" in listing and "set Scene = campaign" in listing, "`params --scene campaign`")
+
+
+@case
 def bad_input_unknown_key(work):
     """An entry that is not declared (a typo of `Poisson ratio`)."""
     text = walls_scene(20, insert={"DEM/Material": ["set Poisson's ratio = 0.2"]})
@@ -273,6 +299,9 @@ def bad_input_missing_file(work):
     snapshot = os.path.join(work, "no_such_snapshot.h5")
     text = walls_scene(20, **{"DEM/Sample/Type": "snapshot"},
                        insert={"DEM/Sample": [f"set Snapshot file = {snapshot}"]})
+    # The lattice's own entries do not belong to a snapshot sample.
+    text = edit_scene(text, {}, remove=[f"DEM/Sample/{e}" for e in ("Lattice size", "Radius [m]", "Spacing [m]",
+                                                                    "Origin [m]")])
     expect_bad_input(work, write(os.path.join(work, "snapshot.prm"), text), "DEM/Sample/Snapshot file", snapshot)
     write(snapshot, "not HDF5\n")
     expect_bad_input(work, write(os.path.join(work, "snapshot.prm"), text), "DEM/Sample/Snapshot file", snapshot)
@@ -494,10 +523,10 @@ def ballistic_scene(rule, count, steps=20, **changes):
         "DEM/Sample/Radius [m]": "1e-3", "DEM/Boundary particles/Base thickness [mean radii]": "",
         "DEM/Boundary particles/Actuator thickness [mean radii]": "",
         "DEM/Boundary particles/Clump force rate [N/s]": "0", "DEM/Domain/Periodic axes": "x, y",
-        "DEM/Integration/Gravity [m/s^2]": "0, 0, 0", "Campaign/Loading angles [deg]": "",
+        "DEM/Integration/Gravity [m/s^2]": "0, 0, 0", "Scene": "dem",
         "DEM/Loading/Test": "clump force", "DEM/Loading/Adaptive rate": "false", "DEM/Loading/Stop strain": "0",
         "DEM/Sample/Actuator layer count": "0",
-        "Output/Checkpoint interval [steps]": "0", **changes})
+        "Output/Checkpoint interval [steps]": "0", **changes}, remove=["Campaign"])
 
 
 @case
@@ -720,10 +749,13 @@ def simple_shear_constant_normal_stress(work):
     consolidation the base normal stress stays at sigma_n (mean over the shearing within 5 %) while
     the platen shears the specimen; the shear stress peaks (failure = peak tau) and the test ends
     at the requested shear strain."""
-    text = campaign_scene("0", **{"DEM/Loading/Test": "simple shear", "DEM/Loading/Adaptive rate": "false",
+    text = campaign_scene("0", **{"DEM/Loading/Test": "simple shear",
                                   "DEM/Boundary particles/Clump force rate [N/s]": "0",
                                   "Output/History interval [steps]": "100"})
-    text = edit_scene(text, {"Campaign/Loading angles [deg]": ""}, insert={"DEM/Loading": [
+    # One run of the simple shear test: no campaign, none of the force ramp's entries.
+    ramp = ["Adaptive rate", "Slow rate fraction", "Rate recovery factor", "Lag tolerance", "Stop strain"]
+    text = edit_scene(text, {"Scene": "dem"}, remove=["Campaign"] + ["DEM/Loading/" + e for e in ramp],
+                      insert={"DEM/Loading": [
         "set Normal stress [Pa] = 5e3", "set Shear velocity [m/s] = 0.005", "set Consolidation time [s] = 2e-3",
         "set Final shear strain = 0.03"]})
     scene = write(os.path.join(work, "shear.prm"), text)
@@ -1115,6 +1147,26 @@ def calibrate_scene_small(work):
     check(p0 > 0 and 0 < beta < 1 and 0.2 < M < 5, f"(p0, beta, M) = ({p0}, {beta}, {M})")
     check(material["Fit plane"] == "sigma-tau", f"fit plane {material['Fit plane']}")
     check(float(material["Young's modulus [Pa]"]) > 0 and -1 < float(material["Poisson's ratio"]) < 0.5, "elasticity")
+
+    # The same as a scene of kind `calibration` (`anticrack run`), its options in subsection
+    # Calibration: the same material, the campaign resumed from a copy of the first one's.
+    calibration_scene = write(os.path.join(work, "calibration.prm"), edit_scene(
+        open(scene).read(), {"Scene": "calibration"}) + "subsection Calibration\n  set FE plane = sigma-tau\n  set Bootstrap resamples = 0\n"
+        "  set Plots = false\nend\n")
+    stdout, _ = anticrack("check", calibration_scene)
+    check("Calibration: Cam-Clay fit of the (sigma, tau) plane" in stdout, f"`check` of a calibration scene:\n{stdout}")
+    run_dir = os.path.join(work, "run")
+    os.makedirs(run_dir)
+    shutil.copytree(os.path.join(out, "campaign"), os.path.join(run_dir, "campaign"))
+    stdout, _ = anticrack("run", calibration_scene, "-o", run_dir)
+    check(stdout.count("completed earlier, skipped") == 5, f"the calibration scene did not resume the campaign:\n{stdout}")
+    again = read_material(os.path.join(run_dir, "material.prm"))
+    for name in ["Compressive strength p0 [Pa]", "Tensile strength ratio beta", "Critical state slope M",
+                 "Young's modulus [Pa]", "Poisson's ratio", "Fit plane"]:
+        check(again[name] == material[name], f"{name}: {again[name]} from the scene, {material[name]} from `calibrate`")
+    bad = write(os.path.join(work, "bad_calibration.prm"),
+                open(calibration_scene).read().replace("set FE plane = sigma-tau", "set Poisson's ratio = 0.7"))
+    expect_bad_input(work, bad, "Calibration/Poisson's ratio", "(-1, 0.5)")
 
 
 # ------------------------------------------------------------------------ snowpack scenes (FE)

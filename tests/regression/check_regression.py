@@ -80,7 +80,7 @@ CASES = {
                                    "Output/Snapshot interval [steps]": "0",
                                    "Output/Checkpoint interval [steps]": "0",
                                    "Output/Progress interval [steps]": "0",
-                                   "Output/Write ParaView": "false"},
+                                   "Output/Write ParaView": "false", "Scene": "campaign"},
                           insert={"DEM": ["subsection Loading", "  set Stop strain = 0.05", "end"],
                                   "": ["subsection Campaign", "  set Loading angles [deg] = 0, 60, 120, 180",
                                        "  set Realizations = 1", "end"]}),
