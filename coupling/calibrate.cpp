@@ -1,5 +1,7 @@
 #include "coupling/calibrate.h"
 
+#include "coupling/material_handoff.h"
+
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "util/input_error.h"
@@ -108,7 +110,7 @@ namespace anticrack::coupling
     for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
     {
       material_names.push_back(material_file_name(m, calibration.microstructures.size()));
-      material_texts.push_back(params::material_file_text(calibration, m, version));
+      material_texts.push_back(fem::material_file_text(material_handoff(calibration, m, version)));
       fem::read_material_text(material_texts.back(), material_names.back());
     }
     fs::create_directories(directory);
