@@ -134,13 +134,12 @@ namespace anticrack::coupling
     summary["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), summary);
 
-    const auto &first =
-      calibration.microstructures.front().plane(calibration.options.fe_plane).cam_clay();
+    const params::PlaneCalibration &first = calibration.microstructures.front().plane(calibration.options.fe_plane);
+    const params::CamClaySurface surface = first.cam_clay_surface();
     std::cout << "anticrack calibrate: " << calibration.microstructures.size() << " microstructure(s) from "
               << campaign_file << "\n  microstructure 0, " << params::plane_id(calibration.options.fe_plane)
-              << " plane: p0 = " << first.parameters[0]
-              << " Pa, beta = " << first.parameters[1] << ", M = " << first.parameters[2]
-              << ", R^2 = " << first.r_squared << "\n  wrote " << directory.string() << "/{"
+              << " plane: p0 = " << surface.p0 << " Pa, beta = " << surface.beta << ", M = " << surface.M
+              << ", R^2 = " << first.cam_clay().r_squared << "\n  wrote " << directory.string() << "/{"
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
 

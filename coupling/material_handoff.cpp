@@ -6,8 +6,6 @@ namespace anticrack::coupling
 {
   namespace
   {
-    fem::MaterialInterval interval(double lower, double upper) { return {lower, upper}; }
-
     fem::MaterialInterval interval(const params::SampleStatistics &s) { return {s.mean_ci.lower, s.mean_ci.upper}; }
 
     /// How every value was measured, for the reader of the file (not read by the solver).
@@ -64,7 +62,8 @@ namespace anticrack::coupling
     const params::MicrostructureCalibration &c = calibration.microstructures.at(m);
     const params::CampaignData &campaign = calibration.campaign;
     const params::StressPlane plane = calibration.options.fe_plane;
-    const params::EnvelopeFit &surface = c.plane(plane).cam_clay();
+    const params::CamClaySurface surface = c.plane(plane).cam_clay_surface();
+    const params::CamClaySurfaceInterval surface_interval = c.plane(plane).cam_clay_interval();
     const params::ElasticConstants &e = c.elastic;
     const params::SofteningEstimate &soft = c.softening;
 
@@ -75,9 +74,9 @@ namespace anticrack::coupling
     material.density = c.density;
     material.youngs_modulus = e.youngs_modulus.mean;
     material.poisson_ratio = e.poisson_ratio.mean;
-    material.p0 = surface.parameters[0];
-    material.beta = surface.parameters[1];
-    material.M = surface.parameters[2];
+    material.p0 = surface.p0;
+    material.beta = surface.beta;
+    material.M = surface.M;
     material.hardening_law = "collapse"; // the law the softening was measured for (elastic_calibration.h)
     material.hardening_factor = soft.hardening_factor.mean;
     material.residual_strength_ratio = soft.residual_ratio.mean;
@@ -85,9 +84,9 @@ namespace anticrack::coupling
 
     fem::MaterialUncertainty &u = file.uncertainty;
     u.confidence = calibration.options.confidence;
-    u.p0 = interval(surface.ci_lower[0], surface.ci_upper[0]);
-    u.beta = interval(surface.ci_lower[1], surface.ci_upper[1]);
-    u.M = interval(surface.ci_lower[2], surface.ci_upper[2]);
+    u.p0 = {surface_interval.lower.p0, surface_interval.upper.p0};
+    u.beta = {surface_interval.lower.beta, surface_interval.upper.beta};
+    u.M = {surface_interval.lower.M, surface_interval.upper.M};
     u.youngs_modulus = interval(e.youngs_modulus);
     u.poisson_ratio = interval(e.poisson_ratio);
     u.hardening_factor = interval(soft.hardening_factor);
@@ -99,7 +98,7 @@ namespace anticrack::coupling
     p.scene_sha256 = campaign.scene_file_sha256;
     p.microstructure = c.index;
     p.fit_plane = plane == params::StressPlane::invariants ? "p-q" : "sigma-tau";
-    p.r_squared = surface.r_squared;
+    p.r_squared = c.plane(plane).cam_clay().r_squared;
     return file;
   }
 } // namespace anticrack::coupling

@@ -162,7 +162,7 @@ namespace anticrack::params
         hdf5::write_doubles(fr.id, "psi_star_deg", in_degrees(f.psi_star), "deg", "normalised loading angle");
         hdf5::write_doubles(fr.id, "theta_star_deg", in_degrees(f.theta_star), "deg",
                             "normalised flow angle (Ritter et al. 2020, Eq. 18)");
-        const CamClayParameters surface = c.base_plane.cam_clay_parameters();
+        const CamClaySurface surface = c.base_plane.cam_clay_surface();
         std::vector<double> curve_psi, curve_theta;
         for (int k = 0; k <= 180; ++k)
         {
