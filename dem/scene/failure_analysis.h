@@ -50,7 +50,9 @@ namespace anticrack::dem
   };
 
   /// Analysis of a clump-driven test (needs the clump and Love-Weber columns); `sample_height` [m]
-  /// turns the clump's vertical displacement into the loading strain. If the history does not
+  /// turns the clump's vertical displacement into the loading strain (the run passes the whole
+  /// specimen's H0; the calibration's moduli use the deformable layer h instead, see
+  /// params/elastic_calibration.h). If the history does not
   /// allow the analysis (no clump, no run-away yet) `error` says why.
   /// `shear_controlled`: a displacement-controlled simple shear test; failure is the peak of the
   /// base shear stress, the strain is the shear strain u_x / H.
