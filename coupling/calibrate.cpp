@@ -1,6 +1,7 @@
 #include "coupling/calibrate.h"
 
 #include "coupling/calibration_scene.h"
+#include "coupling/material_handoff.h"
 
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
@@ -115,7 +116,7 @@ namespace anticrack::coupling
     for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
     {
       material_names.push_back(material_file_name(m, calibration.microstructures.size()));
-      material_texts.push_back(params::material_file_text(calibration, m, version));
+      material_texts.push_back(fem::material_file_text(material_handoff(calibration, m, version)));
       fem::read_material_text(material_texts.back(), material_names.back());
     }
     fs::create_directories(directory);
@@ -139,13 +140,12 @@ namespace anticrack::coupling
     summary["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), summary);
 
-    const auto &first =
-      calibration.microstructures.front().plane(calibration.options.fe_plane).cam_clay();
+    const params::PlaneCalibration &first = calibration.microstructures.front().plane(calibration.options.fe_plane);
+    const params::CamClaySurface surface = first.cam_clay_surface();
     std::cout << "anticrack calibrate: " << calibration.microstructures.size() << " microstructure(s) from "
               << campaign_file << "\n  microstructure 0, " << params::plane_id(calibration.options.fe_plane)
-              << " plane: p0 = " << first.parameters[0]
-              << " Pa, beta = " << first.parameters[1] << ", M = " << first.parameters[2]
-              << ", R^2 = " << first.r_squared << "\n  wrote " << directory.string() << "/{"
+              << " plane: p0 = " << surface.p0 << " Pa, beta = " << surface.beta << ", M = " << surface.M
+              << ", R^2 = " << first.cam_clay().r_squared << "\n  wrote " << directory.string() << "/{"
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
 

@@ -56,7 +56,7 @@ namespace anticrack::params
         smallest_angle = std::min(smallest_angle, polar_angle(point));
         largest_angle = std::max(largest_angle, polar_angle(point));
       }
-      const CamClayParameters p = c.cam_clay_parameters();
+      const CamClaySurface p = c.cam_clay_surface();
       const double limit = tip_extrapolation_limit * largest;
       std::ostringstream why;
       why.precision(3);
@@ -101,7 +101,7 @@ namespace anticrack::params
       return c;
     }
 
-    FlowRuleAnalysis analyse_flow_rule(const std::vector<CampaignTest> &tests, const CamClayParameters &surface,
+    FlowRuleAnalysis analyse_flow_rule(const std::vector<CampaignTest> &tests, const CamClaySurface &surface,
                                        double confidence)
     {
       FlowRuleAnalysis f;
@@ -155,10 +155,11 @@ namespace anticrack::params
     return fits.at(static_cast<std::size_t>(k));
   }
 
-  CamClayParameters PlaneCalibration::cam_clay_parameters() const
+  CamClaySurface PlaneCalibration::cam_clay_surface() const { return params::cam_clay_surface(cam_clay().parameters); }
+
+  CamClaySurfaceInterval PlaneCalibration::cam_clay_interval() const
   {
-    const auto &p = cam_clay().parameters;
-    return {p[0], p[1], p[2]};
+    return {params::cam_clay_surface(cam_clay().ci_lower), params::cam_clay_surface(cam_clay().ci_upper)};
   }
 
   Calibration calibrate(const CampaignData &campaign, const CalibrationOptions &options)
@@ -215,9 +216,9 @@ namespace anticrack::params
                " the material from the (sigma, tau) fit (--fe-plane sigma-tau), or add stress paths of "
                "other q/p (open sides, triaxial tests), loading angles or realizations" :
              std::string("Add loading angles near 0 and 180 deg, or realizations")));
-      c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_parameters(), options.confidence);
+      c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_surface(), options.confidence);
       c.elastic = elastic_constants(campaign, c.index, options.confidence, options.poisson_ratio);
-      c.softening = collapse_softening(campaign, c.index, fe.cam_clay_parameters().p0,
+      c.softening = collapse_softening(campaign, c.index, fe.cam_clay_surface().p0,
                                        c.elastic.bulk_modulus.mean, c.elastic.axial_modulus.mean, options.confidence);
       result.microstructures.push_back(std::move(c));
     }
@@ -231,7 +232,7 @@ namespace anticrack::params
       ScalingLaws s;
       for (const auto &c : result.microstructures)
       {
-        const CamClayParameters p = c.base_plane.cam_clay_parameters();
+        const CamClaySurface p = c.base_plane.cam_clay_surface();
         s.contact_density.push_back(c.contact_density);
         s.compressive_over_bond.push_back(p.p0 / c.material.bond_tensile_strength);
         s.tensile_over_bond.push_back(p.beta * p.p0 / c.material.bond_tensile_strength);

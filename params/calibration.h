@@ -73,7 +73,8 @@ namespace anticrack::params
     std::string cam_clay_not_determined;
 
     [[nodiscard]] const EnvelopeFit &cam_clay() const;  ///< the cohesive Cam-Clay fit
-    [[nodiscard]] CamClayParameters cam_clay_parameters() const;
+    [[nodiscard]] CamClaySurface cam_clay_surface() const;      ///< of the Cam-Clay fit
+    [[nodiscard]] CamClaySurfaceInterval cam_clay_interval() const; ///< its covariance interval
   };
 
   /// Ritter et al.'s (2020) flow-rule analysis for one microstructure, in the (σ, τ) plane of its Cam-Clay fit.

@@ -3,9 +3,7 @@
 #include "util/hdf5_file.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 namespace anticrack::params
 {
@@ -164,7 +162,7 @@ namespace anticrack::params
         hdf5::write_doubles(fr.id, "psi_star_deg", in_degrees(f.psi_star), "deg", "normalised loading angle");
         hdf5::write_doubles(fr.id, "theta_star_deg", in_degrees(f.theta_star), "deg",
                             "normalised flow angle (Ritter et al. 2020, Eq. 18)");
-        const CamClayParameters surface = c.base_plane.cam_clay_parameters();
+        const CamClaySurface surface = c.base_plane.cam_clay_surface();
         std::vector<double> curve_psi, curve_theta;
         for (int k = 0; k <= 180; ++k)
         {
@@ -256,89 +254,6 @@ namespace anticrack::params
       }
     }
     std::filesystem::rename(temporary, file);
-  }
-
-  namespace
-  {
-    std::string number(double value)
-    {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.6g", value);
-      return text;
-    }
-
-    std::string interval_text(double lower, double upper) { return number(lower) + ", " + number(upper); }
-  } // namespace
-
-  std::string material_file_text(const Calibration &calibration, std::size_t m, const std::string &tool_version)
-  {
-    const MicrostructureCalibration &c = calibration.microstructures.at(m);
-    const CampaignData &campaign = calibration.campaign;
-    const StressPlane plane = calibration.options.fe_plane;
-    const EnvelopeFit &surface = c.plane(plane).cam_clay();
-    const ElasticConstants &e = c.elastic;
-    const SofteningEstimate &soft = c.softening;
-    const double percent = 100 * calibration.options.confidence;
-    std::ostringstream out;
-    out << "# anticrack material file, written by `anticrack calibrate` (params/, anticrack " << tool_version << ").\n"
-        << "# Source campaign: " << campaign.file << "\n"
-        << "#   sha256 " << campaign.sha256 << "\n"
-        << "#   scene " << campaign.scene_file << " (sha256 " << campaign.scene_file_sha256 << ")\n"
-        << "# Microstructure " << c.index << " (" << c.material.label << "): phi = " << number(c.solid_fraction)
-        << ", z = " << number(c.coordination) << ", nu_c = z phi = " << number(c.contact_density) << ", "
-        << c.realizations.size() << " realization(s), " << c.tests.size() << " failure points.\n"
-        << "# Yield surface: cohesive Cam-Clay (1 + 2 beta) q^2 + M^2 (p + beta p0)(p - p0) = 0, fitted to the\n"
-        << (plane == StressPlane::invariants ?
-              "# failure points in the (p, q) plane of the Love-Weber stress (the invariants the FE solver uses) by\n" :
-              "# failure points in the (sigma, tau) plane of the base stresses (chosen with --fe-plane sigma-tau;\n"
-              "# p0, beta, M of Ritter et al.'s (2020) plane, used as the FE's invariant-plane parameters) by\n")
-        << "# least squares of the relative radial residuals ln(r/R): R^2 = " << number(surface.r_squared)
-        << ", RMSE = " << number(100 * surface.rmse) << " %.\n"
-        << "# Intervals: " << number(percent) << " % from the covariance of the fit (surface) and over the\n"
-        << "# realizations (elasticity, softening); bootstrap intervals are in calibration.h5 and summary.json.\n"
-        << "# Elasticity: axial secant modulus " << number(e.axial_modulus.mean) << " Pa at psi = 0 ("
-        << (e.laterally_confined ? "laterally confined: constrained modulus" : "open sides: Young's modulus")
-        << "), shear secant modulus " << number(e.shear_modulus.mean) << " Pa at psi = 90 deg"
-        << (e.poisson_ratio_given ? " (not used: Poisson's ratio given)" : "") << "; bulk modulus K = "
-        << number(e.bulk_modulus.mean) << " Pa.\n"
-        << "# Softening: p0 = K sinh(xi max(-alpha, 0)), collapse law (every plastic volume change softens);\n"
-        << "# xi from the drop to R p0 over a plastic volumetric strain of "
-        << number(soft.plastic_volumetric_strain.mean) << " at psi = 0.\n"
-        << "subsection Material\n"
-        << "  set Name = " << std::filesystem::path(campaign.scene_file).stem().string() << " m" << c.index << "\n"
-        << "  set Density [kg/m^3] = " << number(c.density) << "\n"
-        << "  set Young's modulus [Pa] = " << number(e.youngs_modulus.mean) << "\n"
-        << "  set Poisson's ratio = " << number(e.poisson_ratio.mean) << "\n"
-        << "  set Compressive strength p0 [Pa] = " << number(surface.parameters[0]) << "\n"
-        << "  set Tensile strength ratio beta = " << number(surface.parameters[1]) << "\n"
-        << "  set Critical state slope M = " << number(surface.parameters[2]) << "\n"
-        << "  set Hardening law = collapse\n"
-        << "  set Hardening factor xi = " << number(soft.hardening_factor.mean) << "\n"
-        << "  set Residual strength ratio = " << number(soft.residual_ratio.mean) << "\n"
-        << "  set Reference thickness [m] = " << number(c.layer_thickness) << "\n"
-        << "  subsection Uncertainty\n"
-        << "    set Confidence = " << number(calibration.options.confidence) << "\n"
-        << "    set Compressive strength p0 interval [Pa] = " << interval_text(surface.ci_lower[0], surface.ci_upper[0]) << "\n"
-        << "    set Tensile strength ratio beta interval = " << interval_text(surface.ci_lower[1], surface.ci_upper[1]) << "\n"
-        << "    set Critical state slope M interval = " << interval_text(surface.ci_lower[2], surface.ci_upper[2]) << "\n"
-        << "    set Young's modulus interval [Pa] = "
-        << interval_text(e.youngs_modulus.mean_ci.lower, e.youngs_modulus.mean_ci.upper) << "\n"
-        << "    set Poisson's ratio interval = "
-        << interval_text(e.poisson_ratio.mean_ci.lower, e.poisson_ratio.mean_ci.upper) << "\n"
-        << "    set Hardening factor xi interval = "
-        << interval_text(soft.hardening_factor.mean_ci.lower, soft.hardening_factor.mean_ci.upper) << "\n"
-        << "  end\n"
-        << "  subsection Provenance\n"
-        << "    set Campaign file = " << campaign.file << "\n"
-        << "    set Campaign sha256 = " << campaign.sha256 << "\n"
-        << "    set Scene file = " << campaign.scene_file << "\n"
-        << "    set Scene sha256 = " << campaign.scene_file_sha256 << "\n"
-        << "    set Microstructure = " << c.index << "\n"
-        << "    set Fit plane = " << (plane == StressPlane::invariants ? "p-q" : "sigma-tau") << "\n"
-        << "    set R squared = " << number(surface.r_squared) << "\n"
-        << "  end\n"
-        << "end\n";
-    return out.str();
   }
 
   nlohmann::ordered_json calibration_summary(const Calibration &calibration)

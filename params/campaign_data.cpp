@@ -1,5 +1,6 @@
 #include "params/campaign_data.h"
 
+#include "dem/campaign/campaign_file.h"
 #include "params/calibration_error.h"
 #include "util/hdf5_file.h"
 #include "util/sha256.h"
@@ -61,45 +62,50 @@ namespace anticrack::params
           data.microstructures.push_back({labels[m], modulus[m], tensile[m], cohesion[m], density[m], periodic[m] > 0.5});
       }
 
-      const hdf5::Handle g = hdf5::open_group(f.id, "failure_points");
-      const auto ids = hdf5::read_strings(g.id, "test");
+      // The columns the calibration uses, by the names of the writer's table (dem/campaign/campaign_file.h).
+      using Row = dem::FailurePointRow;
+      const std::string table = dem::failure_points_group;
+      const hdf5::Handle g = hdf5::open_group(f.id, table);
+      const auto name_of = [](auto member) { return std::string(dem::failure_point_column(member).name); };
+      const auto ids = hdf5::read_strings(g.id, name_of(&Row::test));
       const std::size_t n = ids.size();
-      const auto status = hdf5::read_strings(g.id, "status");
+      const auto status = hdf5::read_strings(g.id, name_of(&Row::status));
       if (status.size() != n)
-        throw CalibrationError(file + ": /failure_points/status and /failure_points/test differ in length");
-      const auto microstructure = column(g.id, "microstructure", n, file);
-      const auto realization = column(g.id, "realization", n, file);
-      const auto angle = column(g.id, "loading_angle_deg", n, file);
-      const auto sigma = column(g.id, "sigma", n, file), tau = column(g.id, "tau", n, file);
-      const auto p = column(g.id, "p", n, file), q = column(g.id, "q", n, file);
-      const auto flow = column(g.id, "flow_angle_deg", n, file);
-      const auto solid = column(g.id, "solid_fraction", n, file);
-      const auto coordination = column(g.id, "coordination", n, file);
-      const auto height = column(g.id, "specimen_height", n, file);
-      const auto thickness = column(g.id, "layer_thickness", n, file);
-      const auto love = hdf5::read_doubles(g.id, "love_stress");
+        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::status) + " and /" + table + "/" +
+                               name_of(&Row::test) + " differ in length");
+      std::vector<Row> rows(n);
+      for (double Row::*member : {&Row::microstructure, &Row::realization, &Row::loading_angle_deg, &Row::sigma,
+                                  &Row::tau, &Row::p, &Row::q, &Row::flow_angle_deg, &Row::solid_fraction,
+                                  &Row::coordination, &Row::specimen_height, &Row::layer_thickness})
+      {
+        const auto values = column(g.id, name_of(member), n, file);
+        for (std::size_t k = 0; k < n; ++k)
+          rows[k].*member = values[k];
+      }
+      const auto love = hdf5::read_doubles(g.id, name_of(&Row::love_stress));
       if (love.size() != 9 * n)
-        throw CalibrationError(file + ": /failure_points/love_stress is not n x 3 x 3");
+        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::love_stress) + " is not n x 3 x 3");
       for (std::size_t k = 0; k < n; ++k)
       {
+        const Row &row = rows[k];
         CampaignTest t;
         t.id = ids[k];
         t.status = status[k];
-        t.microstructure = static_cast<int>(microstructure[k]);
-        t.realization = static_cast<int>(realization[k]);
+        t.microstructure = static_cast<int>(row.microstructure);
+        t.realization = static_cast<int>(row.realization);
         if (t.microstructure < 0 || t.microstructure >= static_cast<int>(data.microstructures.size()))
           throw CalibrationError(file + ": test " + t.id + " refers to microstructure " +
                                  std::to_string(t.microstructure) + ", the file describes " +
                                  std::to_string(data.microstructures.size()));
-        t.loading_angle_deg = angle[k];
-        t.sigma = sigma[k], t.tau = tau[k], t.p = p[k], t.q = q[k];
+        t.loading_angle_deg = row.loading_angle_deg;
+        t.sigma = row.sigma, t.tau = row.tau, t.p = row.p, t.q = row.q;
         for (int c = 0; c < 9; ++c)
           t.love_stress[c] = love[9 * k + c];
-        t.flow_angle_deg = flow[k];
-        t.solid_fraction = solid[k];
-        t.coordination = coordination[k];
-        t.specimen_height = height[k];
-        t.layer_thickness = thickness[k];
+        t.flow_angle_deg = row.flow_angle_deg;
+        t.solid_fraction = row.solid_fraction;
+        t.coordination = row.coordination;
+        t.specimen_height = row.specimen_height;
+        t.layer_thickness = row.layer_thickness;
         if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
           throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
                                  "run by an anticrack "

@@ -1,5 +1,6 @@
 // The calibration's input: a DEM campaign file (campaign.h5, written by `anticrack run` for a scene
-// with a Campaign subsection; format in docs/lab.md). Read once, validated, and kept as plain data:
+// with a Campaign subsection; format in docs/lab.md, the failure-point columns in
+// dem/campaign/campaign_file.h). Read once, validated, and kept as plain data:
 // the failure-point table, the material of every microstructure, and access to every test's history.
 #pragma once
 

@@ -6,7 +6,7 @@
 // normal strain of the deformable layer to 70 % of the peak (Bobillier et al. 2020; strains u/h, campaign_data.h). With periodic sides (Ritter et al. 2020) the specimen is
 // laterally confined, so that modulus is the constrained (P-wave) modulus M = K + 4G/3; with open
 // sides (Bobillier et al. 2020) it is Young's modulus E. The shear test gives G as the secant modulus of τ against
-// γ = u_x/H0 to 70 % of its peak (the clump moves along x over a fixed base: simple shear). Then
+// γ = u_x/h to 70 % of its peak (the clump moves along x over a fixed base: simple shear). Then
 //   confined:   K = M − 4G/3,  E = 9KG/(3K + G),  ν = (3K − 2G)/(2(3K + G));
 //   unconfined: ν = E/(2G) − 1,  K = E/(3(1 − 2ν)).
 // Confined specimens also give ν from the lateral stress ratio K0 = σ_xx/σ_zz of the Love stress in
@@ -22,6 +22,12 @@
 // uniaxial strain (confined) the volumetric strain is the normal strain; with open sides the collapse
 // is still a compaction band of zero lateral strain (Ritter et al. 2020, Fig. 1), so the same holds for its
 // plastic part.
+//
+// The run's own summary (dem/scene/failure_analysis.h: summary.json secant_modulus_70_percent_Pa,
+// softening_ratio, and campaign.h5's columns of the same names) applies the same formulas
+// (dem::secant_modulus, dem::softening_ratio) to other inputs: the strain u_z/H0 of the whole
+// specimen, the peak of |σ|, the residual over the last 10 % of all samples. Its numbers are
+// therefore not the calibration's: the secant modulus differs by the factor H0/h.
 #pragma once
 
 #include "params/campaign_data.h"

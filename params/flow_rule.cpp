@@ -24,7 +24,7 @@ namespace anticrack::params
     /// Loading angles closer than this [rad] are the same nominal angle.
     constexpr double same_loading_angle = 1e-9;
 
-    void check_parameters(const CamClayParameters &parameters)
+    void check_parameters(const CamClaySurface &parameters)
     {
       std::ostringstream problem;
       if (!(parameters.p0 > 0) || !std::isfinite(parameters.p0))
@@ -51,7 +51,7 @@ namespace anticrack::params
 
     /// sqrt(1 + 2 beta), the factor between the cohesive and the cohesionless critical state
     /// line (Ritter et al. 2020, Discussion: M' = M/sqrt(1 + 2 beta)).
-    double cohesion_factor(const CamClayParameters &parameters)
+    double cohesion_factor(const CamClaySurface &parameters)
     {
       return std::sqrt(1 + 2 * parameters.beta);
     }
@@ -91,7 +91,7 @@ namespace anticrack::params
   // Eqs. 5-6 of Ritter et al. (2020): the affine map that sends the ellipse of Eq. 1 to the unit circle (Eq. 4):
   // centre (1 - beta) p0/2 -> 0, semi-axis (1 + beta) p0/2 -> 1 along sigma, and the apex height
   // M (1 + beta) p0/(2 sqrt(1 + 2 beta)) -> 1 along tau.
-  NormalisedStress normalise(double sigma, double tau, const CamClayParameters &parameters)
+  NormalisedStress normalise(double sigma, double tau, const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     const double p0 = parameters.p0;
@@ -108,7 +108,7 @@ namespace anticrack::params
   //   semi-axis a of the ellipse.
   // C <= 0 (the origin is inside the surface, or on it for beta = 0), so there is exactly one root
   // r >= 0; it is evaluated in the form that avoids cancellation for either sign of B.
-  StressPoint surface_point_on_loading_ray(double psi, const CamClayParameters &parameters)
+  StressPoint surface_point_on_loading_ray(double psi, const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     check_loading_angle(psi);
@@ -119,7 +119,7 @@ namespace anticrack::params
 
   // psi* = atan2(tau*, sigma*) of the intersection: the quadrant is that of the point itself, so
   // psi* is right beyond the apex (psi* > pi/2), where Eq. 14 of Ritter et al. (2020) would return the mirror image.
-  double normalised_loading_angle(double psi, const CamClayParameters &parameters)
+  double normalised_loading_angle(double psi, const CamClaySurface &parameters)
   {
     const StressPoint point = surface_point_on_loading_ray(psi, parameters);
     const NormalisedStress normalised = normalise(point.normal, point.shear, parameters);
@@ -139,7 +139,7 @@ namespace anticrack::params
   //   mu < 0 (psi > pi/2): B, valid while 1 + d S < 0, i.e. beta > 1 and k d > 1 (between pi/2
   //            and the obtuse transition angle); the other root is the lower half of the circle.
   // Each root is evaluated in the form without cancellation.
-  double normalised_loading_slope_eq19(double mu, const CamClayParameters &parameters)
+  double normalised_loading_slope_eq19(double mu, const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     if (!std::isfinite(mu))
@@ -182,14 +182,14 @@ namespace anticrack::params
   // Eq. 18 of Ritter et al. (2020) with the quadrant kept: tan theta* = (sqrt(1 + 2 beta)/M) tan theta is the
   // same direction as (M cos theta, sqrt(1 + 2 beta) sin theta), both components scaled by
   // positive factors.
-  double normalised_flow_angle(double theta, const CamClayParameters &parameters)
+  double normalised_flow_angle(double theta, const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     return std::atan2(cohesion_factor(parameters) * std::sin(theta),
                       parameters.M * std::cos(theta));
   }
 
-  double flow_angle_from_normalised(double theta_star, const CamClayParameters &parameters)
+  double flow_angle_from_normalised(double theta_star, const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     return std::atan2(parameters.M * std::sin(theta_star),
@@ -203,7 +203,7 @@ namespace anticrack::params
     return psi_star - pi / 2;
   }
 
-  double associative_flow_angle(double psi, const CamClayParameters &parameters)
+  double associative_flow_angle(double psi, const CamClaySurface &parameters)
   {
     const double psi_star = normalised_loading_angle(psi, parameters);
     return flow_angle_from_normalised(associative_normalised_flow_angle(psi_star), parameters);
@@ -211,7 +211,7 @@ namespace anticrack::params
 
   // Eq. 7 of Ritter et al. (2020): the apex (sigma, tau) = ((1 - beta) p0/2, M (1 + beta) p0/(2 sqrt(1 + 2 beta)))
   // seen from the origin; atan2 gives the obtuse angle when the apex is on the tensile side (beta > 1).
-  double transition_loading_angle(const CamClayParameters &parameters)
+  double transition_loading_angle(const CamClaySurface &parameters)
   {
     check_parameters(parameters);
     const double beta = parameters.beta;

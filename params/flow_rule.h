@@ -33,13 +33,7 @@
 
 namespace anticrack::params
 {
-  /// The cohesive Cam-Clay surface in the mixed-mode plane (Ritter et al. 2020, Eq. 1).
-  struct CamClayParameters
-  {
-    double p0 = 0;    ///< sigma_0, the compressive strength (tip in compression) [Pa], > 0
-    double beta = 0;  ///< tensile tip at -beta p0, >= 0 (cohesion)
-    double M = 0;     ///< slope of the cohesionless critical state line, > 0
-  };
+  // The surface in the mixed-mode plane: CamClaySurface of yield_envelopes.h, p0 = sigma_0.
 
   /// A point in the normalised stress plane of Ritter et al. (2020), Eqs. 5-6.
   struct NormalisedStress
@@ -51,21 +45,21 @@ namespace anticrack::params
   /// Eqs. 5-6 of Ritter et al. (2020): sigma* = (2 sigma - (1 - beta) p0)/((1 + beta) p0),
   /// tau* = 2 tau sqrt(1 + 2 beta)/(M (1 + beta) p0); points of the surface satisfy
   /// sigma*^2 + tau*^2 = 1 (Eq. 4). Throws CalibrationError for invalid parameters.
-  NormalisedStress normalise(double sigma, double tau, const CamClayParameters &parameters);
+  NormalisedStress normalise(double sigma, double tau, const CamClaySurface &parameters);
 
   /// The point (normal = sigma, shear = tau; StressPoint of yield_envelopes.h) where the loading ray
   /// r (cos psi, sin psi), r > 0, meets the surface, for psi in [0, pi]. For beta > 0 the origin is
   /// inside the surface and the point is unique; for beta = 0 the origin is the tensile tip, and every
   /// ray with psi >= pi/2 meets the surface only there.
   /// Throws CalibrationError for psi outside [0, pi] or invalid parameters.
-  StressPoint surface_point_on_loading_ray(double psi, const CamClayParameters &parameters);
+  StressPoint surface_point_on_loading_ray(double psi, const CamClaySurface &parameters);
 
   /// The normalised loading angle psi* = atan2(tau*, sigma*) in [0, pi] of the point where the
   /// loading ray of angle psi in [0, pi] meets the surface (the intersection is computed, so that
   /// psi* > pi/2 beyond the transition angle keeps its quadrant, which Eq. 14's
   /// sigma* = 1/sqrt(1 + mu*^2) loses). psi = 0 gives 0, psi = pi gives pi, the ray through the apex
   /// gives pi/2. Throws CalibrationError for psi outside [0, pi] or invalid parameters.
-  double normalised_loading_angle(double psi, const CamClayParameters &parameters);
+  double normalised_loading_angle(double psi, const CamClaySurface &parameters);
 
   /// mu* = tan psi* from mu = tan psi by Ritter et al. (2020), Eq. 19,
   /// mu* = (mu/M) sqrt(1 + 2 beta) (1 + (1 - beta)/(1 + beta) sqrt(1 + mu*^2)), in closed form, on
@@ -76,16 +70,16 @@ namespace anticrack::params
   /// satisfies the unsquared equation with sigma* > 0 and tau* >= 0. Throws CalibrationError if the
   /// ray with slope mu meets the surface at sigma* <= 0 (at or beyond the transition angle), or for
   /// invalid parameters.
-  double normalised_loading_slope_eq19(double mu, const CamClayParameters &parameters);
+  double normalised_loading_slope_eq19(double mu, const CamClaySurface &parameters);
 
   /// Eq. 18 of Ritter et al. (2020), theta* = arctan((sqrt(1 + 2 beta)/M) tan theta), evaluated as
   /// atan2(sqrt(1 + 2 beta) sin theta, M cos theta) so that the quadrant is kept (theta near
   /// -pi/2, compaction under pure compression, stays near -pi/2). Throws CalibrationError for invalid
   /// parameters.
-  double normalised_flow_angle(double theta, const CamClayParameters &parameters);
+  double normalised_flow_angle(double theta, const CamClaySurface &parameters);
 
   /// Inverse of normalised_flow_angle: theta = atan2(M sin theta*, sqrt(1 + 2 beta) cos theta*).
-  double flow_angle_from_normalised(double theta_star, const CamClayParameters &parameters);
+  double flow_angle_from_normalised(double theta_star, const CamClaySurface &parameters);
 
   /// Associative flow in normalised space, Eq. 16 of Ritter et al. (2020): theta* = psi* - pi/2.
   double associative_normalised_flow_angle(double psi_star);
@@ -93,13 +87,13 @@ namespace anticrack::params
   /// The raw flow angle theta that associative flow predicts for the loading angle psi in [0, pi]:
   /// psi -> psi* (intersection with the surface), Eq. 16, then the inverse of Eq. 18. Equals
   /// atan2 of the surface slope d tau/d sigma at the failure point, in (-pi/2, pi/2) for tau > 0.
-  double associative_flow_angle(double psi, const CamClayParameters &parameters);
+  double associative_flow_angle(double psi, const CamClaySurface &parameters);
 
   /// Eq. 7 of Ritter et al. (2020): the loading angle psi+- of the ray through the apex of the surface, where
   /// associative flow changes from compaction to expansion,
   /// tan psi+- = M (1 + beta)/((1 - beta) sqrt(1 + 2 beta)), in (0, pi): arctan M for beta = 0,
   /// pi/2 for beta = 1, obtuse for beta > 1. Throws CalibrationError for invalid parameters.
-  double transition_loading_angle(const CamClayParameters &parameters);
+  double transition_loading_angle(const CamClaySurface &parameters);
 
   /// How associative measured flow is, in the normalised plane of Ritter et al. (2020), Fig. 5B.
   struct AssociativityMeasure

@@ -454,6 +454,12 @@ namespace anticrack::params
     return M * p0 * (1 + beta) / (2 * std::sqrt(1 + 2 * beta));
   }
 
+  CamClaySurface cam_clay_surface(const Eigen::VectorXd &physical)
+  {
+    check_size(physical, 3, "cohesive_cam_clay");
+    return {physical[0], physical[1], physical[2]};
+  }
+
   Eigen::VectorXd scale_polynomial(const Eigen::VectorXd &polynomial_parameters, double strength_ratio)
   {
     check_size(polynomial_parameters, 3, "scale_polynomial");

@@ -118,6 +118,26 @@ namespace anticrack::params
   // ---------------------------------------------------------------------------------------------------
   // Cohesive Cam-Clay, the pieces the rest of the code uses directly.
 
+  /// The cohesive Cam-Clay surface (docs/physics.md §2; Ritter et al. 2020, Eq. 1 with sigma_0 = p0) as
+  /// the calibration hands it on. The fits keep positional vectors in the order of
+  /// YieldEnvelope::parameter_names() for the optimiser; past the fit the surface travels by name.
+  struct CamClaySurface
+  {
+    double p0 = 0;    ///< compressive tip (sigma_0 in the (sigma, tau) plane) [Pa], > 0
+    double beta = 0;  ///< tensile tip at -beta p0, >= 0 (cohesion)
+    double M = 0;     ///< slope of the cohesionless critical state line, > 0
+  };
+
+  /// A confidence interval of the surface, parameter by parameter: the lower ends and the upper ends.
+  struct CamClaySurfaceInterval
+  {
+    CamClaySurface lower, upper;
+  };
+
+  /// The surface of a physical parameter vector (p0, beta, M) of the cohesive Cam-Clay envelope;
+  /// throws std::invalid_argument unless the vector has 3 entries.
+  CamClaySurface cam_clay_surface(const Eigen::VectorXd &physical);
+
   /// Cohesive Cam-Clay yield function (docs/physics.md §2; Ritter et al. 2020, Eq. 1 with sigma0 = p0):
   ///   y(n, s) = (1 + 2 beta) s^2 + M^2 (n + beta p0)(n - p0),
   /// negative inside, zero on the ellipse with tips n = p0 (compression) and n = -beta p0 (tension).

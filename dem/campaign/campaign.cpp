@@ -1,5 +1,6 @@
 #include "dem/campaign/campaign.h"
 
+#include "dem/campaign/campaign_file.h"
 #include "dem/scene/model.h"
 #include "util/hdf5_file.h"
 #include "util/input_error.h"
@@ -20,6 +21,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace anticrack::dem
@@ -201,91 +203,135 @@ namespace anticrack::dem
       }
     }
 
+    /// The failure-point table of `rows` into `group`, one dataset per column of campaign_file.h.
+    void write_failure_point_table(hid_t group, const std::vector<FailurePointRow> &rows)
+    {
+      for (const FailurePointColumn &column : failure_point_columns())
+      {
+        if (column.text)
+        {
+          std::vector<std::string> values;
+          for (const auto &row : rows)
+            values.push_back(row.*column.text);
+          hdf5::write_strings(group, column.name, values, column.description);
+        }
+        else if (column.number)
+        {
+          std::vector<double> values;
+          for (const auto &row : rows)
+            values.push_back(row.*column.number);
+          hdf5::write_doubles(group, column.name, values, column.unit, column.description);
+        }
+        else
+        {
+          std::vector<double> values;
+          for (const auto &row : rows)
+            values.insert(values.end(), (row.*column.tensor).begin(), (row.*column.tensor).end());
+          hdf5::write_doubles(group, column.name, values, column.unit, column.description, {rows.size(), 3, 3});
+        }
+      }
+    }
+
+    /// A value as summary.json records it: JSON has no infinity or NaN (they are written as null
+    /// and read back as NaN), so a test's outcome is the same whether it comes from memory or from
+    /// the file of a test that completed earlier.
+    double as_recorded(double value) { return std::isfinite(value) ? value : nan; }
+
     /// A number of a JSON object at `pointer`, NaN when absent.
     double number_at(const Json &j, const std::string &pointer)
     {
       const Json::json_pointer p(pointer);
-      return j.contains(p) && j[p].is_number() ? j[p].get<double>() : nan;
+      return j.contains(p) && j[p].is_number() ? as_recorded(j[p].get<double>()) : nan;
     }
 
-    /// What the campaign keeps of one finished test.
+    /// What the campaign keeps of one finished test: its row of /failure_points and what
+    /// summary.json reports beside it.
     struct TestOutcome
     {
-      std::string status;         ///< completed, failed, interrupted, missing
+      FailurePointRow row; ///< status, failure point, its companions and the sample (dem/campaign/campaign_file.h)
       std::string message;
-      double sigma = nan, tau = nan, p = nan, q = nan;
-      std::vector<double> love_stress = std::vector<double>(9, nan);
-      double time = nan, step = nan;
-      double flow_angle_deg = nan, secant_modulus = nan, softening_ratio = nan, peak_q = nan;
-      double max_inertial_number = nan; ///< from half the failure stress to the failure point
-      double solid_fraction = nan, coordination = nan, bonds = nan;
-      double specimen_height = nan; ///< initial height H0 of the specimen (history strains = u / H0)
-      double layer_thickness = nan; ///< deformable layer between the base and the clump, h
       double steps = nan, wall_s = nan;
       std::string analysis_error;
     };
 
-    TestOutcome read_outcome(const fs::path &directory)
+    /// The outcome of test `t` from its summary (summary.json's content; null: no summary) and
+    /// its failure analysis (absent for a run without a clump).
+    TestOutcome outcome_of(const CampaignTest &t, const Json &s, const std::optional<TestFailureAnalysis> &analysis)
     {
       TestOutcome o;
-      std::error_code error;
-      if (!fs::exists(directory / "summary.json", error))
+      FailurePointRow &row = o.row;
+      row.test = t.id;
+      row.microstructure = static_cast<double>(t.microstructure);
+      row.realization = static_cast<double>(t.realization);
+      row.loading_angle_deg = t.angle_deg;
+      if (s.is_null())
       {
-        o.status = "missing";
+        row.status = "missing";
         return o;
       }
-      const Json s = read_json(directory / "summary.json");
-      o.status = s.value("status", "unknown");
+      row.status = s.value("status", "unknown");
       o.message = s.value("message", "");
       o.steps = number_at(s, "/dem/steps");
       o.wall_s = number_at(s, "/timing/wall_s");
-      o.solid_fraction = number_at(s, "/dem/sample/volume_fraction");
-      if (std::isnan(o.solid_fraction))
-        o.solid_fraction = number_at(s, "/dem/sample/solid_fraction_bulk");
-      o.coordination = number_at(s, "/dem/sample/coordination");
-      if (std::isnan(o.coordination))
-        o.coordination = number_at(s, "/dem/sample/mean_contacts");
-      o.bonds = number_at(s, "/dem/bonds");
-      o.specimen_height = number_at(s, "/dem/specimen/height_m");
-      o.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
-      const Json::json_pointer analysis("/dem/failure_analysis");
-      if (!s.contains(analysis))
+      row.solid_fraction = number_at(s, "/dem/sample/volume_fraction");
+      if (std::isnan(row.solid_fraction))
+        row.solid_fraction = number_at(s, "/dem/sample/solid_fraction_bulk");
+      row.coordination = number_at(s, "/dem/sample/coordination");
+      if (std::isnan(row.coordination))
+        row.coordination = number_at(s, "/dem/sample/mean_contacts");
+      row.bonds = number_at(s, "/dem/bonds");
+      row.specimen_height = number_at(s, "/dem/specimen/height_m");
+      row.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
+      if (!analysis)
         return o;
-      const Json &a = s[analysis];
-      if (a.contains("error"))
+      const TestFailureAnalysis &a = *analysis;
+      if (!a.error.empty())
       {
-        o.analysis_error = a["error"].get<std::string>();
+        o.analysis_error = a.error;
         return o;
       }
-      o.sigma = number_at(a, "/failure/base_normal_stress_sigma_Pa");
-      o.tau = number_at(a, "/failure/base_shear_stress_tau_Pa");
-      o.p = number_at(a, "/failure/mean_pressure_p_Pa");
-      o.q = number_at(a, "/failure/von_mises_q_Pa");
-      o.time = number_at(a, "/failure/time_s");
-      o.step = number_at(a, "/failure/step");
+      const RecordedFailurePoint &f = a.failure;
+      row.sigma = as_recorded(f.sigma.value_or(nan));
+      row.tau = as_recorded(f.tau.value_or(nan));
+      row.p = as_recorded(f.p);
+      row.q = as_recorded(f.q);
+      row.failure_time = as_recorded(f.time);
+      row.failure_step = as_recorded(f.step);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          o.love_stress[3 * r + c] = number_at(a, "/failure/love_stress_Pa/" + std::to_string(r) + "/" + std::to_string(c));
-      o.flow_angle_deg = number_at(a, "/flow_angle_deg");
-      o.secant_modulus = number_at(a, "/secant_modulus_70_percent_Pa");
-      o.softening_ratio = number_at(a, "/softening_ratio");
-      o.peak_q = number_at(a, "/peak_q/von_mises_q_Pa");
-      // Was the loading quasi-static as failure approached? The largest inertial number over the
-      // samples between half the failure stress and the failure point (earlier, I ~ 1/sqrt(p)
-      // measures nothing but the start of the ramp at vanishing stress).
-      if (!std::isnan(o.step) && fs::exists(directory / "history.h5", error))
+          row.love_stress[3 * r + c] = as_recorded(f.love_stress(r, c));
+      row.flow_angle_deg = as_recorded(a.flow_angle_deg.value_or(nan));
+      // The column is the secant modulus of the base normal stress; a shear-controlled test's
+      // secant modulus is of the shear stress.
+      row.secant_modulus = a.shear_controlled ? nan : as_recorded(a.secant_modulus.value_or(nan));
+      row.softening_ratio = as_recorded(a.softening_ratio.value_or(nan));
+      row.peak_q = as_recorded(a.peak_q.q);
+      row.max_inertial_number = a.max_inertial_number;
+      return o;
+    }
+
+    /// The outcome of a test from its files: summary.json and, for the quasi-static measure that
+    /// summary.json does not record, history.h5 (a test that completed earlier, or one that another
+    /// rank ran).
+    TestOutcome read_outcome(const CampaignTest &t, const fs::path &directory)
+    {
+      std::error_code error;
+      if (!fs::exists(directory / "summary.json", error))
+        return outcome_of(t, Json(), std::nullopt);
+      const Json s = read_json(directory / "summary.json");
+      const Json::json_pointer analysis_pointer("/dem/failure_analysis");
+      std::optional<TestFailureAnalysis> analysis;
+      if (s.contains(analysis_pointer))
+        analysis = failure_analysis_from_json(s[analysis_pointer]);
+      if (analysis && analysis->error.empty() && !std::isnan(analysis->failure.step) &&
+          fs::exists(directory / "history.h5", error))
       {
         const fs::path history = directory / "history.h5";
-        const auto steps = read_history_column(history, "step");
-        const auto q = read_history_column(history, "von_mises_stress");
-        const auto inertial = read_history_column(history, "inertial_number");
-        double largest = 0;
-        for (std::size_t k = 0; k < steps.size() && steps[k] <= o.step; ++k)
-          if (q[k] >= 0.5 * o.q && std::isfinite(inertial[k]))
-            largest = std::max(largest, inertial[k]);
-        o.max_inertial_number = largest;
+        analysis->max_inertial_number = max_inertial_number_before_failure(
+          read_history_column(history, "step"), read_history_column(history, "von_mises_stress"),
+          read_history_column(history, "inertial_number"), analysis->failure.step, analysis->failure.q);
       }
-      return o;
+      return outcome_of(t, s, analysis);
     }
 
     /// |s - s_ref| / |s_ref| for the failure point s = (p, q) of the Love-Weber stress: the
@@ -294,13 +340,15 @@ namespace anticrack::dem
     /// with the specimen's slip events near failure (see base_relative_difference).
     double relative_difference(const TestOutcome &a, const TestOutcome &reference)
     {
-      return std::hypot(a.p - reference.p, a.q - reference.q) / std::hypot(reference.p, reference.q);
+      return std::hypot(a.row.p - reference.row.p, a.row.q - reference.row.q) /
+             std::hypot(reference.row.p, reference.row.q);
     }
 
     /// The same for the base stresses (sigma, tau), reported beside it.
     double base_relative_difference(const TestOutcome &a, const TestOutcome &reference)
     {
-      return std::hypot(a.sigma - reference.sigma, a.tau - reference.tau) / std::hypot(reference.sigma, reference.tau);
+      return std::hypot(a.row.sigma - reference.row.sigma, a.row.tau - reference.row.tau) /
+             std::hypot(reference.row.sigma, reference.row.tau);
     }
 
     std::string format_angle(double a)
@@ -412,6 +460,7 @@ namespace anticrack::dem
 
     // --- this rank's tests; one sample per (microstructure, realization), copied for each angle
     bool any_failed = false;
+    std::map<std::string, TestOutcome> outcomes; // this rank's tests, as they ran (or from their files)
     std::pair<Index, Index> cached_sample{-1, -1};
     std::unique_ptr<DemModel> sample;
     for (std::size_t k = first; k < last; ++k)
@@ -443,6 +492,7 @@ namespace anticrack::dem
       if (options.resume && completed(o.output_directory, o.labels))
       {
         std::cout << "[rank " << mpi.rank() << "] " << t.id << ": completed earlier, skipped\n" << std::flush;
+        outcomes[t.id] = read_outcome(t, o.output_directory);
         continue;
       }
       if (cached_sample != std::pair{t.microstructure, t.realization})
@@ -453,15 +503,16 @@ namespace anticrack::dem
       auto model = std::make_unique<DemModel>(*sample);
       model->system.clumps[model->clump].applied_force =
         dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
-      const int code = run_dem_model(test_scene, std::move(model), o);
-      any_failed = any_failed || code != exit_success;
-      const TestOutcome outcome = read_outcome(o.output_directory);
+      const DemRunRecord run = run_dem_model(test_scene, std::move(model), o);
+      any_failed = any_failed || run.exit_code != exit_success;
+      const TestOutcome &outcome = outcomes[t.id] = outcome_of(t, run.summary, run.failure_analysis);
       std::ostringstream line;
       line.precision(4);
-      line << "[rank " << mpi.rank() << "] test " << k + 1 << "/" << tests.size() << " " << t.id << ": " << outcome.status;
-      if (!std::isnan(outcome.sigma))
-        line << ", failure sigma = " << outcome.sigma << " Pa, tau = " << outcome.tau << " Pa, q = " << outcome.q
-             << " Pa";
+      line << "[rank " << mpi.rank() << "] test " << k + 1 << "/" << tests.size() << " " << t.id << ": "
+           << outcome.row.status;
+      if (!std::isnan(outcome.row.sigma))
+        line << ", failure sigma = " << outcome.row.sigma << " Pa, tau = " << outcome.row.tau
+             << " Pa, q = " << outcome.row.q << " Pa";
       else if (!outcome.analysis_error.empty())
         line << " (" << outcome.analysis_error << ")";
       line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s) << "\n";
@@ -472,10 +523,10 @@ namespace anticrack::dem
     if (!root)
       return any_failed ? exit_numerical_failure : exit_success;
 
-    // --- rank 0: campaign.h5 and summary.json from the tests' own files
-    std::map<std::string, TestOutcome> outcomes;
+    // --- rank 0: campaign.h5 and summary.json; the other ranks' tests from their files
     for (const auto &t : tests)
-      outcomes[t.id] = read_outcome(directory / "tests" / t.id);
+      if (!outcomes.count(t.id))
+        outcomes[t.id] = read_outcome(t, directory / "tests" / t.id);
 
     const fs::path campaign_file = directory / "campaign.h5";
     const fs::path temporary = directory / "campaign.h5.tmp";
@@ -499,7 +550,7 @@ namespace anticrack::dem
         const fs::path history = directory / "tests" / t.id / "history.h5";
         const Handle group(H5Gcreate2(all.id, t.id.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                            "create /tests/" + t.id);
-        hdf5::write_string_attribute(group.id, "status", outcomes[t.id].status);
+        hdf5::write_string_attribute(group.id, "status", outcomes[t.id].row.status);
         hdf5::write_string_attribute(group.id, "loading_angle_deg", format_angle(t.angle_deg));
         hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
         hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
@@ -546,71 +597,15 @@ namespace anticrack::dem
       std::vector<const CampaignTest *> main_tests, references;
       for (const auto &t : tests)
         (t.reference_for.empty() ? main_tests : references).push_back(&t);
-      auto table = [&](hid_t group, const std::vector<const CampaignTest *> &rows) {
-        auto column = [&](auto &&get) {
-          std::vector<double> v;
-          for (const auto *t : rows)
-            v.push_back(get(*t, outcomes[t->id]));
-          return v;
-        };
-        std::vector<std::string> ids, status;
-        std::vector<double> stress;
-        for (const auto *t : rows)
-        {
-          ids.push_back(t->id);
-          status.push_back(outcomes[t->id].status);
-          const auto &s = outcomes[t->id].love_stress;
-          stress.insert(stress.end(), s.begin(), s.end());
-        }
-        hdf5::write_strings(group, "test", ids, "test id: m<microstructure>_r<realization>_psi<angle>");
-        hdf5::write_strings(group, "status", status, "completed, failed, interrupted or missing");
-        using O = TestOutcome;
-        using T = CampaignTest;
-        hdf5::write_doubles(group, "microstructure", column([](const T &t, const O &) { return double(t.microstructure); }), "-",
-                      "index into the root attribute `microstructures` (0 = the scene's own sample)");
-        hdf5::write_doubles(group, "realization", column([](const T &t, const O &) { return double(t.realization); }), "-",
-                      "realization r, sample seed = DEM/Random seed + r");
-        hdf5::write_doubles(group, "loading_angle_deg", column([](const T &t, const O &) { return t.angle_deg; }), "deg",
-                      "psi, clump force direction (sin psi, 0, -cos psi)");
-        hdf5::write_doubles(group, "sigma", column([](const T &, const O &o) { return o.sigma; }), "Pa",
-                      "base normal stress at failure, compression positive (Ritter et al. 2020)");
-        hdf5::write_doubles(group, "tau", column([](const T &, const O &o) { return o.tau; }), "Pa",
-                      "base shear stress at failure (along +x)");
-        hdf5::write_doubles(group, "p", column([](const T &, const O &o) { return o.p; }), "Pa",
-                      "mean pressure of the Love-Weber stress at failure, compression positive");
-        hdf5::write_doubles(group, "q", column([](const T &, const O &o) { return o.q; }), "Pa",
-                      "von Mises stress of the Love-Weber stress at failure");
-        hdf5::write_doubles(group, "love_stress", stress, "Pa",
-                      "full Love-Weber stress tensor at failure, tension positive, [test][i][j]",
-                      {rows.size(), 3, 3});
-        hdf5::write_doubles(group, "failure_time", column([](const T &, const O &o) { return o.time; }), "s",
-                      "time of the failure point");
-        hdf5::write_doubles(group, "failure_step", column([](const T &, const O &o) { return o.step; }), "-",
-                      "step of the failure point");
-        hdf5::write_doubles(group, "flow_angle_deg", column([](const T &, const O &o) { return o.flow_angle_deg; }), "deg",
-                      "plastic flow angle atan2(du_z, du_x) of the clump just after failure (Ritter et al. 2020)");
-        hdf5::write_doubles(group, "secant_modulus", column([](const T &, const O &o) { return o.secant_modulus; }), "Pa",
-                      "secant modulus to 70 % of the peak base normal stress (Bobillier et al. 2020)");
-        hdf5::write_doubles(group, "softening_ratio", column([](const T &, const O &o) { return o.softening_ratio; }), "-",
-                      "residual / peak base normal stress (Bobillier et al. 2020)");
-        hdf5::write_doubles(group, "peak_q", column([](const T &, const O &o) { return o.peak_q; }), "Pa",
-                      "largest von Mises stress of the whole test");
-        hdf5::write_doubles(group, "max_inertial_number", column([](const T &, const O &o) { return o.max_inertial_number; }),
-                      "-", "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, Ritter et al. 2020)");
-        hdf5::write_doubles(group, "solid_fraction", column([](const T &, const O &o) { return o.solid_fraction; }), "-",
-                      "solid volume fraction of the generated sample");
-        hdf5::write_doubles(group, "coordination", column([](const T &, const O &o) { return o.coordination; }), "-",
-                      "mean coordination number of the generated sample");
-        hdf5::write_doubles(group, "bonds", column([](const T &, const O &o) { return o.bonds; }), "-",
-                      "parallel bonds of the specimen");
-        hdf5::write_doubles(group, "specimen_height", column([](const T &, const O &o) { return o.specimen_height; }),
-                      "m", "initial height H0 of the tested specimen (strains in the histories are u / H0)");
-        hdf5::write_doubles(group, "layer_thickness", column([](const T &, const O &o) { return o.layer_thickness; }),
-                      "m", "deformable layer between the fixed base and the clump (centre to centre), h");
+      auto table = [&](hid_t group, const std::vector<const CampaignTest *> &tests_of_table) {
+        std::vector<FailurePointRow> rows;
+        for (const auto *t : tests_of_table)
+          rows.push_back(outcomes[t->id].row);
+        write_failure_point_table(group, rows);
       };
       {
-        const Handle g(H5Gcreate2(f.id, "failure_points", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                       "create /failure_points");
+        const Handle g(H5Gcreate2(f.id, failure_points_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                       "create /" + std::string(failure_points_group));
         table(g.id, main_tests);
       }
       if (!references.empty())
@@ -654,28 +649,28 @@ namespace anticrack::dem
       const TestOutcome &o = outcomes[t.id];
       Json r;
       r["test"] = t.id;
-      r["status"] = o.status;
+      r["status"] = o.row.status;
       r["loading_angle_deg"] = t.angle_deg;
       r["microstructure"] = t.microstructure;
       r["realization"] = t.realization;
       r["rate_divisor"] = t.slowdown;
       auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
-      r["sigma_Pa"] = finite(o.sigma);
-      r["tau_Pa"] = finite(o.tau);
-      r["p_Pa"] = finite(o.p);
-      r["q_Pa"] = finite(o.q);
-      r["flow_angle_deg"] = finite(o.flow_angle_deg);
-      r["max_inertial_number"] = finite(o.max_inertial_number);
+      r["sigma_Pa"] = finite(o.row.sigma);
+      r["tau_Pa"] = finite(o.row.tau);
+      r["p_Pa"] = finite(o.row.p);
+      r["q_Pa"] = finite(o.row.q);
+      r["flow_angle_deg"] = finite(o.row.flow_angle_deg);
+      r["max_inertial_number"] = finite(o.row.max_inertial_number);
       r["steps"] = finite(o.steps);
       r["wall_s"] = finite(o.wall_s);
       if (!o.analysis_error.empty())
         r["analysis_error"] = o.analysis_error;
-      if (!o.message.empty() && o.status != "completed")
+      if (!o.message.empty() && o.row.status != "completed")
         r["message"] = o.message;
       rows.push_back(r);
       test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
-      if (t.reference_for.empty() && std::isfinite(o.max_inertial_number))
-        largest_inertial = std::max(largest_inertial, o.max_inertial_number);
+      if (t.reference_for.empty() && std::isfinite(o.row.max_inertial_number))
+        largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
     }
     s["tests"] = rows;
     s["largest_inertial_number_before_failure"] = largest_inertial;

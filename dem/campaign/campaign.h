@@ -5,7 +5,8 @@
 //   tests/<id>/summary.json, history.h5   every test, as `anticrack run` writes them (resumable)
 //   campaign.h5                           every test's history under /tests/<id>/history, the table
 //                                         of failure points /failure_points (one row per test, in
-//                                         test order) and the quasi-static check /quasi_static_check
+//                                         test order; columns in dem/campaign/campaign_file.h) and
+//                                         the quasi-static check /quasi_static_check
 //   summary.json                          the campaign: what ran, failure points, the quasi-static
 //                                         check against slower reference runs, wall time
 // Test ids read m<microstructure>_r<realization>_psi<angle>, e.g. m0_r2_psi067.5; a quasi-static

@@ -2,6 +2,7 @@
 
 #include "dem/lab/failure_point.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,6 +10,21 @@ namespace anticrack::dem
 {
   namespace
   {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+    // The keys of summary.json's dem.failure_analysis, written and read here only.
+    namespace key
+    {
+      constexpr const char *error = "error", *criterion = "criterion", *failure = "failure", *peak_q = "peak_q";
+      constexpr const char *peak_base_normal = "peak_base_normal_stress", *peak_base_shear = "peak_base_shear_stress";
+      constexpr const char *secant = "secant_modulus_70_percent_Pa",
+                           *secant_shear = "secant_shear_modulus_70_percent_Pa";
+      constexpr const char *softening_ratio = "softening_ratio", *flow_angle = "flow_angle_deg";
+      constexpr const char *step = "step", *time = "time_s", *p = "mean_pressure_p_Pa", *q = "von_mises_q_Pa";
+      constexpr const char *sigma = "base_normal_stress_sigma_Pa", *tau = "base_shear_stress_tau_Pa";
+      constexpr const char *love_stress = "love_stress_Pa";
+    } // namespace key
+
     const std::vector<double> &column(const TimeSeries &history, const std::string &name)
     {
       const TimeSeries::Column *c = history.find(name);
@@ -17,27 +33,62 @@ namespace anticrack::dem
       return c->values;
     }
 
-    nlohmann::json point_json(const dem::FailurePoint &f, const std::vector<double> &steps)
+    RecordedFailurePoint recorded(const dem::FailurePoint &f, const std::vector<double> &steps)
+    {
+      return {steps.at(static_cast<std::size_t>(f.index)), f.time, f.p, f.q, f.sigma, f.tau, f.stress};
+    }
+
+    nlohmann::json point_json(const RecordedFailurePoint &f)
     {
       nlohmann::json j;
-      j["step"] = steps.at(static_cast<std::size_t>(f.index));
-      j["time_s"] = f.time;
-      j["mean_pressure_p_Pa"] = f.p;
-      j["von_mises_q_Pa"] = f.q;
+      j[key::step] = f.step;
+      j[key::time] = f.time;
+      j[key::p] = f.p;
+      j[key::q] = f.q;
       if (f.sigma)
-        j["base_normal_stress_sigma_Pa"] = *f.sigma;
+        j[key::sigma] = *f.sigma;
       if (f.tau)
-        j["base_shear_stress_tau_Pa"] = *f.tau;
-      j["love_stress_Pa"] = {{f.stress(0, 0), f.stress(0, 1), f.stress(0, 2)},
-                             {f.stress(1, 0), f.stress(1, 1), f.stress(1, 2)},
-                             {f.stress(2, 0), f.stress(2, 1), f.stress(2, 2)}};
+        j[key::tau] = *f.tau;
+      const Mat3 &s = f.love_stress;
+      j[key::love_stress] = {{s(0, 0), s(0, 1), s(0, 2)}, {s(1, 0), s(1, 1), s(1, 2)}, {s(2, 0), s(2, 1), s(2, 2)}};
       return j;
+    }
+
+    /// A number of `j` at `name`, NaN when absent or not a number (JSON writes NaN as null).
+    double number(const nlohmann::ordered_json &j, const char *name)
+    {
+      return j.contains(name) && j[name].is_number() ? j[name].get<double>() : nan;
+    }
+
+    std::optional<double> optional_number(const nlohmann::ordered_json &j, const char *name)
+    {
+      return j.contains(name) ? std::optional<double>(number(j, name)) : std::nullopt;
+    }
+
+    RecordedFailurePoint point_from_json(const nlohmann::ordered_json &j)
+    {
+      RecordedFailurePoint f;
+      f.step = number(j, key::step);
+      f.time = number(j, key::time);
+      f.p = number(j, key::p);
+      f.q = number(j, key::q);
+      f.sigma = optional_number(j, key::sigma);
+      f.tau = optional_number(j, key::tau);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+        {
+          const nlohmann::ordered_json::json_pointer entry("/" + std::string(key::love_stress) + "/" + std::to_string(r) +
+                                                   "/" + std::to_string(c));
+          f.love_stress(r, c) = j.contains(entry) && j[entry].is_number() ? j[entry].get<double>() : nan;
+        }
+      return f;
     }
   } // namespace
 
-  nlohmann::json analyse_test_history(const TimeSeries &history, double sample_height, const bool shear_controlled)
+  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double sample_height, const bool shear_controlled)
   {
-    nlohmann::json result;
+    TestFailureAnalysis result;
+    result.shear_controlled = shear_controlled;
     try
     {
       dem::TestHistory h;
@@ -81,26 +132,82 @@ namespace anticrack::dem
       }
       const dem::FailureAnalysis a = dem::analyse_failure(h, options);
       const auto &steps = column(history, "step");
-      result["criterion"] = shear_controlled ?
-                              "peak of the base shear stress tau (displacement-controlled simple shear)" :
-                              "Ritter et al. (2020): max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
-      result["failure"] = point_json(a.failure, steps);
-      result["peak_q"] = point_json(a.peak_q, steps);
+      result.failure = recorded(a.failure, steps);
+      result.peak_q = recorded(a.peak_q, steps);
       if (a.peak_loading)
-        result[shear_controlled ? "peak_base_shear_stress" : "peak_base_normal_stress"] =
-          point_json(*a.peak_loading, steps);
-      if (a.secant_modulus)
-        result[shear_controlled ? "secant_shear_modulus_70_percent_Pa" : "secant_modulus_70_percent_Pa"] =
-          *a.secant_modulus;
-      if (a.softening_ratio)
-        result["softening_ratio"] = *a.softening_ratio;
+        result.peak_loading = recorded(*a.peak_loading, steps);
+      result.secant_modulus = a.secant_modulus;
+      result.softening_ratio = a.softening_ratio;
       if (a.flow_angle)
-        result["flow_angle_deg"] = *a.flow_angle * 180 / M_PI;
+        result.flow_angle_deg = *a.flow_angle * 180 / M_PI;
+      const auto *q = history.find("von_mises_stress"), *inertial = history.find("inertial_number");
+      if (q && inertial)
+        result.max_inertial_number = max_inertial_number_before_failure(steps, q->values, inertial->values,
+                                                                        result.failure.step, result.failure.q);
     }
     catch (const std::exception &e)
     {
-      result["error"] = e.what();
+      result = TestFailureAnalysis{};
+      result.shear_controlled = shear_controlled;
+      result.error = e.what();
     }
     return result;
+  }
+
+  double max_inertial_number_before_failure(const std::vector<double> &step, const std::vector<double> &von_mises,
+                                            const std::vector<double> &inertial_number, double failure_step,
+                                            double failure_q)
+  {
+    double largest = 0;
+    for (std::size_t k = 0; k < step.size() && step[k] <= failure_step; ++k)
+      if (von_mises[k] >= 0.5 * failure_q && std::isfinite(inertial_number[k]))
+        largest = std::max(largest, inertial_number[k]);
+    return largest;
+  }
+
+  nlohmann::json failure_analysis_json(const TestFailureAnalysis &a)
+  {
+    nlohmann::json result;
+    if (!a.error.empty())
+    {
+      result[key::error] = a.error;
+      return result;
+    }
+    result[key::criterion] = a.shear_controlled ?
+                               "peak of the base shear stress tau (displacement-controlled simple shear)" :
+                               "Ritter et al. (2020): max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
+    result[key::failure] = point_json(a.failure);
+    result[key::peak_q] = point_json(a.peak_q);
+    if (a.peak_loading)
+      result[a.shear_controlled ? key::peak_base_shear : key::peak_base_normal] = point_json(*a.peak_loading);
+    if (a.secant_modulus)
+      result[a.shear_controlled ? key::secant_shear : key::secant] = *a.secant_modulus;
+    if (a.softening_ratio)
+      result[key::softening_ratio] = *a.softening_ratio;
+    if (a.flow_angle_deg)
+      result[key::flow_angle] = *a.flow_angle_deg;
+    return result;
+  }
+
+  TestFailureAnalysis failure_analysis_from_json(const nlohmann::ordered_json &j)
+  {
+    TestFailureAnalysis a;
+    if (j.contains(key::error))
+    {
+      a.error = j[key::error].get<std::string>();
+      return a;
+    }
+    a.shear_controlled = j.contains(key::peak_base_shear) || j.contains(key::secant_shear);
+    // A point the file lacks reads as NaN throughout.
+    const auto member = [&](const char *name) { return j.contains(name) ? j[name] : nlohmann::ordered_json::object(); };
+    a.failure = point_from_json(member(key::failure));
+    a.peak_q = point_from_json(member(key::peak_q));
+    const char *peak_loading = a.shear_controlled ? key::peak_base_shear : key::peak_base_normal;
+    if (j.contains(peak_loading))
+      a.peak_loading = point_from_json(j[peak_loading]);
+    a.secant_modulus = optional_number(j, a.shear_controlled ? key::secant_shear : key::secant);
+    a.softening_ratio = optional_number(j, key::softening_ratio);
+    a.flow_angle_deg = optional_number(j, key::flow_angle);
+    return a;
   }
 } // namespace anticrack::dem

@@ -119,6 +119,9 @@ namespace anticrack::dem
     /// Creates the output directory, runs to DEM/Steps and writes every output. Returns the exit code.
     int run();
 
+    /// The summary and the failure analysis that run() wrote, with its exit code.
+    [[nodiscard]] DemRunRecord record(int exit_code) const { return {exit_code, summary_, failure_analysis_}; }
+
   private:
     void declare_history_columns();
     void record_history();
@@ -136,6 +139,8 @@ namespace anticrack::dem
     std::chrono::steady_clock::time_point last_quiet_report_ = std::chrono::steady_clock::now();
 
     [[nodiscard]] Json summary(const std::string &status, const std::string &message) const;
+    Json summary_; ///< as written to summary.json
+    std::optional<dem::TestFailureAnalysis> failure_analysis_; ///< of a clump-driven test, once the run ended
     void print_start() const;
     void print_end(double wall) const;
 
@@ -625,7 +630,12 @@ namespace anticrack::dem
     try
     {
       write_history();
-      write_json_atomically(files_.summary().string(), summary(status, message));
+      // The yield point of this test (Ritter et al.'s (2020) failure criterion) and its companions.
+      if (model_->clump >= 0)
+        failure_analysis_ = analyse_test_history(history_, initial_sample_height_,
+                                                 scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
+      summary_ = summary(status, message);
+      write_json_atomically(files_.summary().string(), summary_);
     }
     catch (const std::exception &e)
     {
@@ -774,9 +784,8 @@ namespace anticrack::dem
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
       d["specimen"] = {{"height_m", initial_sample_height_}, {"layer_thickness_m", initial_layer_thickness_}};
-      // The yield point of this test (Ritter et al.'s (2020) failure criterion) and its companions.
-      d["failure_analysis"] = analyse_test_history(history_, initial_sample_height_,
-                                                   scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
+      if (failure_analysis_)
+        d["failure_analysis"] = failure_analysis_json(*failure_analysis_);
     }
     // The loading programme's stage and results (triaxial peak, platen peak force, ...).
     if (protocol_)
@@ -926,14 +935,15 @@ namespace anticrack::dem
   int run_dem_scene(const SceneParameters &scene, const RunOptions &options)
   {
     const int threads = options.threads >= 0 ? options.threads : scene.dem.threads;
-    return run_dem_model(scene, build_dem_model(scene, threads), options);
+    return run_dem_model(scene, build_dem_model(scene, threads), options).exit_code;
   }
 
-  int run_dem_model(const SceneParameters &scene, std::unique_ptr<DemModel> model, const RunOptions &options)
+  DemRunRecord run_dem_model(const SceneParameters &scene, std::unique_ptr<DemModel> model, const RunOptions &options)
   {
     DemRun run(scene, std::move(model), options);
     run.prepare();
-    return run.run();
+    const int exit_code = run.run();
+    return run.record(exit_code);
   }
 
   void check_dem_scene(const SceneParameters &scene, const int threads)

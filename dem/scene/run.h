@@ -6,9 +6,12 @@
 // still leaves a complete summary.json ("status": "failed") and the history up to the failure.
 #pragma once
 
+#include "dem/scene/failure_analysis.h"
 #include "util/run_options.h"
+#include "util/run_summary.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace anticrack::dem
@@ -16,9 +19,17 @@ namespace anticrack::dem
   struct SceneParameters;
   struct DemModel;
 
+  /// What a run hands to its caller in memory, beside the files it wrote.
+  struct DemRunRecord
+  {
+    int exit_code = 0;
+    Json summary;    ///< what summary.json holds (null if it could not be written)
+    std::optional<TestFailureAnalysis> failure_analysis; ///< of a clump-driven test (summary.json dem.failure_analysis)
+  };
+
   /// Runs a model built from `scene` into options.output_directory: prepare (directory checks,
-  /// --resume), then the time loop and every output. Returns the exit code; throws InputError.
-  int run_dem_model(const SceneParameters &scene, std::unique_ptr<DemModel> model, const RunOptions &options);
+  /// --resume), then the time loop and every output. Throws InputError.
+  DemRunRecord run_dem_model(const SceneParameters &scene, std::unique_ptr<DemModel> model, const RunOptions &options);
 
   /// `anticrack run` of a DEM scene without a campaign: builds the model, then run_dem_model.
   int run_dem_scene(const SceneParameters &scene, const RunOptions &options);

@@ -4,8 +4,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cstdio>
 #include <fstream>
-#include <limits>
 #include <sstream>
 
 namespace anticrack::fem
@@ -16,62 +16,197 @@ namespace anticrack::fem
   using dealii::Patterns::Integer;
   using dealii::Patterns::Selection;
 
-  void declare_material_entries(ParameterHandler &prm)
-  {
-    prm.declare_entry("Name", "", Anything(), "label of the material");
-    prm.declare_entry("Density [kg/m^3]", "200", Double(1e-3), "bulk density phi rho_particle");
-    prm.declare_entry("Young's modulus [Pa]", "1e6", Double(0, std::numeric_limits<double>::max()), "E");
-    prm.declare_entry("Poisson's ratio", "0.2", Double(-0.999, 0.4999), "nu");
-    prm.declare_entry("Compressive strength p0 [Pa]", "1e3", Double(0), "compressive tip of the yield surface");
-    prm.declare_entry("Tensile strength ratio beta", "0.5", Double(0), "tensile tip at -beta p0");
-    prm.declare_entry("Critical state slope M", "1", Double(0), "slope of the critical state line");
-    prm.declare_entry("Hardening law", "collapse", Selection("collapse|signed"),
-                      "collapse: every plastic volume change softens (weak layers); signed: compaction "
-                      "hardens, dilation softens (docs/physics.md §2)");
-    prm.declare_entry("Hardening factor xi", "10", Double(0), "xi of p0 = K sinh(xi max(-alpha, 0))");
-    prm.declare_entry("Residual strength ratio", "0.2", Double(0, 1), "residual / peak strength");
-    prm.declare_entry("Reference thickness [m]", "0.03", Double(0), "thickness of the calibrated specimen");
-  }
-
-  ContinuumMaterial parse_material_entries(ParameterHandler &prm)
-  {
-    ContinuumMaterial m;
-    m.name = prm.get("Name");
-    m.density = prm.get_double("Density [kg/m^3]");
-    m.youngs_modulus = prm.get_double("Young's modulus [Pa]");
-    m.poisson_ratio = prm.get_double("Poisson's ratio");
-    m.p0 = prm.get_double("Compressive strength p0 [Pa]");
-    m.beta = prm.get_double("Tensile strength ratio beta");
-    m.M = prm.get_double("Critical state slope M");
-    m.hardening_law = prm.get("Hardening law");
-    m.hardening_factor = prm.get_double("Hardening factor xi");
-    m.residual_strength_ratio = prm.get_double("Residual strength ratio");
-    m.reference_thickness = prm.get_double("Reference thickness [m]");
-    return m;
-  }
-
   namespace
   {
+    using C = ContinuumMaterial;
+    using U = MaterialUncertainty;
+
+    MaterialEntry number_entry(const char *label, const char *unit, const char *meaning, const char *default_value,
+                               double C::*member, double lower, double upper = std::numeric_limits<double>::max(),
+                               MaterialInterval U::*interval = nullptr)
+    {
+      MaterialEntry e{label, unit, meaning, default_value};
+      e.number = member, e.lower = lower, e.upper = upper, e.interval = interval;
+      return e;
+    }
+
+    MaterialEntry text_entry(const char *label, const char *meaning, const char *default_value,
+                             std::string C::*member, const char *choices)
+    {
+      MaterialEntry e{label, "", meaning, default_value};
+      e.text = member, e.choices = choices;
+      return e;
+    }
+
+    constexpr double unbounded = std::numeric_limits<double>::max();
+
+    /// One entry of subsection Provenance; exactly one member is set.
+    struct ProvenanceEntry
+    {
+      const char *name;
+      const char *meaning;
+      std::string MaterialProvenance::*text = nullptr;
+      int MaterialProvenance::*integer = nullptr;
+      double MaterialProvenance::*number = nullptr;
+    };
+
+    const std::vector<ProvenanceEntry> &provenance_entries()
+    {
+      using P = MaterialProvenance;
+      constexpr const char *origin = "where the material comes from";
+      static const std::vector<ProvenanceEntry> entries = {
+        {"Campaign file", origin, &P::campaign_file},
+        {"Campaign sha256", origin, &P::campaign_sha256},
+        {"Scene file", origin, &P::scene_file},
+        {"Scene sha256", origin, &P::scene_sha256},
+        {"Microstructure", "index in the campaign", nullptr, &P::microstructure},
+        {"Fit plane", origin, &P::fit_plane},
+        {"R squared", "of the yield-surface fit", nullptr, nullptr, &P::r_squared}};
+      return entries;
+    }
+
+    constexpr const char *confidence_entry = "Confidence";
+
     void declare_material_file(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
       declare_material_entries(prm);
       prm.enter_subsection("Uncertainty");
-      prm.declare_entry("Confidence", "0.95", Double(0, 1), "level of the intervals");
-      for (const char *name : {"Compressive strength p0 interval [Pa]", "Tensile strength ratio beta interval",
-                               "Critical state slope M interval", "Young's modulus interval [Pa]",
-                               "Poisson's ratio interval", "Hardening factor xi interval"})
-        prm.declare_entry(name, "", Anything(), "lower, upper");
+      prm.declare_entry(confidence_entry, "0.95", Double(0, 1), "level of the intervals");
+      for (const MaterialEntry *e : material_interval_entries())
+        prm.declare_entry(e->interval_name(), "", Anything(), "lower, upper");
       prm.leave_subsection();
       prm.enter_subsection("Provenance");
-      for (const char *name : {"Campaign file", "Campaign sha256", "Scene file", "Scene sha256", "Fit plane"})
-        prm.declare_entry(name, "", Anything(), "where the material comes from");
-      prm.declare_entry("Microstructure", "0", Integer(0), "index in the campaign");
-      prm.declare_entry("R squared", "0", Double(), "of the yield-surface fit");
+      for (const ProvenanceEntry &e : provenance_entries())
+      {
+        if (e.integer)
+          prm.declare_entry(e.name, "0", Integer(0), e.meaning);
+        else if (e.number)
+          prm.declare_entry(e.name, "0", Double(), e.meaning);
+        else
+          prm.declare_entry(e.name, "", Anything(), e.meaning);
+      }
       prm.leave_subsection();
       prm.leave_subsection();
     }
+
+    /// The file parsed and checked by deal.II, positioned at the root.
+    void parse_material_file(ParameterHandler &prm, const std::string &text, const std::string &name)
+    {
+      declare_material_file(prm);
+      try
+      {
+        std::istringstream input(text);
+        prm.parse_input(input, name);
+      }
+      catch (const dealii::ExceptionBase &e)
+      {
+        std::ostringstream info; // deal.II's text names the line and the entry; no stack trace
+        e.print_info(info);
+        throw InputError("material file " + name + ":\n" + info.str());
+      }
+      catch (const std::exception &e)
+      {
+        throw InputError("material file " + name + ": " + e.what());
+      }
+    }
+
+    /// "lower, upper" of an interval entry; an empty entry (no interval given) is (NaN, NaN).
+    MaterialInterval parse_interval(const std::string &text, const std::string &entry, const std::string &name)
+    {
+      if (text.empty())
+        return {};
+      const auto comma = text.find(',');
+      try
+      {
+        if (comma == std::string::npos)
+          throw std::invalid_argument("no comma");
+        return {std::stod(text.substr(0, comma)), std::stod(text.substr(comma + 1))};
+      }
+      catch (const std::exception &)
+      {
+        throw InputError("material file " + name + ": Uncertainty/" + entry + " = \"" + text +
+                         "\" is not \"lower, upper\"");
+      }
+    }
   } // namespace
+
+  std::string MaterialEntry::name() const
+  {
+    return *unit ? std::string(label) + " [" + unit + "]" : std::string(label);
+  }
+
+  std::string MaterialEntry::interval_name() const
+  {
+    return std::string(label) + " interval" + (*unit ? std::string(" [") + unit + "]" : std::string());
+  }
+
+  const std::vector<MaterialEntry> &material_entries()
+  {
+    static const std::vector<MaterialEntry> entries = {
+      text_entry("Name", "label of the material", "", &C::name, nullptr),
+      number_entry("Density", "kg/m^3", "bulk density phi rho_particle", "200", &C::density, 1e-3),
+      number_entry("Young's modulus", "Pa", "E", "1e6", &C::youngs_modulus, 0, unbounded, &U::youngs_modulus),
+      number_entry("Poisson's ratio", "", "nu", "0.2", &C::poisson_ratio, -0.999, 0.4999, &U::poisson_ratio),
+      number_entry("Compressive strength p0", "Pa", "compressive tip of the yield surface", "1e3", &C::p0, 0,
+                   unbounded, &U::p0),
+      number_entry("Tensile strength ratio beta", "", "tensile tip at -beta p0", "0.5", &C::beta, 0, unbounded,
+                   &U::beta),
+      number_entry("Critical state slope M", "", "slope of the critical state line", "1", &C::M, 0, unbounded,
+                   &U::M),
+      text_entry("Hardening law",
+                 "collapse: every plastic volume change softens (weak layers); signed: compaction "
+                 "hardens, dilation softens (docs/physics.md §2)",
+                 "collapse", &C::hardening_law, "collapse|signed"),
+      number_entry("Hardening factor xi", "", "xi of p0 = K sinh(xi max(-alpha, 0))", "10", &C::hardening_factor, 0,
+                   unbounded, &U::hardening_factor),
+      number_entry("Residual strength ratio", "", "residual / peak strength", "0.2", &C::residual_strength_ratio, 0,
+                   1),
+      number_entry("Reference thickness", "m", "thickness of the calibrated specimen", "0.03",
+                   &C::reference_thickness, 0)};
+    return entries;
+  }
+
+  const std::vector<const MaterialEntry *> &material_interval_entries()
+  {
+    // The order of the files: the surface first, then elasticity and softening.
+    static const std::vector<const MaterialEntry *> entries = [] {
+      std::vector<const MaterialEntry *> with_interval;
+      for (MaterialInterval U::*interval :
+           {&U::p0, &U::beta, &U::M, &U::youngs_modulus, &U::poisson_ratio, &U::hardening_factor})
+        for (const MaterialEntry &e : material_entries())
+          if (e.interval == interval)
+            with_interval.push_back(&e);
+      return with_interval;
+    }();
+    return entries;
+  }
+
+  void declare_material_entries(ParameterHandler &prm)
+  {
+    for (const MaterialEntry &e : material_entries())
+    {
+      if (e.number)
+        prm.declare_entry(e.name(), e.default_value, Double(e.lower, e.upper), e.meaning);
+      else if (e.choices)
+        prm.declare_entry(e.name(), e.default_value, Selection(e.choices), e.meaning);
+      else
+        prm.declare_entry(e.name(), e.default_value, Anything(), e.meaning);
+    }
+  }
+
+  ContinuumMaterial parse_material_entries(ParameterHandler &prm)
+  {
+    ContinuumMaterial m;
+    for (const MaterialEntry &e : material_entries())
+    {
+      if (e.number)
+        m.*e.number = prm.get_double(e.name());
+      else
+        m.*e.text = prm.get(e.name());
+    }
+    return m;
+  }
 
   ContinuumMaterial read_material_file(const std::string &file)
   {
@@ -86,25 +221,79 @@ namespace anticrack::fem
   ContinuumMaterial read_material_text(const std::string &text, const std::string &name)
   {
     ParameterHandler prm;
-    declare_material_file(prm);
-    try
-    {
-      std::istringstream input(text);
-      prm.parse_input(input, name);
-    }
-    catch (const dealii::ExceptionBase &e)
-    {
-      std::ostringstream info; // deal.II's text names the line and the entry; no stack trace
-      e.print_info(info);
-      throw InputError("material file " + name + ":\n" + info.str());
-    }
-    catch (const std::exception &e)
-    {
-      throw InputError("material file " + name + ": " + e.what());
-    }
+    parse_material_file(prm, text, name);
     prm.enter_subsection("Material");
     ContinuumMaterial m = parse_material_entries(prm);
     prm.leave_subsection();
     return m;
+  }
+
+  MaterialFile read_material_file_text(const std::string &text, const std::string &name)
+  {
+    ParameterHandler prm;
+    parse_material_file(prm, text, name);
+    MaterialFile file;
+    prm.enter_subsection("Material");
+    file.material = parse_material_entries(prm);
+    prm.enter_subsection("Uncertainty");
+    file.uncertainty.confidence = prm.get_double(confidence_entry);
+    for (const MaterialEntry *e : material_interval_entries())
+      file.uncertainty.*e->interval = parse_interval(prm.get(e->interval_name()), e->interval_name(), name);
+    prm.leave_subsection();
+    prm.enter_subsection("Provenance");
+    for (const ProvenanceEntry &e : provenance_entries())
+    {
+      if (e.integer)
+        file.provenance.*e.integer = prm.get_integer(e.name);
+      else if (e.number)
+        file.provenance.*e.number = prm.get_double(e.name);
+      else
+        file.provenance.*e.text = prm.get(e.name);
+    }
+    prm.leave_subsection();
+    prm.leave_subsection();
+    return file;
+  }
+
+  std::string material_file_number(double value)
+  {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+  }
+
+  std::string material_file_text(const MaterialFile &file)
+  {
+    std::ostringstream out;
+    for (const std::string &line : file.comment)
+      out << "# " << line << "\n";
+    out << "subsection Material\n";
+    for (const MaterialEntry &e : material_entries())
+      out << "  set " << e.name() << " = "
+          << (e.number ? material_file_number(file.material.*e.number) : file.material.*e.text) << "\n";
+    out << "  subsection Uncertainty\n"
+        << "    set " << confidence_entry << " = " << material_file_number(file.uncertainty.confidence) << "\n";
+    for (const MaterialEntry *e : material_interval_entries())
+    {
+      const MaterialInterval &interval = file.uncertainty.*e->interval;
+      out << "    set " << e->interval_name() << " = " << material_file_number(interval.lower) << ", "
+          << material_file_number(interval.upper) << "\n";
+    }
+    out << "  end\n"
+        << "  subsection Provenance\n";
+    for (const ProvenanceEntry &e : provenance_entries())
+    {
+      out << "    set " << e.name << " = ";
+      if (e.integer)
+        out << file.provenance.*e.integer;
+      else if (e.number)
+        out << material_file_number(file.provenance.*e.number);
+      else
+        out << file.provenance.*e.text;
+      out << "\n";
+    }
+    out << "  end\n"
+        << "end\n";
+    return out.str();
   }
 } // namespace anticrack::fem

@@ -1,12 +1,15 @@
 // The continuum material as the FE solver reads it: `subsection Material` of a material file written
-// by a calibration (params/calibration_output.h), or the same entries inline in a layer of a
-// snowpack scene (fem/scene/snowpack_scene.h). One declaration serves both, so a layer can be given
-// either way with the same names, units and ranges. `anticrack calibrate` reads every material file
-// back with read_material_file() before it keeps it (a file the solver could not read is never left
-// behind).
+// by a calibration (coupling/material_handoff.h), or the same entries inline in a layer of a
+// snowpack scene (fem/scene/snowpack_scene.h). One table of entries (material_entries(): name,
+// unit, meaning, default, range) serves the declaration, the reader and the writer, so a layer can
+// be given either way with the same names, units and ranges, and a calibration writes exactly what
+// the solver reads. `anticrack calibrate` reads every material file back with read_material_text()
+// before it keeps it (a file the solver could not read is never left behind).
 #pragma once
 
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -33,6 +36,67 @@ namespace anticrack::fem
     double reference_thickness = 0;
   };
 
+  /// A confidence interval of a material entry (subsection Material/Uncertainty).
+  struct MaterialInterval
+  {
+    double lower = std::numeric_limits<double>::quiet_NaN();
+    double upper = std::numeric_limits<double>::quiet_NaN();
+  };
+
+  /// What a calibration knows of the uncertainty of its material (subsection Material/Uncertainty).
+  struct MaterialUncertainty
+  {
+    double confidence = 0.95; ///< level of the intervals
+    MaterialInterval youngs_modulus, poisson_ratio, p0, beta, M, hardening_factor;
+  };
+
+  /// Where a calibrated material comes from (subsection Material/Provenance).
+  struct MaterialProvenance
+  {
+    std::string campaign_file, campaign_sha256, scene_file, scene_sha256;
+    int microstructure = 0;     ///< index in the campaign
+    std::string fit_plane;      ///< p-q | sigma-tau
+    double r_squared = 0;       ///< of the yield-surface fit
+  };
+
+  /// A whole material file: a comment block, the material, its uncertainty and its provenance.
+  struct MaterialFile
+  {
+    std::vector<std::string> comment; ///< lines of the header, written after "# "
+    ContinuumMaterial material;
+    MaterialUncertainty uncertainty;
+    MaterialProvenance provenance;
+  };
+
+  /// One entry of `subsection Material`: its label and unit (the name in the file is
+  /// "label [unit]", or the label alone for a ratio), what it means and the values it admits.
+  struct MaterialEntry
+  {
+    const char *label;
+    const char *unit;          ///< "" for dimensionless entries
+    const char *meaning;       ///< the entry's documentation
+    const char *default_value;
+    /// Exactly one of the two members is set: a number of ContinuumMaterial, or a text.
+    double ContinuumMaterial::*number = nullptr;
+    std::string ContinuumMaterial::*text = nullptr;
+    double lower = -std::numeric_limits<double>::max(); ///< range of a number
+    double upper = std::numeric_limits<double>::max();
+    const char *choices = nullptr;  ///< "a|b" of a text with a fixed set of values; nullptr: any text
+    /// Its interval in subsection Uncertainty, if a calibration reports one.
+    MaterialInterval MaterialUncertainty::*interval = nullptr;
+
+    /// "label [unit]", the name in the file.
+    [[nodiscard]] std::string name() const;
+    /// "label interval [unit]", the name of its interval in subsection Uncertainty.
+    [[nodiscard]] std::string interval_name() const;
+  };
+
+  /// Every entry of `subsection Material`, in the order of the files.
+  const std::vector<MaterialEntry> &material_entries();
+
+  /// The entries that have an interval in subsection Uncertainty, in the order of the files.
+  const std::vector<const MaterialEntry *> &material_interval_entries();
+
   /// Declares the entries of a ContinuumMaterial in the current subsection of `prm`.
   void declare_material_entries(dealii::ParameterHandler &prm);
 
@@ -46,4 +110,15 @@ namespace anticrack::fem
 
   /// The same for the text of a material file; `name` is used in messages.
   ContinuumMaterial read_material_text(const std::string &text, const std::string &name);
+
+  /// The whole file (material, uncertainty, provenance; not the comment) from its text; throws like
+  /// read_material_text().
+  MaterialFile read_material_file_text(const std::string &text, const std::string &name);
+
+  /// The text of a material file: the comment, then subsection Material with every entry of
+  /// material_entries(), Uncertainty and Provenance. Numbers are written with 6 significant digits.
+  std::string material_file_text(const MaterialFile &file);
+
+  /// A number as material files write it (6 significant digits), for comments that quote values.
+  std::string material_file_number(double value);
 } // namespace anticrack::fem

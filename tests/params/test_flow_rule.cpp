@@ -27,7 +27,7 @@ namespace
 
   /// Parameter sets covering the branches: cohesionless (beta = 0), snow-like (0.3), equal tips
   /// (beta = 1, apex on the tau axis), and beta > 1 (apex on the tensile side, obtuse transition).
-  const std::vector<CamClayParameters> parameter_sets = {
+  const std::vector<CamClaySurface> parameter_sets = {
     {1e5, 0.0, 0.8}, {1e5, 0.3, 0.8}, {2650, 0.5, 0.6}, {1e6, 1.0, 1.0}, {1e5, 1.5, 0.8}};
 
   /// Standard normal deviates by Box-Muller from mt19937_64, reproducible across platforms.
@@ -50,7 +50,7 @@ namespace
   };
 
   /// Eq. 1 of Ritter et al. (2020) divided by M^2 p0^2 (dimensionless): 0 on the surface.
-  double yield_function(double sigma, double tau, const CamClayParameters &c)
+  double yield_function(double sigma, double tau, const CamClaySurface &c)
   {
     return (tau * tau * (1 + 2 * c.beta) + c.M * c.M * (sigma - c.p0) * (sigma + c.beta * c.p0))
            / (c.M * c.M * c.p0 * c.p0);
@@ -59,7 +59,7 @@ namespace
   /// Associative flow angle from Eq. 1 directly: along the surface
   /// d tau/d sigma = -M^2 (2 sigma - (1 - beta) p0)/(2 tau (1 + 2 beta)), and the displacement
   /// (du_x, du_z) is proportional to (1, d tau/d sigma) for tau > 0.
-  double flow_angle_from_surface_slope(double sigma, double tau, const CamClayParameters &c)
+  double flow_angle_from_surface_slope(double sigma, double tau, const CamClaySurface &c)
   {
     const double numerator = -c.M * c.M * (2 * sigma - (1 - c.beta) * c.p0);
     const double denominator = 2 * tau * (1 + 2 * c.beta);
@@ -69,7 +69,7 @@ namespace
 
 TEST(Normalise, TipsAndApexOfTheEllipse)
 {
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       // Compressive tip sigma_0 -> (1, 0), tensile tip -beta sigma_0 -> (-1, 0) (Eq. 5).
       const NormalisedStress compressive_tip = normalise(c.p0, 0, c);
@@ -88,7 +88,7 @@ TEST(Normalise, TipsAndApexOfTheEllipse)
 TEST(Normalise, PointsOfEq1AreOnTheUnitCircle)
 {
   // tau from Eq. 1 for sigma across the surface; Eq. 4 must hold.
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     for (int i = 1; i < 20; ++i)
       {
         const double sigma = -c.beta * c.p0 + (1 + c.beta) * c.p0 * i / 20.0;
@@ -97,15 +97,15 @@ TEST(Normalise, PointsOfEq1AreOnTheUnitCircle)
         const NormalisedStress normalised = normalise(sigma, tau, c);
         EXPECT_NEAR(normalised.sigma * normalised.sigma + normalised.tau * normalised.tau, 1, round_off);
       }
-  EXPECT_THROW(normalise(1, 1, CamClayParameters{0, 0.3, 0.8}), CalibrationError);
-  EXPECT_THROW(normalise(1, 1, CamClayParameters{1e5, -0.1, 0.8}), CalibrationError);
-  EXPECT_THROW(normalise(1, 1, CamClayParameters{1e5, 0.3, 0}), CalibrationError);
+  EXPECT_THROW(normalise(1, 1, CamClaySurface{0, 0.3, 0.8}), CalibrationError);
+  EXPECT_THROW(normalise(1, 1, CamClaySurface{1e5, -0.1, 0.8}), CalibrationError);
+  EXPECT_THROW(normalise(1, 1, CamClaySurface{1e5, 0.3, 0}), CalibrationError);
 }
 
 TEST(LoadingAngle, RayIntersectionLiesOnSurfaceAndRay)
 {
   // Eq. 1 residual relative to M^2 p0^2, and the point's direction is psi.
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     for (int i = 0; i <= 36; ++i)
       {
         const double psi = pi * i / 36;
@@ -124,7 +124,7 @@ TEST(LoadingAngle, RayIntersectionLiesOnSurfaceAndRay)
 
 TEST(LoadingAngle, HandCases)
 {
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       // Pure compression meets the compressive tip, pure tension the tensile tip.
       EXPECT_NEAR(normalised_loading_angle(0, c), 0, round_off);
@@ -145,7 +145,7 @@ TEST(LoadingAngle, HandCases)
             }
         }
     }
-  const CamClayParameters snow{1e5, 0.3, 0.8};
+  const CamClaySurface snow{1e5, 0.3, 0.8};
   EXPECT_THROW(normalised_loading_angle(-0.1, snow), CalibrationError);
   EXPECT_THROW(normalised_loading_angle(pi + 0.1, snow), CalibrationError);
 }
@@ -156,7 +156,7 @@ TEST(LoadingAngle, Eq19ClosedFormMatchesGeometry)
   // form of Eq. 19, and the result must satisfy the unsquared Eq. 19. For beta > 1 this includes
   // psi in (pi/2, psi+-) with mu < 0 (the other root of the quadratic). The tolerance is relative:
   // near psi+- mu* grows (tan of an angle near pi/2), and its relative error with it.
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       const double transition = transition_loading_angle(c);
       const double d = (1 - c.beta) / (1 + c.beta);
@@ -201,7 +201,7 @@ TEST(TransitionAngle, Eq7LimitsAndApex)
               0.8 * 1.3 / (0.7 * std::sqrt(1.6)), round_off);
   EXPECT_NEAR(transition_loading_angle({1e5, 1.5, 0.8}), pi - std::atan(2.0), round_off);
   // It is the direction of the apex.
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       const double apex_sigma = (1 - c.beta) * c.p0 / 2;
       const double apex_tau = c.M * (1 + c.beta) * c.p0 / (2 * std::sqrt(1 + 2 * c.beta));
@@ -215,7 +215,7 @@ TEST(FlowAngle, HandComputedEq18)
   // tan theta* = sqrt(2)/(0.8 sqrt(3)) = sqrt(2/3)/0.8 = 0.816496581/0.8 = 1.020620726 and
   // theta* = arctan(1.020620726) = 45 deg + 0.5847 deg = 0.795602953 rad (series of arctan about 1:
   // pi/4 + h/2 - h^2/4 + h^3/12 with h = 0.020620726).
-  const CamClayParameters c{1e5, 0.5, 0.8};
+  const CamClaySurface c{1e5, 0.5, 0.8};
   EXPECT_NEAR(normalised_flow_angle(30 * radians_per_degree, c), 0.795602953, 1e-9);
   EXPECT_NEAR(flow_angle_from_normalised(0.7956029534845354, c), 30 * radians_per_degree, 1e-12);
 
@@ -240,7 +240,7 @@ TEST(FlowAngle, AssociativeFlowIsNormalToEq1)
   // associative_flow_angle goes through psi*, Eq. 16 and the inverse of Eq. 18; the slope of Eq. 1
   // at the failure point by implicit differentiation must give the same angle. Compaction below the
   // transition angle, expansion above (Ritter et al. 2020, Results and Discussion).
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       const double transition = transition_loading_angle(c);
       const double last_psi = (c.beta == 0) ? pi / 2 : pi;  // beta = 0: tensile rays end at the origin
@@ -273,7 +273,7 @@ TEST(FlowAngle, AssociativeFlowIsNormalToEq1)
 
 TEST(Associativity, AssociativeDataAreRecognised)
 {
-  const CamClayParameters c{1e5, 0.3, 0.8};
+  const CamClaySurface c{1e5, 0.3, 0.8};
   std::vector<double> psi_star, theta_star;
   for (int degrees = 0; degrees <= 180; degrees += 15)
     {
@@ -388,7 +388,7 @@ TEST(ObservedTransition, AssociativeFlowCrossesAtEq7)
   // Flow from the associative rule on a 1 deg grid of loading angles changes sign at psi+- (Eq. 7)
   // up to the linear interpolation error ~ h^2/8 |theta''/theta'| with h = 0.017 rad (at most
   // 0.003 deg for these parameter sets); 0.01 deg keeps a margin.
-  for (const CamClayParameters &c : parameter_sets)
+  for (const CamClaySurface &c : parameter_sets)
     {
       std::vector<double> psi, theta;
       for (int degrees = 1; degrees < 180; ++degrees)

@@ -1,0 +1,124 @@
+// The material hand-off (coupling/material_handoff.h) and the FE solver's material-file table
+// (fem/material/material_file.h): what the writer writes, the solver's reader reads back.
+#include "coupling/material_handoff.h"
+#include "fem/material/material_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+  using namespace anticrack;
+
+  /// A calibration of one microstructure with the surface (p0, beta, M) in both planes; every
+  /// number has at most 6 significant digits, so the file holds it exactly.
+  params::Calibration one_microstructure(double p0, double beta, double M)
+  {
+    params::Calibration c;
+    c.campaign.file = "campaign.h5";
+    c.campaign.sha256 = std::string(64, 'a');
+    c.campaign.scene_file = "scenes/weak_layer.prm";
+    c.campaign.scene_file_sha256 = std::string(64, 'b');
+    c.options.confidence = 0.9;
+    params::MicrostructureCalibration m;
+    m.index = 0;
+    m.material.label = "scene sample";
+    m.solid_fraction = 0.3, m.coordination = 2.8, m.contact_density = 0.84;
+    m.layer_thickness = 0.008, m.density = 275.1;
+    for (params::PlaneCalibration *plane : {&m.base_plane, &m.invariant_plane})
+    {
+      plane->models = {params::EnvelopeKind::cohesive_cam_clay};
+      params::EnvelopeFit fit;
+      fit.model = "cohesive_cam_clay";
+      fit.parameters = Eigen::Vector3d(p0, beta, M);
+      fit.ci_lower = Eigen::Vector3d(0.9 * p0, 0.5 * beta, 0.75 * M);
+      fit.ci_upper = Eigen::Vector3d(1.1 * p0, 1.5 * beta, 1.25 * M);
+      fit.r_squared = 0.987;
+      fit.rmse = 0.031;
+      plane->fits = {fit};
+    }
+    m.elastic.youngs_modulus.mean = 1.2345e6;
+    m.elastic.youngs_modulus.mean_ci = {1.1e6, 1.3e6};
+    m.elastic.poisson_ratio.mean = 0.21;
+    m.elastic.poisson_ratio.mean_ci = {0.19, 0.23};
+    m.softening.hardening_factor.mean = 42.5;
+    m.softening.hardening_factor.mean_ci = {40, 45};
+    m.softening.residual_ratio.mean = 0.35;
+    c.microstructures.push_back(m);
+    return c;
+  }
+} // namespace
+
+TEST(MaterialFile, WhatTheWriterWritesTheReaderReads)
+{
+  fem::MaterialFile file;
+  file.comment = {"a comment", "  indented"};
+  file.material = {"weak layer", 275.1, 1.2345e6, 0.21, 3456.7, 0.45, 1.05, "signed", 42.5, 0.35, 0.008};
+  file.uncertainty.confidence = 0.9;
+  file.uncertainty.p0 = {3000, 4000};
+  file.uncertainty.youngs_modulus = {1.1e6, 1.3e6};
+  file.provenance = {"campaign.h5", "abc", "scene.prm", "def", 3, "sigma-tau", 0.987};
+  const std::string text = fem::material_file_text(file);
+  EXPECT_EQ(text.rfind("# a comment\n#   indented\nsubsection Material\n", 0), 0u) << text;
+
+  const fem::MaterialFile back = fem::read_material_file_text(text, "round trip");
+  const fem::ContinuumMaterial &a = file.material, &b = back.material;
+  EXPECT_EQ(b.name, a.name);
+  EXPECT_EQ(b.hardening_law, a.hardening_law);
+  for (const fem::MaterialEntry &e : fem::material_entries())
+  {
+    if (e.number)
+    {
+      EXPECT_EQ(b.*e.number, a.*e.number) << e.name();
+    }
+  }
+  EXPECT_EQ(back.uncertainty.confidence, 0.9);
+  EXPECT_EQ(back.uncertainty.p0.lower, 3000);
+  EXPECT_EQ(back.uncertainty.p0.upper, 4000);
+  EXPECT_EQ(back.uncertainty.youngs_modulus.upper, 1.3e6);
+  EXPECT_TRUE(std::isnan(back.uncertainty.beta.lower)); // written as "nan, nan", read back as NaN
+  EXPECT_EQ(back.provenance.microstructure, 3);
+  EXPECT_EQ(back.provenance.fit_plane, "sigma-tau");
+  EXPECT_EQ(back.provenance.r_squared, 0.987);
+  EXPECT_EQ(fem::read_material_text(text, "round trip").p0, a.p0);
+}
+
+TEST(MaterialFile, EveryEntryOfTheTableIsWrittenUnderItsNameAndUnit)
+{
+  const std::string text = fem::material_file_text(fem::MaterialFile{});
+  for (const fem::MaterialEntry &e : fem::material_entries())
+    EXPECT_NE(text.find("  set " + e.name() + " = "), std::string::npos) << e.name();
+  for (const fem::MaterialEntry *e : fem::material_interval_entries())
+    EXPECT_NE(text.find("    set " + e->interval_name() + " = "), std::string::npos) << e->interval_name();
+  EXPECT_NE(text.find("set Compressive strength p0 interval [Pa] = "), std::string::npos);
+  EXPECT_NE(text.find("set Tensile strength ratio beta interval = "), std::string::npos);
+}
+
+TEST(MaterialHandoff, TheFilesMaterialIsTheCalibratedOneOfTheFePlane)
+{
+  params::Calibration calibration = one_microstructure(3456.7, 0.45, 1.05);
+  calibration.microstructures[0].base_plane.fits[0].parameters = Eigen::Vector3d(9999, 0.9, 1.9);
+  const fem::MaterialFile file = coupling::material_handoff(calibration, 0, "test");
+  const fem::MaterialFile back = fem::read_material_file_text(fem::material_file_text(file), "hand-off");
+  EXPECT_EQ(back.material.p0, 3456.7);
+  EXPECT_EQ(back.material.beta, 0.45);
+  EXPECT_EQ(back.material.M, 1.05);
+  EXPECT_EQ(back.material.youngs_modulus, 1.2345e6);
+  EXPECT_EQ(back.material.poisson_ratio, 0.21);
+  EXPECT_EQ(back.material.hardening_law, "collapse");
+  EXPECT_EQ(back.material.hardening_factor, 42.5);
+  EXPECT_EQ(back.material.residual_strength_ratio, 0.35);
+  EXPECT_EQ(back.material.reference_thickness, 0.008);
+  EXPECT_EQ(back.material.name, "weak_layer m0");
+  EXPECT_NEAR(back.uncertainty.p0.lower, 0.9 * 3456.7, 0.01);
+  EXPECT_NEAR(back.uncertainty.M.upper, 1.25 * 1.05, 1e-5);
+  EXPECT_EQ(back.provenance.fit_plane, "p-q");
+  EXPECT_EQ(back.provenance.campaign_sha256, std::string(64, 'a'));
+  EXPECT_EQ(back.provenance.r_squared, 0.987);
+
+  calibration.options.fe_plane = params::StressPlane::base_stresses;
+  const fem::MaterialFile base = coupling::material_handoff(calibration, 0, "test");
+  EXPECT_EQ(base.material.p0, 9999);
+  EXPECT_EQ(base.provenance.fit_plane, "sigma-tau");
+}
