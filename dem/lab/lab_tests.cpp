@@ -1,6 +1,6 @@
 #include "dem/lab/lab_tests.h"
 
-#include "dem/contact/contact_laws.h"
+#include "dem/contact/contact_law.h"
 #include "dem/lab/stress_invariants.h"
 
 #include <algorithm>

@@ -1,6 +1,7 @@
 #include "dem/scene/model.h"
 
 #include "util/input_error.h"
+#include "dem/contact/contact_law.h"
 #include "dem/lab/force_history.h"
 #include "dem/sample/bedding.h"
 #include "dem/io/state_hdf5.h"
@@ -527,7 +528,7 @@ namespace anticrack::dem
       s << " (" << model.bedding_bonds << " of them in the bedding bands, inclination " << d.bedding.inclination_deg
         << " deg)";
     s << "\n  contact law         "
-      << (d.material.contact.law == dem::ContactLaw::linear ? "linear" : "hertz-mindlin") << "\n";
+      << dem::contact_law_name(d.material.contact.law) << "\n";
     s << "  walls               " << (system.walls.empty() ? "none\n" : "\n");
     for (const auto &w : system.walls)
     {

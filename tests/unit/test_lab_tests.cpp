@@ -10,7 +10,7 @@
 // ~0.47-0.50 sigma_bar_c; prism UCS ~0.77 sigma_bar_c with secant moduli at 30 and 60 % of the peak
 // within 2 % of each other. Halving the loading rates changed the peaks by 1-4 %.
 
-#include "dem/contact/contact_laws.h"
+#include "dem/contact/contact_law.h"
 #include "dem/sample/dense_packing.h"
 #include "dem/lab/failure_point.h"
 #include "dem/lab/lab_tests.h"
