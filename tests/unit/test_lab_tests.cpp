@@ -1,4 +1,4 @@
-// Virtual-laboratory tests driven by walls (dem/lab/lab_tests.h): servo consolidation and the triaxial
+// Virtual-laboratory tests driven by walls (dem/lab/triaxial_test.h, platen_compression_test.h, box_walls.h, dem/sample/specimen_carving.h): servo consolidation and the triaxial
 // test of Elyashiv et al. (2020), the Brazilian disc and the uniaxial compression of a prism between platens of
 // Zhao & Feng (2022), specimen carving and argument checking.
 //
@@ -13,7 +13,10 @@
 #include "dem/contact/contact_law.h"
 #include "dem/sample/dense_packing.h"
 #include "dem/lab/failure_point.h"
-#include "dem/lab/lab_tests.h"
+#include "dem/lab/box_walls.h"
+#include "dem/lab/platen_compression_test.h"
+#include "dem/lab/triaxial_test.h"
+#include "dem/sample/specimen_carving.h"
 #include "dem/lab/measurements.h"
 #include "dem_test_helpers.h"
 
