@@ -1,30 +1,14 @@
-// Material parameters of contacts and parallel bonds (docs/physics.md §1.1, §1.2). Parameters are
+// Material parameters of contacts (dem/contact/contact_parameters.h) and parallel bonds (docs/physics.md §1.1, §1.2). Parameters are
 // plain data kept apart from the state the interactions carry (MercuryDPM "species" style).
 #pragma once
 
+#include "dem/contact/contact_parameters.h"
 #include "dem/core/types.h"
 
 #include <vector>
 
 namespace anticrack::dem
 {
-  enum class ContactLaw
-  {
-    linear,       ///< k_n = E_c A / L, k_s = k_n / kappa, Coulomb cap
-    hertz_mindlin ///< F_n = 4/3 E* sqrt(R*) delta^{3/2}, k_t = 8 G* sqrt(R* delta)
-  };
-
-  struct ContactParameters
-  {
-    ContactLaw law = ContactLaw::linear;
-    double contact_modulus = 1e9;  ///< E_c [Pa] (linear law, PFC "deformability")
-    double stiffness_ratio = 3.0;  ///< kappa = k_n / k_s [-] (linear law)
-    double friction = 0.5;         ///< mu = tan(phi_contact) [-]
-    double damping_ratio = 0.0;    ///< beta_d of the normal and shear dashpots [-]
-    double young_modulus = 1e9;    ///< E [Pa] of the grain material (Hertz-Mindlin)
-    double poisson_ratio = 0.3;    ///< nu [-] (Hertz-Mindlin)
-  };
-
   struct BondParameters
   {
     bool enabled = false;         ///< whether touching pairs of this material may be bonded

@@ -1,6 +1,6 @@
 #include "dem/core/system.h"
 
-#include "dem/contact/contact_laws.h"
+#include "dem/contact/contact_law.h"
 #include "dem/contact/parallel_bond.h"
 #include "dem/core/parallel_sum.h"
 
@@ -361,9 +361,9 @@ namespace anticrack::dem
       const Index i = contacts.i[c], j = contacts.j[c];
       const ContactParameters &p =
         materials.contact(particles.material_id[i], particles.material_id[j]);
-      // The linear law's stiffness does not depend on the overlap: count every candidate pair, so
-      // that contacts forming before the next evaluation are covered.
-      if (p.law == ContactLaw::hertz_mindlin && contacts.overlap[c] <= 0)
+      // A law whose stiffness does not depend on the overlap (the linear one) counts every candidate
+      // pair, so that contacts forming before the next evaluation are covered.
+      if (contact_stiffness_depends_on_overlap(p) && contacts.overlap[c] <= 0)
         continue;
       double kn, ks;
       contact_tangent_stiffness(p, particles.radius[i], particles.radius[j], contacts.overlap[c], kn, ks);
@@ -423,7 +423,7 @@ namespace anticrack::dem
       for (Index p = 0; p < n; ++p)
       {
         const ContactParameters &c = materials[particles.material_id[p]].contact;
-        const double modulus = c.law == ContactLaw::linear ? c.contact_modulus : c.young_modulus;
+        const double modulus = contact_law_modulus(c);
         const double density = particles.mass[p] / sphere_volume(particles.radius[p]);
         const double estimate = particles.radius[p] * std::sqrt(density / modulus);
         if (estimate * estimate < dt2)
@@ -514,12 +514,7 @@ namespace anticrack::dem
         {
           // Separation: the tangential spring's energy is released, the contact stops acting, its
           // dashpot books its last half step.
-          if (p.law == ContactLaw::linear)
-          {
-            double kn, ks;
-            linear_stiffness(p, r[i], r[j], kn, ks);
-            friction += 0.5 * contacts.shear_force[c].squaredNorm() / ks;
-          }
+          friction += contact_shear_energy_at_separation(p, r[i], r[j], contacts.shear_force[c]);
           if (p.damping_ratio > 0)
           {
             ContactDissipation dissipation;

@@ -29,4 +29,7 @@ namespace anticrack::dem
   public:
     using std::runtime_error::runtime_error;
   };
+
+  /// x with six significant digits, for the values that SetupError messages quote.
+  std::string format_for_message(double x);
 } // namespace anticrack::dem

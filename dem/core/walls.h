@@ -31,7 +31,10 @@ namespace anticrack::dem
     double max_speed = 0;         ///< cap on the servo speed [m/s]
     Vec3 force = Vec3::Zero();    ///< total force the particles exert on the wall [N]
 
+    /// Compressive normal force on the wall from the last force evaluation [N] (the particles push
+    /// it against its normal).
+    [[nodiscard]] double normal_force() const { return -force.dot(normal); }
     /// Compressive normal stress on the wall from the last force evaluation [Pa].
-    [[nodiscard]] double normal_stress() const { return -force.dot(normal) / area; }
+    [[nodiscard]] double normal_stress() const { return normal_force() / area; }
   };
 } // namespace anticrack::dem

@@ -3,10 +3,23 @@
 // (after the step count reached a multiple of it) and stops once finished() says so; everything
 // else (measurements, outputs, checkpoints) belongs to the run.
 //
-// Protocols: dem/lab/load_control.h (the adaptive clump force ramp of the mixed-mode test, Ritter et al. 2020),
-// dem/lab/lab_tests.h (triaxial test with six servo walls, Elyashiv et al. 2020; Brazilian disc and uniaxial
-// compression between platens, Zhao & Feng 2022; simple shear at constant normal stress, Mede et al. 2018;
-// tilted-gravity actuator, Bobillier et al. 2020).
+// Life cycle: construct after the walls and clumps exist, call start(system) once after
+// system.initialise() (it may need the time step) and before the first step (the run calls control()
+// only after the first interval); then the run calls control() every control_interval() steps and
+// stops when finished() says so. A run resumed from a checkpoint calls restore(state()) instead of
+// start(): the walls' and clumps' control modes, speeds, gains, areas and force histories are part of
+// the DemSystem the checkpoint restores.
+//
+// Sign convention: the stresses and forces the wall-driven tests report are compressive positive (the
+// walls push on the sample), strains compressive positive (shortening, volume loss), as in soil
+// mechanics and in Elyashiv et al.'s (2020) figures; the Love-Weber tensor of dem/lab/measurements.h is
+// tension positive.
+//
+// Protocols: dem/lab/load_control.h (the adaptive clump force ramp of the mixed-mode test, Ritter et al.
+// 2020, and the tilted-gravity actuator, Bobillier et al. 2020), dem/lab/triaxial_test.h (six servo
+// walls, Elyashiv et al. 2020), dem/lab/platen_compression_test.h (Brazilian disc and uniaxial
+// compression between platens, Zhao & Feng 2022), dem/lab/simple_shear.h (simple shear at constant
+// normal stress, Mede et al. 2018).
 #pragma once
 
 #include "dem/core/system.h"
@@ -19,10 +32,15 @@ namespace anticrack::dem
   class LabProtocol
   {
   public:
+    /// `control_interval`: steps between two control() calls; each protocol checks that it is >= 1.
+    explicit LabProtocol(Index control_interval) : control_interval_(control_interval) {}
     virtual ~LabProtocol() = default;
 
     /// Steps between two control() calls (>= 1).
-    [[nodiscard]] virtual Index control_interval() const = 0;
+    [[nodiscard]] Index control_interval() const { return control_interval_; }
+
+    /// Prepares a fresh run (see the life cycle above).
+    virtual void start(DemSystem &system) = 0;
 
     /// Adjusts walls, clumps, gravity, ... for the next interval.
     virtual void control(DemSystem &system) = 0;
@@ -40,5 +58,8 @@ namespace anticrack::dem
     /// Protocol state that a checkpoint must carry besides the DemSystem, by name.
     [[nodiscard]] virtual std::map<std::string, double> state() const { return {}; }
     virtual void restore(const std::map<std::string, double> & /*state*/) {}
+
+  private:
+    Index control_interval_;
   };
 } // namespace anticrack::dem

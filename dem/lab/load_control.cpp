@@ -7,7 +7,7 @@ namespace anticrack::dem
   ClumpForceRamp::ClumpForceRamp(const Index clump, std::vector<Index> base, const Vec3 &direction,
                                  const RampControlSettings &settings, const bool adaptive,
                                  const double stop_displacement, const double actuator_gravity)
-    : clump_(clump), base_(std::move(base)), direction_(direction.normalized()), settings_(settings),
+    : LabProtocol(settings.interval), clump_(clump), base_(std::move(base)), direction_(direction.normalized()), settings_(settings),
       adaptive_(adaptive), stop_displacement_(stop_displacement), actuator_gravity_(actuator_gravity)
   {
     if (settings_.interval < 1)

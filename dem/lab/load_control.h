@@ -82,7 +82,6 @@ namespace anticrack::dem
     ClumpForceRamp(Index clump, std::vector<Index> base, const Vec3 &direction, const RampControlSettings &settings,
                    bool adaptive, double stop_displacement, double actuator_gravity = 0);
 
-    [[nodiscard]] Index control_interval() const override { return settings_.interval; }
     void control(DemSystem &system) override;
     [[nodiscard]] bool finished(const DemSystem &system) const override;
     [[nodiscard]] std::string stage(const DemSystem &system) const override;
@@ -91,7 +90,7 @@ namespace anticrack::dem
 
     /// Prepares a fresh run: the count of broken bonds, and for the tilted-gravity actuator the
     /// system's gravity and the actuator's initial mass. Call once before the first step.
-    void start(DemSystem &system);
+    void start(DemSystem &system) override;
 
   private:
     void set_actuator_mass(DemSystem &system, double mass) const;

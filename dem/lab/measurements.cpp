@@ -120,4 +120,20 @@ namespace anticrack::dem
   {
     return bonds.size() == 0 ? 0.0 : 1.0 - static_cast<double>(bonds.count_intact()) / bonds.size();
   }
+
+  double mobilised_friction_angle(const double major, const double minor)
+  {
+    if (!(minor > 0) || !(major >= minor))
+      throw SetupError("mobilised friction angle: needs major >= minor > 0 (compressive positive), got " +
+                       format_for_message(major) + " and " + format_for_message(minor) + " Pa");
+    return std::asin((major - minor) / (major + minor));
+  }
+
+  double brazilian_tensile_strength(const double force, const double diameter, const double thickness)
+  {
+    if (!(diameter > 0) || !(thickness > 0))
+      throw SetupError("Brazilian tensile strength: diameter " + format_for_message(diameter) + " m and thickness " +
+                       format_for_message(thickness) + " m must be positive");
+    return 2 * force / (M_PI * diameter * thickness);
+  }
 } // namespace anticrack::dem

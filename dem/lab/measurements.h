@@ -38,4 +38,12 @@ namespace anticrack::dem
 
   /// Fraction of bonds that are broken (0 when there are none).
   double broken_bond_fraction(const BondList &bonds);
+
+  /// Mobilised friction angle [rad] of a cohesionless sample at principal stresses major >= minor > 0
+  /// (compressive positive): sin(phi) = (sigma_1 - sigma_3) / (sigma_1 + sigma_3) (Mohr-Coulomb).
+  double mobilised_friction_angle(double major, double minor);
+
+  /// Splitting tensile strength of a Brazilian disc [Pa]: sigma_t = 2 F / (pi D t) (ISRM 1978;
+  /// Zhao & Feng 2022, section 5), F the failure load [N], D the diameter [m], t the thickness [m].
+  double brazilian_tensile_strength(double force, double diameter, double thickness);
 } // namespace anticrack::dem

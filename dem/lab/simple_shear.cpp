@@ -7,7 +7,7 @@
 namespace anticrack::dem
 {
   SimpleShear::SimpleShear(const Index clump, std::vector<Index> base, const SimpleShearSettings &settings)
-    : clump_(clump), base_(std::move(base)), settings_(settings)
+    : LabProtocol(settings.interval), clump_(clump), base_(std::move(base)), settings_(settings)
   {
     const auto &s = settings_;
     auto require = [](bool ok, const std::string &what) {

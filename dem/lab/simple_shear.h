@@ -38,9 +38,8 @@ namespace anticrack::dem
 
     /// Holds the platen (rotation, x, y), starts the normal-force ramp. Call once before the first
     /// step of a fresh run.
-    void start(DemSystem &system);
+    void start(DemSystem &system) override;
 
-    [[nodiscard]] Index control_interval() const override { return settings_.interval; }
     void control(DemSystem &system) override;
     [[nodiscard]] bool finished(const DemSystem &system) const override;
     [[nodiscard]] std::string stage(const DemSystem &system) const override;

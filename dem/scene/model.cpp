@@ -1,11 +1,15 @@
 #include "dem/scene/model.h"
 
 #include "util/input_error.h"
+#include "dem/contact/contact_law.h"
 #include "dem/lab/force_history.h"
 #include "dem/sample/bedding.h"
 #include "dem/io/state_hdf5.h"
 #include "dem/sample/lattice.h"
-#include "dem/lab/lab_tests.h"
+#include "dem/lab/box_walls.h"
+#include "dem/lab/platen_compression_test.h"
+#include "dem/lab/triaxial_test.h"
+#include "dem/sample/specimen_carving.h"
 #include "dem/lab/load_control.h"
 #include "dem/lab/simple_shear.h"
 #include "dem/lab/measurements.h"
@@ -515,7 +519,7 @@ namespace anticrack::dem
       s << " (" << model.bedding_bonds << " of them in the bedding bands, inclination " << d.bedding.inclination_deg
         << " deg)";
     s << "\n  contact law         "
-      << (d.material.contact.law == dem::ContactLaw::linear ? "linear" : "hertz-mindlin") << "\n";
+      << dem::contact_law_name(d.material.contact.law) << "\n";
     s << "  walls               " << (system.walls.empty() ? "none\n" : "\n");
     for (const auto &w : system.walls)
     {

@@ -2,6 +2,7 @@
 
 
 #include "util/sha256.h"
+#include "dem/contact/contact_law.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
 #include "util/problems.h"
@@ -157,7 +158,7 @@ namespace anticrack::dem
       prm.declare_entry("Density [kg/m^3]", "1e4", Patterns::Double(0),
                         "rho: density of the spheres (Ritter et al. (2020) use 10 000 kg/m^3 without "
                         "gravity to speed up quasi-static tests). Units: kg/m^3.");
-      prm.declare_entry("Contact law", "linear", Patterns::Selection("linear|hertz-mindlin"),
+      prm.declare_entry("Contact law", "linear", Patterns::Selection(dem::contact_law_names()),
                         "Force-overlap law of sphere-sphere and sphere-wall contacts "
                         "(docs/physics.md §1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
                         "L = R_i + R_j, k_s = k_n / kappa; `hertz-mindlin` has "
@@ -187,8 +188,7 @@ namespace anticrack::dem
     {
       prm.enter_subsection("Material");
       density = prm.get_double("Density [kg/m^3]");
-      contact.law = prm.get("Contact law") == "linear" ? dem::ContactLaw::linear :
-                                                         dem::ContactLaw::hertz_mindlin;
+      contact.law = dem::contact_law_by_name(prm.get("Contact law"));
       contact.contact_modulus = prm.get_double("Contact modulus [Pa]");
       contact.stiffness_ratio = prm.get_double("Stiffness ratio");
       contact.friction = prm.get_double("Friction coefficient");
@@ -1164,8 +1164,7 @@ namespace anticrack::dem
           problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
                        "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
                          " (allowed: 0 <= w < R)");
-        const double modulus = d.material.contact.law == dem::ContactLaw::linear ? d.material.contact.contact_modulus :
-                                                                                  d.material.contact.young_modulus;
+        const double modulus = dem::contact_law_modulus(d.material.contact);
         if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
           problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
                        "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" + why_type);

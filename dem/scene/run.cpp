@@ -9,7 +9,7 @@
 #include "dem/scene/failure_analysis.h"
 #include "dem/io/state_hdf5.h"
 #include "dem/io/state_vtp.h"
-#include "dem/lab/lab_tests.h"
+#include "dem/lab/lab_protocol.h"
 #include "dem/lab/measurements.h"
 
 #include <algorithm>

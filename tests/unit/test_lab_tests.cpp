@@ -1,4 +1,4 @@
-// Virtual-laboratory tests driven by walls (dem/lab/lab_tests.h): servo consolidation and the triaxial
+// Virtual-laboratory tests driven by walls (dem/lab/triaxial_test.h, platen_compression_test.h, box_walls.h, dem/sample/specimen_carving.h): servo consolidation and the triaxial
 // test of Elyashiv et al. (2020), the Brazilian disc and the uniaxial compression of a prism between platens of
 // Zhao & Feng (2022), specimen carving and argument checking.
 //
@@ -10,10 +10,13 @@
 // ~0.47-0.50 sigma_bar_c; prism UCS ~0.77 sigma_bar_c with secant moduli at 30 and 60 % of the peak
 // within 2 % of each other. Halving the loading rates changed the peaks by 1-4 %.
 
-#include "dem/contact/contact_laws.h"
+#include "dem/contact/contact_law.h"
 #include "dem/sample/dense_packing.h"
 #include "dem/lab/failure_point.h"
-#include "dem/lab/lab_tests.h"
+#include "dem/lab/box_walls.h"
+#include "dem/lab/platen_compression_test.h"
+#include "dem/lab/triaxial_test.h"
+#include "dem/sample/specimen_carving.h"
 #include "dem/lab/measurements.h"
 #include "dem_test_helpers.h"
 

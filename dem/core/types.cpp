@@ -1,0 +1,14 @@
+#include "dem/core/types.h"
+
+#include <sstream>
+
+namespace anticrack::dem
+{
+  std::string format_for_message(const double x)
+  {
+    std::ostringstream s;
+    s.precision(6);
+    s << x;
+    return s.str();
+  }
+} // namespace anticrack::dem
