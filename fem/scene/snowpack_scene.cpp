@@ -1,5 +1,7 @@
 #include "fem/scene/snowpack_scene.h"
 
+#include "fem/model/crack_band.h"
+#include "fem/model/layers.h"
 #include "util/input_error.h"
 #include "util/problems.h"
 #include "util/sha256.h"
@@ -124,53 +126,6 @@ namespace anticrack::fem
   double Snowpack::weak_layer_top() const { return substratum.thickness + weak_layer.thickness; }
 
   double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }
-
-  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height)
-  {
-    const ContinuumMaterial &m = layer.material;
-    CamClayParameters parameters;
-    parameters.set_elastic_moduli(m.youngs_modulus, m.poisson_ratio);
-    parameters.M = m.M;
-    parameters.beta = m.beta;
-    parameters.p0_initial = m.p0;
-    parameters.hardening_factor = m.hardening_factor;
-    if (m.reference_thickness > 0)
-      parameters.hardening_factor *= band_height / m.reference_thickness;
-    parameters.law = m.hardening_law == "signed" ? HardeningLaw::signed_volumetric : HardeningLaw::collapse;
-    parameters.p0_floor = residual_p0_floor(m.p0, m.residual_strength_ratio);
-    if (layer.collapse_height > 0)
-    {
-      parameters.densification_strain = layer.collapse_height / band_height;
-      parameters.densification_modulus = layer.densification_modulus;
-    }
-    parameters.check();
-    return parameters;
-  }
-
-  double element_height(const SnowpackScene &scene, unsigned int layer_id)
-  {
-    const Snowpack &s = scene.snowpack;
-    const MeshParameters &m = scene.mesh;
-    auto rows = [](double thickness, double target) {
-      return std::max(1u, (unsigned int)std::ceil(thickness / target - 1e-9));
-    };
-    if (layer_id == 0)
-      return s.substratum.thickness / rows(s.substratum.thickness, m.substratum_element_height);
-    if (layer_id == 1)
-      return s.weak_layer.thickness / m.weak_layer_elements;
-    const Layer &slab = s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)];
-    return slab.thickness / rows(slab.thickness, m.slab_element_height);
-  }
-
-  double band_height(const SnowpackScene &scene, unsigned int layer_id)
-  {
-    if (scene.analysis.crack_band)
-      return element_height(scene, layer_id);
-    const Snowpack &s = scene.snowpack;
-    return layer_id == 0 ? s.substratum.thickness
-                         : layer_id == 1 ? s.weak_layer.thickness
-                                         : s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)].thickness;
-  }
 
   bool is_snowpack_scene(const std::string &file)
   {
@@ -407,10 +362,10 @@ namespace anticrack::fem
     Problems problems("scene file <" + file + ">");
     for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
       check_layer(s.slab_layers[k], "Snowpack/" + slab_layer_section(k), false,
-                  band_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
-    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, 1), problems);
+                  band_height(scene, slab_layer_id(s, k)), problems);
+    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, layer_weak), problems);
     if (s.substratum.thickness > 0)
-      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, 0), problems);
+      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, layer_substratum), problems);
     if (!(pst.column_length > 0))
       problems.add("PST/Column length [m]", "must be > 0 (is " + number(pst.column_length) + ")");
     if (mesh.dimension == 3 && !(pst.column_width > 0))
