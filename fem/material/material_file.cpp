@@ -18,19 +18,28 @@ namespace anticrack::fem
 
   void declare_material_entries(ParameterHandler &prm)
   {
-    prm.declare_entry("Name", "", Anything(), "label of the material");
-    prm.declare_entry("Density [kg/m^3]", "200", Double(1e-3), "bulk density phi rho_particle");
-    prm.declare_entry("Young's modulus [Pa]", "1e6", Double(0, std::numeric_limits<double>::max()), "E");
-    prm.declare_entry("Poisson's ratio", "0.2", Double(-0.999, 0.4999), "nu");
-    prm.declare_entry("Compressive strength p0 [Pa]", "1e3", Double(0), "compressive tip of the yield surface");
-    prm.declare_entry("Tensile strength ratio beta", "0.5", Double(0), "tensile tip at -beta p0");
-    prm.declare_entry("Critical state slope M", "1", Double(0), "slope of the critical state line");
+    prm.declare_entry("Name", "", Anything(), "Label of the material (in messages and outputs).");
+    prm.declare_entry("Density [kg/m^3]", "200", Double(1e-3),
+                      "rho: bulk density, phi rho_particle (phi the solid volume fraction). Units: kg/m^3.");
+    prm.declare_entry("Young's modulus [Pa]", "1e6", Double(0, std::numeric_limits<double>::max()),
+                      "E: Young's modulus. Units: Pa.");
+    prm.declare_entry("Poisson's ratio", "0.2", Double(-0.999, 0.4999), "nu: Poisson's ratio. Dimensionless.");
+    prm.declare_entry("Compressive strength p0 [Pa]", "1e3", Double(0),
+                      "p0: compressive tip of the yield surface. Units: Pa.");
+    prm.declare_entry("Tensile strength ratio beta", "0.5", Double(0),
+                      "beta: the tensile tip of the yield surface lies at -beta p0. Dimensionless.");
+    prm.declare_entry("Critical state slope M", "1", Double(0),
+                      "M: slope of the critical state line q = M p. Dimensionless.");
     prm.declare_entry("Hardening law", "collapse", Selection("collapse|signed"),
-                      "collapse: every plastic volume change softens (weak layers); signed: compaction "
-                      "hardens, dilation softens (docs/physics.md §2)");
-    prm.declare_entry("Hardening factor xi", "10", Double(0), "xi of p0 = K sinh(xi max(-alpha, 0))");
-    prm.declare_entry("Residual strength ratio", "0.2", Double(0, 1), "residual / peak strength");
-    prm.declare_entry("Reference thickness [m]", "0.03", Double(0), "thickness of the calibrated specimen");
+                      "collapse: every plastic volume change softens (weak layers); signed: compaction hardens, "
+                      "dilation softens (docs/physics.md §2).");
+    prm.declare_entry("Hardening factor xi", "10", Double(0),
+                      "xi: hardening factor of p0 = K sinh(xi max(-alpha, 0)). Dimensionless.");
+    prm.declare_entry("Residual strength ratio", "0.2", Double(0, 1),
+                      "Residual strength over peak strength p0. Dimensionless.");
+    prm.declare_entry("Reference thickness [m]", "0.03", Double(0),
+                      "h_ref: thickness of the calibrated specimen, over which the softening strain was measured "
+                      "(crack band, docs/physics.md §2). Units: m.");
   }
 
   ContinuumMaterial parse_material_entries(ParameterHandler &prm)
