@@ -144,25 +144,25 @@ namespace anticrack::fem
   const std::vector<MaterialEntry> &material_entries()
   {
     static const std::vector<MaterialEntry> entries = {
-      text_entry("Name", "label of the material", "", &C::name, nullptr),
-      number_entry("Density", "kg/m^3", "bulk density phi rho_particle", "200", &C::density, 1e-3),
-      number_entry("Young's modulus", "Pa", "E", "1e6", &C::youngs_modulus, 0, unbounded, &U::youngs_modulus),
-      number_entry("Poisson's ratio", "", "nu", "0.2", &C::poisson_ratio, -0.999, 0.4999, &U::poisson_ratio),
-      number_entry("Compressive strength p0", "Pa", "compressive tip of the yield surface", "1e3", &C::p0, 0,
+      text_entry("Name", "Label of the material (in messages and outputs).", "", &C::name, nullptr),
+      number_entry("Density", "kg/m^3", "rho: bulk density, phi rho_particle (phi the solid volume fraction). Units: kg/m^3.", "200", &C::density, 1e-3),
+      number_entry("Young's modulus", "Pa", "E: Young's modulus. Units: Pa.", "1e6", &C::youngs_modulus, 0, unbounded, &U::youngs_modulus),
+      number_entry("Poisson's ratio", "", "nu: Poisson's ratio. Dimensionless.", "0.2", &C::poisson_ratio, -0.999, 0.4999, &U::poisson_ratio),
+      number_entry("Compressive strength p0", "Pa", "p0: compressive tip of the yield surface. Units: Pa.", "1e3", &C::p0, 0,
                    unbounded, &U::p0),
-      number_entry("Tensile strength ratio beta", "", "tensile tip at -beta p0", "0.5", &C::beta, 0, unbounded,
+      number_entry("Tensile strength ratio beta", "", "beta: the tensile tip of the yield surface lies at -beta p0. Dimensionless.", "0.5", &C::beta, 0, unbounded,
                    &U::beta),
-      number_entry("Critical state slope M", "", "slope of the critical state line", "1", &C::M, 0, unbounded,
+      number_entry("Critical state slope M", "", "M: slope of the critical state line q = M p. Dimensionless.", "1", &C::M, 0, unbounded,
                    &U::M),
       text_entry("Hardening law",
                  "collapse: every plastic volume change softens (weak layers); signed: compaction "
-                 "hardens, dilation softens (docs/physics.md §2)",
+                 "hardens, dilation softens (docs/physics.md §2).",
                  "collapse", &C::hardening_law, "collapse|signed"),
-      number_entry("Hardening factor xi", "", "xi of p0 = K sinh(xi max(-alpha, 0))", "10", &C::hardening_factor, 0,
+      number_entry("Hardening factor xi", "", "xi: hardening factor of p0 = K sinh(xi max(-alpha, 0)). Dimensionless.", "10", &C::hardening_factor, 0,
                    unbounded, &U::hardening_factor),
-      number_entry("Residual strength ratio", "", "residual / peak strength", "0.2", &C::residual_strength_ratio, 0,
+      number_entry("Residual strength ratio", "", "Residual strength over peak strength p0. Dimensionless.", "0.2", &C::residual_strength_ratio, 0,
                    1),
-      number_entry("Reference thickness", "m", "thickness of the calibrated specimen", "0.03",
+      number_entry("Reference thickness", "m", "h_ref: thickness of the calibrated specimen, over which the softening strain was measured (crack band, docs/physics.md §2). Units: m.", "0.03",
                    &C::reference_thickness, 0)};
     return entries;
   }

@@ -3,6 +3,7 @@
 #include "fem/model/snowpack_model.h"
 
 #include "fem/model/checkpoint.h"
+#include "fem/model/crack_band.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -94,11 +95,8 @@ namespace anticrack::fem
     , dof_handler_(triangulation_)
     , quadrature_(scene.mesh.polynomial_degree + 1)
   {
-    const Snowpack &s = scene.snowpack;
-    layers_.push_back(s.substratum);
-    layers_.push_back(s.weak_layer);
-    for (auto layer = s.slab_layers.rbegin(); layer != s.slab_layers.rend(); ++layer)
-      layers_.push_back(*layer);
+    for (unsigned int id = 0; id < n_layers(scene.snowpack); ++id)
+      layers_.push_back(layer_of(scene.snowpack, id));
     make_mesh();
     setup_dofs();
     setup_cells();
@@ -126,13 +124,12 @@ namespace anticrack::fem
     const double length = scene_.pst.column_length;
     n_columns_ = std::max(4u, (unsigned int)std::lround(length / m.element_length));
 
-    // Through the thickness, layer by layer from the base (layer ids), rows of element_height().
+    // Through the thickness, layer by layer from the base (layer ids), element_rows() equal rows.
     std::vector<double> normal_steps;
     for (unsigned int id = 0; id < layers_.size(); ++id)
       if (layers_[id].thickness > 0)
       {
-        const double height = element_height(scene_, id);
-        const auto steps = equal_steps(layers_[id].thickness, (unsigned int)std::lround(layers_[id].thickness / height));
+        const auto steps = equal_steps(layers_[id].thickness, element_rows(scene_, id));
         normal_steps.insert(normal_steps.end(), steps.begin(), steps.end());
       }
 
@@ -151,17 +148,10 @@ namespace anticrack::fem
     GridGenerator::subdivided_hyper_rectangle(triangulation_, step_sizes, Point<dim>(), upper);
 
     // Layer ids from the cell centres; the base gets boundary id 1.
-    std::vector<double> layer_tops{s.substratum.thickness, s.weak_layer_top()};
-    double top = s.weak_layer_top();
-    for (auto layer = s.slab_layers.rbegin(); layer != s.slab_layers.rend(); ++layer)
-      layer_tops.push_back(top += layer->thickness);
+    const std::vector<double> tops = layer_tops(s);
     for (const auto &cell : triangulation_.active_cell_iterators())
     {
-      const double z = cell->center()[dim - 1];
-      unsigned int id = 0;
-      while (id + 1 < layer_tops.size() && z > layer_tops[id])
-        ++id;
-      cell->set_material_id(id);
+      cell->set_material_id(layer_id_at(tops, cell->center()[dim - 1]));
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary() && std::abs(cell->face(f)->center()[dim - 1]) < 1e-12)
           cell->face(f)->set_boundary_id(1);

@@ -6,12 +6,12 @@
 // Mesh: parallel::distributed::Triangulation (p4est) built as one structured, graded coarse mesh
 // (GridGenerator::subdivided_hyper_rectangle with step sizes): uniform element length along the
 // slope, `Weak layer elements` through the weak layer, slab and substratum elements of the target
-// heights. Cell material ids are layer indices (layer_substratum, layer_weak, then slab layers from
-// the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
+// heights (fem/model/layers.h). Cell material ids are layer ids (layer_substratum, layer_weak, then
+// slab layers from the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
 // quadrature point (docs/physics.md §0); the base (normal coordinate 0) is fixed.
 //
-// Softening regularisation (crack band, Bažant & Oh 1983): the hardening factor of a cohesive
-// Cam-Clay cell is ξ_e = ξ h_e / h_ref, with h_e the cell's height normal to the slope and h_ref
+// Softening regularisation (crack band, Bažant & Oh 1983; fem/model/crack_band.h): the hardening
+// factor of a cohesive Cam-Clay cell is ξ_e = ξ h_e / h_ref, with h_e the cell's height normal to the slope and h_ref
 // the material's reference thickness (the specimen height over which the calibration measured the
 // softening strain). The collapse law dissipates ∫ p0 dα over Δα = asinh(p0/K)/ξ_e, so a band one
 // element high dissipates per unit area h_e ∫ p0 dα, which does not depend on h_e
@@ -24,6 +24,7 @@
 #pragma once
 
 #include "fem/material/cohesive_cam_clay.h"
+#include "fem/model/layers.h"
 #include "fem/scene/snowpack_scene.h"
 
 #include <deal.II/base/index_set.h>
@@ -45,14 +46,6 @@ namespace dealii::PETScWrappers::MPI
 
 namespace anticrack::fem
 {
-  /// Material ids of the cells.
-  enum LayerId : unsigned int
-  {
-    layer_substratum = 0,
-    layer_weak = 1,
-    layer_first_slab = 2 ///< slab layers from the bottom up: 2, 3, ...
-  };
-
   /// History of one quadrature point.
   struct QuadraturePointState
   {

@@ -1,5 +1,7 @@
 #include "fem/scene/snowpack_scene.h"
 
+#include "fem/model/crack_band.h"
+#include "fem/model/layers.h"
 #include "util/input_error.h"
 #include "util/problems.h"
 #include "util/sha256.h"
@@ -32,17 +34,20 @@ namespace anticrack::fem
 
     void declare_layer(ParameterHandler &prm, const std::string &default_model, const std::string &default_thickness)
     {
-      prm.declare_entry("Thickness [m]", default_thickness, Double(0), "layer thickness measured normal to the slope");
+      prm.declare_entry("Thickness [m]", default_thickness, Double(0),
+                        "h: layer thickness measured normal to the slope. Units: m.");
       prm.declare_entry("Model", default_model, Selection("elastic|cohesive cam-clay"),
-                        "constitutive model: linear elastic, or cohesive Cam-Clay with softening (docs/physics.md §2)");
+                        "Constitutive model of the layer: linear elastic, or cohesive Cam-Clay with softening "
+                        "(docs/physics.md §2).");
       prm.declare_entry("Material file", "", Anything(),
-                        "material file of a calibration (`anticrack calibrate`, subsection Material), relative "
-                        "to the scene's directory; when given it replaces the inline material entries below");
+                        "Material file of a calibration (`anticrack calibrate`, subsection Material), relative to "
+                        "the scene's directory; when given it replaces the inline material entries below.");
       prm.declare_entry("Collapse height [m]", "0", Double(0),
-                        "how far the faces of a collapsing layer approach before its grains lock up (0: no "
-                        "lock-up); weak layers collapse by 3-5 mm of 10-30 mm (docs/physics.md §2)");
+                        "h_c: collapse height, how far the faces of a collapsing layer approach before its grains "
+                        "lock up (0: no lock-up); weak layers collapse by 3-5 mm of 10-30 mm (docs/physics.md "
+                        "§2). Units: m.");
       prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
-                        "bulk modulus of the lock-up once the collapse height is used up");
+                        "K_d: bulk modulus of the lock-up once the collapse height is used up. Units: Pa.");
       declare_material_entries(prm);
     }
 
@@ -125,53 +130,6 @@ namespace anticrack::fem
 
   double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }
 
-  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height)
-  {
-    const ContinuumMaterial &m = layer.material;
-    CamClayParameters parameters;
-    parameters.set_elastic_moduli(m.youngs_modulus, m.poisson_ratio);
-    parameters.M = m.M;
-    parameters.beta = m.beta;
-    parameters.p0_initial = m.p0;
-    parameters.hardening_factor = m.hardening_factor;
-    if (m.reference_thickness > 0)
-      parameters.hardening_factor *= band_height / m.reference_thickness;
-    parameters.law = m.hardening_law == "signed" ? HardeningLaw::signed_volumetric : HardeningLaw::collapse;
-    parameters.p0_floor = residual_p0_floor(m.p0, m.residual_strength_ratio);
-    if (layer.collapse_height > 0)
-    {
-      parameters.densification_strain = layer.collapse_height / band_height;
-      parameters.densification_modulus = layer.densification_modulus;
-    }
-    parameters.check();
-    return parameters;
-  }
-
-  double element_height(const SnowpackScene &scene, unsigned int layer_id)
-  {
-    const Snowpack &s = scene.snowpack;
-    const MeshParameters &m = scene.mesh;
-    auto rows = [](double thickness, double target) {
-      return std::max(1u, (unsigned int)std::ceil(thickness / target - 1e-9));
-    };
-    if (layer_id == 0)
-      return s.substratum.thickness / rows(s.substratum.thickness, m.substratum_element_height);
-    if (layer_id == 1)
-      return s.weak_layer.thickness / m.weak_layer_elements;
-    const Layer &slab = s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)];
-    return slab.thickness / rows(slab.thickness, m.slab_element_height);
-  }
-
-  double band_height(const SnowpackScene &scene, unsigned int layer_id)
-  {
-    if (scene.analysis.crack_band)
-      return element_height(scene, layer_id);
-    const Snowpack &s = scene.snowpack;
-    return layer_id == 0 ? s.substratum.thickness
-                         : layer_id == 1 ? s.weak_layer.thickness
-                                         : s.slab_layers[s.slab_layers.size() - 1 - (layer_id - 2)].thickness;
-  }
-
   bool is_snowpack_scene(const std::string &file)
   {
     std::ifstream in(file);
@@ -198,10 +156,12 @@ namespace anticrack::fem
   void declare_snowpack_scene(ParameterHandler &prm)
   {
     prm.enter_subsection("Snowpack");
-    prm.declare_entry("Slope angle [deg]", "0", Double(0, 60), "psi: inclination of the slope; +x points downslope");
-    prm.declare_entry("Gravity [m/s^2]", "9.81", Double(0), "g");
+    prm.declare_entry("Slope angle [deg]", "0", Double(0, 60),
+                      "psi: inclination of the slope; +x points downslope. Units: deg.");
+    prm.declare_entry("Gravity [m/s^2]", "9.81", Double(0), "g: gravitational acceleration. Units: m/s^2.");
     prm.declare_entry("Number of slab layers", "1", Integer(1, max_slab_layers),
-                      "slab layers, given top first in subsections `Slab layer 1`, `Slab layer 2`, ...");
+                      "Number of slab layers, given top first in subsections `Slab layer 1`, `Slab layer 2`, ... "
+                      "Dimensionless.");
     for (unsigned int k = 0; k < max_slab_layers; ++k)
     {
       prm.enter_subsection(slab_layer_section(k));
@@ -217,63 +177,93 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("PST");
-    prm.declare_entry("Column length [m]", "2.5", Double(0), "L: length of the isolated column along the slope");
-    prm.declare_entry("Column width [m]", "0.3", Double(0), "across the slope (3D only)");
-    prm.declare_entry("Cut from", "upslope", Selection("upslope|downslope"), "end of the column where the saw enters");
+    prm.declare_entry("Column length [m]", "2.5", Double(0),
+                      "L: length of the isolated column along the slope. Units: m.");
+    prm.declare_entry("Column width [m]", "0.3", Double(0),
+                      "W: width of the column across the slope (3D only). Units: m.");
+    prm.declare_entry("Cut from", "upslope", Selection("upslope|downslope"),
+                      "End of the column where the saw enters.");
     prm.declare_entry("Saw", "advancing", Selection("fixed|advancing"),
                       "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
-                      "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself)");
-    prm.declare_entry("Cut length [m]", "0.3", Double(0), "a: fixed cut, or the longest cut of an advancing saw");
-    prm.declare_entry("Saw speed [m/s]", "1", Double(0), "speed of an advancing saw");
+                      "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself).");
+    prm.declare_entry("Cut length [m]", "0.3", Double(0),
+                      "a: length of a fixed cut, or the longest cut of an advancing saw. Units: m.");
+    prm.declare_entry("Saw speed [m/s]", "1", Double(0), "v_saw: speed of an advancing saw. Units: m/s.");
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh");
-    prm.declare_entry("Dimension", "2", Integer(2, 3), "2: plane strain in the slope-normal plane; 3: the whole column");
-    prm.declare_entry("Polynomial degree", "1", Integer(1, 2), "degree of the Lagrange elements");
-    prm.declare_entry("Element length [m]", "0.01", Double(0), "element size along the slope (and across in 3D)");
-    prm.declare_entry("Weak layer elements", "4", Integer(1, 64), "elements through the weak-layer thickness");
-    prm.declare_entry("Slab element height [m]", "0.04", Double(0), "target element height in the slab layers");
-    prm.declare_entry("Substratum element height [m]", "0.05", Double(0), "target element height in the substratum");
+    prm.declare_entry("Dimension", "2", Integer(2, 3),
+                      "Spatial dimension: 2, plane strain in the slope-normal plane; 3, the whole column. "
+                      "Dimensionless.");
+    prm.declare_entry("Polynomial degree", "1", Integer(1, 2),
+                      "p: polynomial degree of the Lagrange elements FE_Q. Dimensionless.");
+    prm.declare_entry("Element length [m]", "0.01", Double(0),
+                      "dx: element size along the slope (and across in 3D). Units: m.");
+    prm.declare_entry("Weak layer elements", "4", Integer(1, 64),
+                      "n_w: element rows through the weak-layer thickness. Dimensionless.");
+    prm.declare_entry("Slab element height [m]", "0.04", Double(0),
+                      "h_s: largest element height in the slab layers (each layer gets the fewest rows no "
+                      "higher). Units: m.");
+    prm.declare_entry("Substratum element height [m]", "0.05", Double(0),
+                      "h_b: largest element height in the substratum (it gets the fewest rows no higher). "
+                      "Units: m.");
     prm.leave_subsection();
 
     prm.enter_subsection("Analysis");
     prm.declare_entry("Type", "explicit dynamics", Selection("energy release rate|quasi-static|explicit dynamics"),
-                      "energy release rate: elastic snowpack, G(a) = -dPi/da over every cut length up to "
-                      "`PST/Cut length`; quasi-static: gravity, then saw steps with Newton until equilibrium "
-                      "is lost; explicit dynamics: gravity equilibrium, then saw and crack propagation in time");
-    prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0), "G_c of the weak layer (energy release rate analysis)");
+                      "energy release rate: elastic snowpack, G(a) = -dPi/da over every cut length up to `PST/Cut "
+                      "length`; quasi-static: gravity, then saw steps with Newton until equilibrium is lost; "
+                      "explicit dynamics: gravity equilibrium, then saw and crack propagation in time.");
+    prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0),
+                      "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
+                      "reaches it (energy release rate analysis). Units: J/m^2.");
     prm.declare_entry("Crack band regularisation", "true", Bool(),
                       "true: softening layers soften and collapse in one element row with the energy and the "
-                      "collapse height of the calibrated layer (mesh-independent); false: the local model");
+                      "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
+                      "1983; docs/physics.md §2, mesh-independent); false: the local model.");
     prm.enter_subsection("Newton");
-    prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2), "on |residual| / |external force|");
-    prm.declare_entry("Maximum iterations", "25", Integer(2, 500), "per load step");
+    prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2),
+                      "tol: Newton converges when |residual| / |external force| is below it. Dimensionless.");
+    prm.declare_entry("Maximum iterations", "25", Integer(2, 500),
+                      "Largest number of Newton iterations per load step. Dimensionless.");
     prm.declare_entry("Linear solver", "direct", Selection("direct|amg"),
-                      "direct: MUMPS; amg: GMRES with BoomerAMG (large problems)");
-    prm.declare_entry("Gravity steps", "4", Integer(1, 10000), "initial number of steps of the gravity ramp");
-    prm.declare_entry("Saw step [m]", "0", Double(0), "quasi-static cut increment; 0: one element length");
+                      "direct: MUMPS; amg: GMRES with BoomerAMG (large problems).");
+    prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
+                      "Initial number of load steps of the gravity ramp (a step that fails is halved). Dimensionless.");
+    prm.declare_entry("Saw step [m]", "0", Double(0),
+                      "da: cut increment of the quasi-static saw steps; 0: one element length. Units: m.");
     prm.leave_subsection();
     prm.enter_subsection("Explicit");
-    prm.declare_entry("End time [s]", "1", Double(0), "simulated time after the saw starts");
-    prm.declare_entry("CFL safety factor", "0.5", Double(0.01, 1), "dt = safety * min(h / c_p)");
-    prm.declare_entry("Linear bulk viscosity", "0.06", Double(0, 10), "c_1 of p_v = rho h (c_2^2 h e_v'^2 - c_1 c e_v')");
-    prm.declare_entry("Quadratic bulk viscosity", "1.2", Double(0, 10), "c_2 (acts in compression only)");
-    prm.declare_entry("Mass damping [1/s]", "0", Double(0), "alpha_M of the damping force -alpha_M M v");
+    prm.declare_entry("End time [s]", "1", Double(0), "t_end: simulated time after the saw starts. Units: s.");
+    prm.declare_entry("CFL safety factor", "0.5", Double(0.01, 1),
+                      "C: safety factor of the explicit time step dt = C min(h / c_p). Dimensionless.");
+    prm.declare_entry("Linear bulk viscosity", "0.06", Double(0, 10),
+                      "c_1: linear coefficient of the bulk viscosity pressure p_v = rho h (c_2^2 h e_v'^2 - c_1 c "
+                      "e_v'). Dimensionless.");
+    prm.declare_entry("Quadratic bulk viscosity", "1.2", Double(0, 10),
+                      "c_2: quadratic coefficient of the bulk viscosity pressure (acts in compression only). "
+                      "Dimensionless.");
+    prm.declare_entry("Mass damping [1/s]", "0", Double(0),
+                      "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
     prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
-                      "a weak-layer element has failed when its softening has gone this fraction of the way "
-                      "from p0 to the residual strength");
+                      "f_fail: a weak-layer element has failed when its softening has gone this fraction of the "
+                      "way from p0 to the residual strength. Dimensionless.");
     prm.declare_entry("Self-propagation lead [m]", "0", Double(0),
-                      "the crack runs by itself once its tip leads the saw by this much; 0: slab thickness");
+                      "d_lead: the crack runs by itself once its tip leads the saw by this much; 0: the slab "
+                      "thickness. Units: m.");
     prm.leave_subsection();
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
-    prm.declare_entry("Field interval [s]", "0.01", Double(0), "simulated time between field outputs; 0: none");
-    prm.declare_entry("Series interval [s]", "1e-3", Double(0), "simulated time between time-series rows");
-    prm.declare_entry("Progress interval", "1000", Integer(0), "steps between progress lines; 0: quiet");
+    prm.declare_entry("Field interval [s]", "0.01", Double(0),
+                      "Simulated time between field outputs fields/*.pvtu; 0: none. Units: s.");
+    prm.declare_entry("Series interval [s]", "1e-3", Double(0),
+                      "Simulated time between rows of the time series series.h5 (explicit dynamics). Units: s.");
+    prm.declare_entry("Progress interval", "1000", Integer(0),
+                      "Steps between progress lines on the console; 0: quiet. Units: steps.");
     prm.declare_entry("Checkpoint interval", "10000", Integer(0),
-                      "explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
-                      "`anticrack run --resume` continues; 0: none");
+                      "Explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
+                      "`anticrack run --resume` continues; 0: none. Units: steps.");
     prm.leave_subsection();
   }
 
@@ -407,10 +397,10 @@ namespace anticrack::fem
     Problems problems("scene file <" + file + ">");
     for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
       check_layer(s.slab_layers[k], "Snowpack/" + slab_layer_section(k), false,
-                  band_height(scene, 2 + (s.slab_layers.size() - 1 - k)), problems);
-    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, 1), problems);
+                  band_height(scene, slab_layer_id(s, k)), problems);
+    check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, layer_weak), problems);
     if (s.substratum.thickness > 0)
-      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, 0), problems);
+      check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, layer_substratum), problems);
     if (!(pst.column_length > 0))
       problems.add("PST/Column length [m]", "must be > 0 (is " + number(pst.column_length) + ")");
     if (mesh.dimension == 3 && !(pst.column_width > 0))

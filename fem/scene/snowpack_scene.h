@@ -14,7 +14,6 @@
 // propagation run, ...) and reports every problem at once with the file and the entry.
 #pragma once
 
-#include "fem/material/cohesive_cam_clay.h"
 #include "fem/material/material_file.h"
 
 #include <string>
@@ -104,7 +103,7 @@ namespace anticrack::fem
       explicit_dynamics    ///< gravity equilibrium, then the saw and crack propagation in time
     };
     Type type = Type::explicit_dynamics;
-    /// Crack band regularisation of softening layers (cam_clay_parameters()); false: the local
+    /// Crack band regularisation of softening layers (fem/model/crack_band.h); false: the local
     /// model, softening and collapse spread over the layer thickness in every element (for showing
     /// the mesh dependence the regularisation removes).
     bool crack_band = true;
@@ -170,22 +169,4 @@ namespace anticrack::fem
 
   /// The same from the text of a scene; `file` names it in messages and locates material files.
   SnowpackScene read_snowpack_scene_text(const std::string &text, const std::string &file);
-
-  /// Cam-Clay parameters of a cohesive Cam-Clay layer whose softening localises in a band of height
-  /// h_e normal to the slope: with the crack band regularisation (Bažant & Oh 1983) one element row,
-  /// which must dissipate and collapse what the calibrated layer of reference thickness h_ref does,
-  /// so
-  ///   ξ_e = ξ h_e / h_ref                 (same plastic displacement h_e Δα_e to the residual),
-  ///   ε_d,e = collapse height / h_e       (the row closes by the layer's collapse height),
-  /// with the p0 floor from the residual strength ratio. Throws std::invalid_argument (via check())
-  /// when the result is out of range, e.g. a row thinner than the collapse height.
-  CamClayParameters cam_clay_parameters(const Layer &layer, double band_height);
-
-  /// Height normal to the slope of the elements of layer `layer_id` (0 substratum, 1 weak layer,
-  /// 2, 3, ... slab layers from the bottom up), as the structured mesh makes them [m].
-  double element_height(const SnowpackScene &scene, unsigned int layer_id);
-
-  /// The band height cam_clay_parameters() gets for layer `layer_id`: its element height with the
-  /// crack band, its thickness without.
-  double band_height(const SnowpackScene &scene, unsigned int layer_id);
 } // namespace anticrack::fem

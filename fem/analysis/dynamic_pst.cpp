@@ -1,0 +1,381 @@
+#include "fem/analysis/dynamic_pst.h"
+
+#include "fem/analysis/outputs.h"
+#include "fem/model/checkpoint.h"
+#include "fem/solver/explicit_dynamics.h"
+#include "fem/solver/quasi_static.h"
+#include "util/input_error.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+
+namespace anticrack::fem
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // Dynamic PST: gravity equilibrium, then the saw, the crack and its arrest in time; checkpoints
+    // every `Checkpoint interval` steps, from which a run resumes bit for bit.
+    template <int dim>
+    class DynamicPst
+    {
+    public:
+      DynamicPst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
+        : scene_(scene)
+        , options_(options)
+        , comm_(comm)
+        , log_(options.log, comm)
+        , model_(scene, comm)
+        , fields_(options.output_directory + "/fields", comm)
+        , series_({{"time", "s", "time since the saw started", {}},
+                   {"cut_length", "m", "saw cut length", {}},
+                   {"crack_tip", "m", "far end of the failed weak layer from the cut end", {}},
+                   {"touchdown_front", "m", "far end of the locked-up (collapsed and closed) weak layer", {}},
+                   {"elastic_energy", "J/m", "stored elastic energy (per m of column width)", {}},
+                   {"kinetic_energy", "J/m", "kinetic energy", {}},
+                   {"dissipated_energy", "J/m", "plastic dissipation", {}},
+                   {"viscous_energy", "J/m", "bulk viscosity and damping", {}},
+                   {"removed_by_saw", "J/m", "elastic energy of the material the saw removed", {}},
+                   {"external_work", "J/m", "work of gravity", {}},
+                   {"time_step", "s", "explicit time step", {}}})
+      {}
+
+      Json run()
+      {
+        const auto wall_start = std::chrono::steady_clock::now();
+        log_.line("[fem] dynamic PST: ", model_.n_cells(), " cells, ", model_.n_dofs(), " dofs, ",
+                  Utilities::MPI::n_mpi_processes(comm_), " rank(s)");
+        if (options_.resume)
+          resume();
+        else
+          start();
+        try
+        {
+          integrate();
+        }
+        catch (const NumericalFailure &)
+        {
+          write_series(); // what was computed up to the failure
+          throw;
+        }
+        wall_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        write_series();
+        return results();
+      }
+
+    private:
+      // The state of the run besides the model and the integrator (saved in checkpoints).
+      double cut_ = 0, next_series_ = 0, next_field_ = 0, wall_ = 0;
+      std::optional<double> critical_cut_, critical_time_, end_time_;
+      CrackFronts fronts_;
+
+      void start()
+      {
+        typename SnowpackModel<dim>::VectorType u;
+        model_.initialize_vector(u);
+        {
+          QuasiStaticSolver<dim> solver(model_);
+          gravity_equilibrium(model_, solver, u, log_);
+        }
+        // The quasi-static ramp stored E_el and dissipated D; its external work is their sum.
+        const Energies at_rest = model_.energies();
+        if (scene_.pst.saw == SawTest::Saw::fixed)
+          model_.set_cut(scene_.pst.cut_length);
+        cut_ = scene_.pst.saw == SawTest::Saw::fixed ? scene_.pst.cut_length : 0;
+        dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, at_rest.elastic + at_rest.dissipated);
+        fields_.write(model_, dynamics_->displacement(), 0);
+        fronts_ = model_.crack_fronts(scene_.analysis.failure_fraction);
+        record();
+        next_series_ = scene_.output.series_interval;
+        next_field_ = scene_.output.field_interval;
+      }
+
+      void integrate()
+      {
+        const Analysis &analysis = scene_.analysis;
+        const double dx = scene_.pst.column_length / model_.n_columns();
+        const double lead = self_propagation_lead(scene_);
+        ExplicitDynamics<dim> &dynamics = *dynamics_;
+        while (dynamics.time() < analysis.end_time && !end_time_)
+        {
+          if (scene_.pst.saw == SawTest::Saw::advancing && !critical_cut_)
+          {
+            const double saw = std::min(scene_.pst.saw_speed * dynamics.time(), scene_.pst.cut_length);
+            if (saw > cut_)
+            {
+              cut_ = saw;
+              if (model_.set_cut(cut_))
+                dynamics.refresh_internal_force();
+            }
+          }
+          try
+          {
+            dynamics.step();
+          }
+          catch (const ReturnMappingError &e)
+          {
+            throw NumericalFailure("dynamic PST at t = " + format(dynamics.time(), 6) + " s (step " +
+                                   std::to_string(dynamics.steps()) + "): " + e.what());
+          }
+          if (dynamics.time() >= next_series_)
+          {
+            fronts_ = model_.crack_fronts(analysis.failure_fraction);
+            record();
+            next_series_ += scene_.output.series_interval;
+            if (!critical_cut_ && fronts_.crack_tip - cut_ >= lead)
+            {
+              critical_cut_ = cut_;
+              critical_time_ = dynamics.time();
+              log_.line("[fem] t = ", format(dynamics.time()), " s: the crack runs by itself (tip ",
+                        format(fronts_.crack_tip), " m, cut ", format(cut_), " m)");
+            }
+            if (fronts_.crack_tip >= scene_.pst.column_length - 0.5 * dx)
+            {
+              end_time_ = dynamics.time();
+              log_.line("[fem] t = ", format(dynamics.time()), " s: the crack reached the end of the column");
+            }
+          }
+          if (next_field_ > 0 && dynamics.time() >= next_field_)
+          {
+            fields_.write(model_, dynamics.displacement(), dynamics.time());
+            next_field_ += scene_.output.field_interval;
+          }
+          if (scene_.output.progress_interval > 0 && dynamics.steps() % scene_.output.progress_interval == 0)
+            log_.line("[fem] step ", dynamics.steps(), ", t = ", format(dynamics.time()), " s, dt = ",
+                      format(dynamics.time_step(), 3), " s, cut ", format(cut_), " m, crack tip ",
+                      format(fronts_.crack_tip), " m, E_kin = ", format(dynamics.energies().kinetic, 3), " J");
+          if (scene_.output.checkpoint_interval > 0 && dynamics.steps() % scene_.output.checkpoint_interval == 0)
+            write_checkpoint();
+        }
+        // A run that stopped at its end time can be extended (--resume with a later end time): its
+        // checkpoint comes before the final row and fields, which a longer run would not have.
+        if (scene_.output.checkpoint_interval > 0 && !end_time_)
+          write_checkpoint();
+        if (!end_time_) // otherwise the row of the step that reached the end is the last one
+        {
+          fronts_ = model_.crack_fronts(analysis.failure_fraction);
+          record();
+        }
+        fields_.write(model_, dynamics.displacement(), dynamics.time());
+      }
+
+      void record()
+      {
+        const ExplicitDynamics<dim> &dynamics = *dynamics_;
+        if (!dynamics.finite())
+          throw NumericalFailure("dynamic PST: non-finite displacement or velocity at t = " +
+                                 format(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
+                                 ", dt = " + format(dynamics.time_step(), 3) + " s)");
+        const Energies e = per_width<dim>(dynamics.energies(), scene_);
+        series_.add_row({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
+                         e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});
+      }
+
+      void write_series() const
+      {
+        series_.write(options_.output_directory + "/series.h5",
+                      "dynamic PST time series (energies per m of column width)", comm_);
+      }
+
+      // --- checkpoints: DIR/checkpoint/step_S_rank_R.bin per rank, then DIR/checkpoint.json (rank 0)
+      // names the step; a run killed while writing resumes from the previous complete one.
+      std::string rank_file(unsigned long step, unsigned int rank) const
+      {
+        return options_.output_directory + "/checkpoint/step_" + std::to_string(step) + "_rank_" +
+               std::to_string(rank) + ".bin";
+      }
+
+      void write_checkpoint()
+      {
+        const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
+        const unsigned long step = dynamics_->steps();
+        if (rank == 0)
+          std::filesystem::create_directories(options_.output_directory + "/checkpoint");
+        MPI_Barrier(comm_);
+        const std::string file = rank_file(step, rank);
+        {
+          std::ofstream out(file + ".tmp", std::ios::binary);
+          model_.save(out);
+          dynamics_->save(out);
+          save_run_state(out);
+          if (!out)
+            throw std::runtime_error("cannot write the checkpoint " + file);
+        }
+        std::filesystem::rename(file + ".tmp", file);
+        MPI_Barrier(comm_);
+        if (rank == 0)
+        {
+          Json info;
+          info["step"] = step;
+          info["time_s"] = dynamics_->time();
+          info["ranks"] = Utilities::MPI::n_mpi_processes(comm_);
+          info["dofs"] = model_.n_dofs();
+          info["resume_key_sha256"] = scene_.resume_key_sha256;
+          const std::string json = options_.output_directory + "/checkpoint.json";
+          {
+            std::ofstream out(json + ".tmp");
+            out << info.dump(2) << '\n';
+          }
+          std::filesystem::rename(json + ".tmp", json);
+          // Older steps are no longer needed.
+          for (const auto &entry : std::filesystem::directory_iterator(options_.output_directory + "/checkpoint"))
+            if (entry.path().filename().string().rfind("step_" + std::to_string(step) + "_", 0) != 0)
+              std::filesystem::remove(entry.path());
+        }
+        write_series();
+        log_.line("[fem] checkpoint at step ", step, ", t = ", format(dynamics_->time()), " s");
+      }
+
+      void save_run_state(std::ostream &out) const
+      {
+        for (const double value : {cut_, next_series_, next_field_, wall_, fronts_.crack_tip, fronts_.touchdown,
+                                   critical_cut_.value_or(-1.), critical_time_.value_or(-1.)})
+          checkpoint::write(out, value);
+        series_.save(out);
+        fields_.save(out);
+      }
+
+      void resume()
+      {
+        const std::string json_file = options_.output_directory + "/checkpoint.json";
+        std::ifstream json_in(json_file);
+        if (!json_in)
+          throw InputError("cannot resume: " + json_file + " does not exist (set Output/Checkpoint interval)");
+        const Json info = Json::parse(json_in);
+        if (info.value("resume_key_sha256", "") != scene_.resume_key_sha256)
+          throw InputError("cannot resume from " + json_file +
+                           ": it was written by another scene (only Analysis/Explicit/End time and Output may "
+                           "change)");
+        if (info.value("ranks", 0u) != Utilities::MPI::n_mpi_processes(comm_))
+          throw InputError("cannot resume from " + json_file + ": it was written on " +
+                           std::to_string(info.value("ranks", 0u)) + " rank(s); run on as many");
+        const unsigned long step = info["step"];
+        std::ifstream in(rank_file(step, Utilities::MPI::this_mpi_process(comm_)), std::ios::binary);
+        if (!in)
+          throw InputError("cannot resume: the checkpoint file " +
+                           rank_file(step, Utilities::MPI::this_mpi_process(comm_)) + " is missing");
+        typename SnowpackModel<dim>::VectorType u;
+        model_.initialize_vector(u);
+        try
+        {
+          model_.load(in);
+          dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, 0., true);
+          dynamics_->load(in);
+          double critical_cut = 0, critical_time = 0;
+          for (double *value : {&cut_, &next_series_, &next_field_, &wall_, &fronts_.crack_tip, &fronts_.touchdown,
+                                &critical_cut, &critical_time})
+            checkpoint::read(in, *value);
+          if (critical_cut >= 0)
+            critical_cut_ = critical_cut, critical_time_ = critical_time;
+          series_.load(in);
+          fields_.load(in);
+        }
+        catch (const checkpoint::Mismatch &e)
+        {
+          throw InputError("cannot resume from " + json_file + ": " + e.what());
+        }
+        log_.line("[fem] resumed at step ", step, ", t = ", format(dynamics_->time()), " s");
+      }
+
+      Json results()
+      {
+        const ExplicitDynamics<dim> &dynamics = *dynamics_;
+        const double dx = scene_.pst.column_length / model_.n_columns();
+        const double lead = self_propagation_lead(scene_);
+        const bool reached_end = end_time_.has_value();
+        // The crack ran by itself from the last row before the detection at which its tip was
+        // still within two element lengths of the saw: that cut is the critical cut length (the
+        // detection itself waits for a lead of one slab thickness, so that a tip that only jumps
+        // ahead of the saw by a few elements is not taken for a running crack).
+        const auto &t = series_.column("time"), &tip = series_.column("crack_tip"),
+                   &td = series_.column("touchdown_front"), &cuts = series_.column("cut_length");
+        std::optional<double> critical_cut = critical_cut_, critical_time = critical_time_;
+        if (critical_time_)
+          for (std::size_t k = 0; k < t.size() && t[k] <= *critical_time_; ++k)
+            if (tip[k] - cuts[k] <= 2 * dx)
+            {
+              critical_cut = cuts[k];
+              critical_time = t[k];
+            }
+        // Steady propagation speed: least-squares slope of the tip position over the rows where
+        // the tip lies in the middle half of the distance it ran (from the critical cut to the end,
+        // or to where it arrested). Touchdown distance: median of tip − touchdown front there.
+        std::optional<double> speed, touchdown;
+        if (critical_cut)
+        {
+          const double from = *critical_cut, to = reached_end ? scene_.pst.column_length : fronts_.crack_tip;
+          const double low = from + 0.25 * (to - from), high = from + 0.75 * (to - from);
+          double st = 0, sx = 0, stt = 0, stx = 0, n = 0;
+          std::vector<double> behind;
+          for (std::size_t k = 0; k < t.size(); ++k)
+            if (t[k] >= *critical_time && tip[k] >= low && tip[k] <= high)
+            {
+              st += t[k], sx += tip[k], stt += t[k] * t[k], stx += t[k] * tip[k], n += 1;
+              if (td[k] > 0)
+                behind.push_back(tip[k] - td[k]);
+            }
+          if (n >= 3 && n * stt - st * st > 0)
+            speed = (n * stx - st * sx) / (n * stt - st * st);
+          if (!behind.empty())
+          {
+            std::nth_element(behind.begin(), behind.begin() + behind.size() / 2, behind.end());
+            touchdown = behind[behind.size() / 2];
+          }
+        }
+        auto optional = [](const std::optional<double> &v) { return v ? Json(*v) : Json(nullptr); };
+        Json r;
+        r["analysis"] = "explicit dynamics";
+        r["mesh"] = mesh_json(model_, comm_);
+        r["critical_cut_length_m"] = optional(critical_cut);
+        r["self_propagation_lead_m"] = lead;
+        r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
+        r["crack"] = reached_end ? "reached the column end" : (critical_cut ? "arrested" : "did not start");
+        r["arrest_position_m"] = reached_end ? Json(nullptr) : Json(fronts_.crack_tip);
+        r["time_crack_runs_s"] = optional(critical_time);
+        r["time_reached_end_s"] = optional(end_time_);
+        r["propagation_speed_m_per_s"] = optional(speed);
+        r["touchdown_distance_m"] = optional(touchdown);
+        r["final_crack_tip_m"] = fronts_.crack_tip;
+        r["final_touchdown_front_m"] = fronts_.touchdown;
+        r["simulated_time_s"] = dynamics.time();
+        r["time_steps"] = dynamics.steps();
+        r["last_time_step_s"] = dynamics.time_step();
+        r["energies_per_width"] = energies_json(per_width<dim>(dynamics.energies(), scene_));
+        r["width_m"] = result_width<dim>(scene_);
+        r["explicit_wall_time_s"] = wall_;
+        r["quadrature_point_updates_per_s_per_rank"] =
+          wall_ > 0 ? double(dynamics.steps()) * model_.n_cells() * std::pow(scene_.mesh.polynomial_degree + 1, dim) /
+                        wall_ / Utilities::MPI::n_mpi_processes(comm_)
+                    : 0.;
+        return r;
+      }
+
+      const SnowpackScene &scene_;
+      const SnowpackRunOptions &options_;
+      MPI_Comm comm_;
+      Log log_;
+      SnowpackModel<dim> model_;
+      std::unique_ptr<ExplicitDynamics<dim>> dynamics_;
+      FieldRecord fields_;
+      TimeSeries series_;
+    };
+  } // namespace
+
+  template <int dim>
+  Json run_dynamic_pst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
+  {
+    DynamicPst<dim> pst(scene, options, comm);
+    return pst.run();
+  }
+
+  template Json run_dynamic_pst<2>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+  template Json run_dynamic_pst<3>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+} // namespace anticrack::fem

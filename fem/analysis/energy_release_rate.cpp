@@ -1,0 +1,98 @@
+#include "fem/analysis/energy_release_rate.h"
+
+#include "fem/analysis/outputs.h"
+#include "fem/solver/quasi_static.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace anticrack::fem
+{
+  using namespace dealii;
+
+  // Energy release rate of a saw cut in an elastic snowpack: Π(a) = ½ u·K u − f·u = −½ f·u at
+  // equilibrium (linear), G at the midpoints of consecutive cuts = −ΔΠ/Δa per unit width.
+  template <int dim>
+  Json run_energy_release_rate(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
+  {
+    Log log(options.log, comm);
+    SnowpackModel<dim> model(scene, comm);
+    QuasiStaticSolver<dim> solver(model);
+    log.line("[fem] energy release rate: ", model.n_cells(), " cells, ", model.n_dofs(), " dofs, ",
+             Utilities::MPI::n_mpi_processes(comm), " rank(s)");
+    const double dx = scene.pst.column_length / model.n_columns();
+    const unsigned int n_cuts = (unsigned int)std::floor(scene.pst.cut_length / dx + 1e-9);
+    const double width = result_width<dim>(scene);
+    typename SnowpackModel<dim>::VectorType u;
+    model.initialize_vector(u);
+    std::vector<double> cuts, potentials;
+    for (unsigned int k = 0; k <= n_cuts; ++k)
+    {
+      model.set_cut(k * dx);
+      u = 0;
+      const NewtonResult result = solver.solve(u, 1.0);
+      if (!result.converged)
+        throw NumericalFailure("energy release rate: the elastic solve at cut length " + format(k * dx) +
+                               " m failed: " + result.failure);
+      cuts.push_back(k * dx);
+      potentials.push_back(-0.5 * (model.gravity_force() * u) / width);
+    }
+    std::vector<double> midpoints, release_rates, beam_rates;
+    const auto beam = beam_model(scene.snowpack);
+    for (unsigned int k = 0; k + 1 < cuts.size(); ++k)
+    {
+      midpoints.push_back(0.5 * (cuts[k] + cuts[k + 1]));
+      release_rates.push_back(-(potentials[k + 1] - potentials[k]) / dx);
+      beam_rates.push_back(beam ? closed_forms::energy_release_rate(*beam, midpoints.back())
+                                : std::numeric_limits<double>::quiet_NaN());
+    }
+
+    // The cut length at which G reaches G_c (linear interpolation between midpoints).
+    const double G_c = scene.analysis.fracture_energy;
+    std::optional<double> critical;
+    for (unsigned int k = 0; k + 1 < midpoints.size() && !critical; ++k)
+      if (release_rates[k] < G_c && release_rates[k + 1] >= G_c)
+        critical = midpoints[k] + (G_c - release_rates[k]) / (release_rates[k + 1] - release_rates[k]) *
+                                    (midpoints[k + 1] - midpoints[k]);
+
+    // Columns of different lengths: Π at the cuts, G at their midpoints.
+    TimeSeries table({{"cut_length", "m", "cut length a", cuts},
+                      {"potential_energy", "J/m", "total potential energy per unit width at each cut", potentials},
+                      {"midpoint_cut_length", "m", "midpoints of consecutive cuts, where G is given", midpoints},
+                      {"energy_release_rate", "J/m^2", "G = -dPi/da of the FE model", release_rates},
+                      {"energy_release_rate_beam", "J/m^2",
+                       "beam on an elastic foundation, fem/closed_forms.h (NaN: several slab layers)", beam_rates}});
+    table.write(options.output_directory + "/energy_release_rate.h5", "energy release rate of a saw cut", comm);
+    FieldRecord fields(options.output_directory + "/fields", comm);
+    u.update_ghost_values();
+    fields.write(model, u, cuts.back());
+
+    Json results;
+    results["analysis"] = "energy release rate";
+    results["mesh"] = mesh_json(model, comm);
+    results["fracture_energy_J_per_m2"] = G_c;
+    results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
+    if (!critical)
+      results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format(cuts.back()) + " m";
+    Json g;
+    g["cut_length_m"] = midpoints;
+    g["fe_J_per_m2"] = release_rates;
+    if (beam)
+    {
+      g["beam_on_elastic_foundation_J_per_m2"] = beam_rates;
+      results["beam_characteristic_length_m"] = closed_forms::characteristic_length(*beam);
+    }
+    results["energy_release_rate"] = g;
+    results["newton_iterations"] = solver.total_iterations();
+    log.line("[fem] G(", format(midpoints.front()), " m) = ", format(release_rates.front()), " J/m^2 ... G(",
+             format(midpoints.back()), " m) = ", format(release_rates.back()), " J/m^2; a(G_c = ", G_c,
+             ") = ", critical ? format(*critical) + " m" : std::string("beyond the longest cut"));
+    return results;
+  }
+
+  template Json run_energy_release_rate<2>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+  template Json run_energy_release_rate<3>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+} // namespace anticrack::fem

@@ -1,0 +1,153 @@
+#include "fem/analysis/outputs.h"
+
+#include "fem/model/checkpoint.h"
+#include "fem/solver/quasi_static.h"
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace anticrack::fem
+{
+  using namespace dealii;
+
+  Log::Log(std::ostream *out, MPI_Comm communicator)
+    : out_(Utilities::MPI::this_mpi_process(communicator) == 0 ? out : nullptr)
+  {}
+
+  std::string format(double value, int precision)
+  {
+    std::ostringstream out;
+    out << std::setprecision(precision) << value;
+    return out.str();
+  }
+
+  FieldRecord::FieldRecord(std::string directory, MPI_Comm communicator)
+    : directory_(std::move(directory)), communicator_(communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      std::filesystem::create_directories(directory_);
+    MPI_Barrier(communicator);
+  }
+
+  template <int dim>
+  void FieldRecord::write(const SnowpackModel<dim> &model, const typename SnowpackModel<dim>::VectorType &u,
+                          double time)
+  {
+    if (!entries_.empty() && entries_.back().first == time)
+      return;
+    const std::string pvtu = model.write_fields(u, directory_, "fields", entries_.size());
+    entries_.emplace_back(time, pvtu);
+    if (Utilities::MPI::this_mpi_process(communicator_) == 0)
+    {
+      std::ofstream out(directory_ + "/fields.pvd");
+      DataOutBase::write_pvd_record(out, entries_);
+    }
+  }
+
+  void FieldRecord::save(std::ostream &out) const
+  {
+    checkpoint::write(out, std::uint64_t(entries_.size()));
+    for (const auto &[time, name] : entries_)
+    {
+      checkpoint::write(out, time);
+      checkpoint::write_vector(out, std::vector<char>(name.begin(), name.end()));
+    }
+  }
+
+  void FieldRecord::load(std::istream &in)
+  {
+    std::uint64_t n = 0;
+    checkpoint::read(in, n);
+    entries_.clear();
+    for (std::uint64_t k = 0; k < n; ++k)
+    {
+      double time = 0;
+      std::vector<char> name;
+      checkpoint::read(in, time);
+      checkpoint::read_vector(in, name, -1, "field record");
+      entries_.emplace_back(time, std::string(name.begin(), name.end()));
+    }
+  }
+
+  Json energies_json(const Energies &e)
+  {
+    Json j;
+    j["elastic_J"] = e.elastic;
+    j["kinetic_J"] = e.kinetic;
+    j["dissipated_plastic_J"] = e.dissipated;
+    j["dissipated_viscous_J"] = e.viscous;
+    j["removed_by_saw_J"] = e.removed_by_saw;
+    j["external_work_J"] = e.external_work;
+    const double stored = e.elastic + e.kinetic + e.dissipated + e.viscous + e.removed_by_saw;
+    j["balance_error_relative"] =
+      std::abs(e.external_work - stored) / std::max({std::abs(e.external_work), std::abs(e.elastic), 1e-300});
+    return j;
+  }
+
+  template <int dim>
+  Json mesh_json(const SnowpackModel<dim> &model, MPI_Comm communicator)
+  {
+    Json j;
+    j["dimension"] = dim;
+    j["cells"] = model.n_cells();
+    j["dofs"] = model.n_dofs();
+    j["columns"] = model.n_columns();
+    j["element_length_m"] = model.scene().pst.column_length / model.n_columns();
+    j["weak_layer_elements"] = model.scene().mesh.weak_layer_elements;
+    j["ranks"] = Utilities::MPI::n_mpi_processes(communicator);
+    return j;
+  }
+
+  std::optional<closed_forms::SlabOnFoundation> beam_model(const Snowpack &s)
+  {
+    if (s.slab_layers.size() != 1)
+      return std::nullopt;
+    closed_forms::SlabOnFoundation beam;
+    const ContinuumMaterial &slab = s.slab_layers[0].material;
+    beam.slab_thickness = s.slab_layers[0].thickness;
+    beam.slab_youngs_modulus = slab.youngs_modulus;
+    beam.slab_poisson_ratio = slab.poisson_ratio;
+    beam.slab_density = slab.density;
+    beam.weak_layer_thickness = s.weak_layer.thickness;
+    beam.weak_layer_youngs_modulus = s.weak_layer.material.youngs_modulus;
+    beam.weak_layer_poisson_ratio = s.weak_layer.material.poisson_ratio;
+    beam.gravity = s.gravity;
+    beam.slope_angle = s.slope_angle;
+    return beam;
+  }
+
+  template <int dim>
+  void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
+                           typename SnowpackModel<dim>::VectorType &u, Log &log)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    solver.apply_gravity(u, model.scene().analysis.gravity_steps, [&](double load, const NewtonResult &r) {
+      log.line("[fem] gravity ", format(100 * load, 3), " %: ", r.iterations, " Newton iterations, |r|/|f| = ",
+               format(r.relative_residual, 2));
+    });
+    log.line("[fem] gravity equilibrium in ",
+             format(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3), " s");
+  }
+
+  double self_propagation_lead(const SnowpackScene &scene)
+  {
+    return scene.analysis.self_propagation_lead > 0 ? scene.analysis.self_propagation_lead
+                                                    : scene.snowpack.slab_thickness();
+  }
+
+  template void FieldRecord::write<2>(const SnowpackModel<2> &, const SnowpackModel<2>::VectorType &, double);
+  template void FieldRecord::write<3>(const SnowpackModel<3> &, const SnowpackModel<3>::VectorType &, double);
+  template Json mesh_json<2>(const SnowpackModel<2> &, MPI_Comm);
+  template Json mesh_json<3>(const SnowpackModel<3> &, MPI_Comm);
+  template void gravity_equilibrium<2>(SnowpackModel<2> &, QuasiStaticSolver<2> &, SnowpackModel<2>::VectorType &,
+                                       Log &);
+  template void gravity_equilibrium<3>(SnowpackModel<3> &, QuasiStaticSolver<3> &, SnowpackModel<3>::VectorType &,
+                                       Log &);
+} // namespace anticrack::fem

@@ -1,0 +1,159 @@
+// What the three analyses of fem/analysis/ share: the progress log, the .pvd record of the field
+// outputs, the parts of summary.json's results (mesh, energies per width, the beam model of
+// fem/closed_forms.h) and the start of both PSTs (gravity equilibrium, self-propagation lead).
+// Templates on dim are explicitly instantiated for 2 and 3 in outputs.cpp.
+#pragma once
+
+#include "fem/analysis/snowpack_run.h"
+#include "fem/closed_forms.h"
+#include "fem/model/checkpoint.h"
+#include "fem/model/snowpack_model.h"
+#include "util/hdf5_file.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <filesystem>
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anticrack::fem
+{
+  template <int dim>
+  class QuasiStaticSolver;
+
+  /// Progress lines on rank 0 (nullptr: quiet).
+  class Log
+  {
+  public:
+    Log(std::ostream *out, MPI_Comm communicator);
+    template <typename... T>
+    void line(const T &...parts)
+    {
+      if (!out_)
+        return;
+      (*out_ << ... << parts) << std::endl;
+    }
+
+  private:
+    std::ostream *out_;
+  };
+
+  /// `value` with `precision` significant digits (log lines and messages).
+  std::string format(double value, int precision = 4);
+
+  /// Columns of a time series, written by rank 0 as one HDF5 dataset per column with its unit.
+  class TimeSeries
+  {
+  public:
+    struct Column
+    {
+      std::string name, unit, description;
+      std::vector<double> values;
+    };
+
+    explicit TimeSeries(std::vector<Column> columns) : columns_(std::move(columns)) {}
+
+    void add_row(const std::vector<double> &row)
+    {
+      for (unsigned int k = 0; k < columns_.size(); ++k)
+        columns_[k].values.push_back(row[k]);
+    }
+
+    const std::vector<double> &column(const std::string &name) const
+    {
+      for (const Column &c : columns_)
+        if (c.name == name)
+          return c.values;
+      throw std::logic_error("no time-series column " + name);
+    }
+
+    void save(std::ostream &out) const
+    {
+      for (const Column &c : columns_)
+        checkpoint::write_vector(out, c.values);
+    }
+
+    void load(std::istream &in)
+    {
+      for (Column &c : columns_)
+        checkpoint::read_vector(in, c.values, -1, "time series " + c.name);
+    }
+
+    /// Writes file (via file.tmp and a rename, so a reader never sees half a file) on rank 0.
+    void write(const std::string &file, const std::string &description, MPI_Comm communicator) const
+    {
+      if (dealii::Utilities::MPI::this_mpi_process(communicator) != 0)
+        return;
+      const std::string temporary = file + ".tmp";
+      {
+        hdf5::Handle h5 = hdf5::create_file(temporary);
+        hdf5::write_string_attribute(h5.id, "description", description);
+        for (const Column &c : columns_)
+          hdf5::write_doubles(h5.id, c.name, c.values, c.unit, c.description);
+      }
+      std::filesystem::rename(temporary, file);
+    }
+
+  private:
+    std::vector<Column> columns_;
+  };
+
+  /// The .pvd record of the field outputs, rewritten after every output by rank 0.
+  class FieldRecord
+  {
+  public:
+    FieldRecord(std::string directory, MPI_Comm communicator);
+
+    /// Writes the fields at `time`, unless that time was written last already.
+    template <int dim>
+    void write(const SnowpackModel<dim> &model, const typename SnowpackModel<dim>::VectorType &u, double time);
+
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
+
+  private:
+    std::string directory_;
+    MPI_Comm communicator_;
+    std::vector<std::pair<double, std::string>> entries_;
+  };
+
+  /// Width the 2D results are per (1 m, plane strain) or the 3D column width.
+  template <int dim>
+  double result_width(const SnowpackScene &scene)
+  {
+    return dim == 2 ? 1. : scene.pst.column_width;
+  }
+
+  /// Energies per metre of column width in 3D (2D already counts them per metre).
+  template <int dim>
+  Energies per_width(Energies e, const SnowpackScene &scene)
+  {
+    const double width = result_width<dim>(scene);
+    for (double *value : {&e.elastic, &e.kinetic, &e.dissipated, &e.viscous, &e.external_work, &e.removed_by_saw})
+      *value /= width;
+    return e;
+  }
+
+  /// The energies of summary.json with the relative error of their balance.
+  Json energies_json(const Energies &e);
+
+  /// The mesh of summary.json: dimension, cells, dofs, columns, element length, ranks.
+  template <int dim>
+  Json mesh_json(const SnowpackModel<dim> &model, MPI_Comm communicator);
+
+  /// The beam on an elastic foundation of fem/closed_forms.h for a snowpack with one slab layer
+  /// (several layers have no single E; none is returned then).
+  std::optional<closed_forms::SlabOnFoundation> beam_model(const Snowpack &s);
+
+  /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
+  template <int dim>
+  void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
+                           typename SnowpackModel<dim>::VectorType &u, Log &log);
+
+  /// The crack runs by itself once its tip leads the saw by this distance [m] (both PSTs).
+  double self_propagation_lead(const SnowpackScene &scene);
+} // namespace anticrack::fem
