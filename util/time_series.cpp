@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 namespace anticrack
 {
   using hdf5::Handle;
   using hdf5::write_string_attribute;
+
+  TimeSeries::TimeSeries(std::vector<Column> columns) : columns_(std::move(columns)) {}
 
   void TimeSeries::add_column(const std::string &name, const std::string &unit,
                            const std::string &description, const bool integer)
@@ -47,6 +50,20 @@ namespace anticrack
       if (c.name == name)
         return &c;
     return nullptr;
+  }
+
+  const std::vector<double> &TimeSeries::values(const std::string &name) const
+  {
+    const Column *c = find(name);
+    if (c == nullptr)
+      throw std::logic_error("TimeSeries: no column " + name);
+    return c->values;
+  }
+
+  void TimeSeries::replace_values(const std::function<std::vector<double>(const Column &)> &read_column)
+  {
+    for (Column &c : columns_)
+      c.values = read_column(c);
   }
 
   void TimeSeries::write(const std::string &file, const std::map<std::string, std::string> &attributes) const

@@ -1,9 +1,12 @@
-// The time series of a run (history.h5): a table of named columns, one HDF5 dataset per column
-// with `units` and `description` attributes, rows appended as the run goes. The whole table is
-// kept in memory (a few hundred bytes per row) and rewritten atomically at every checkpoint and
-// at the end; a resumed run reads it back and drops the rows recorded after its checkpoint.
+// The time series of a run (the DEM's history.h5, the FE's series.h5 and energy_release_rate.h5): a
+// table of named columns, one HDF5 dataset per column with `units` and `description` attributes,
+// rows appended as the run goes. The whole table is kept in memory (a few hundred bytes per row)
+// and rewritten atomically at every checkpoint and at the end; a resumed run reads it back (from
+// the file, read(), or from its own checkpoint, replace_values()) and drops the rows recorded after
+// its checkpoint.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,6 +25,12 @@ namespace anticrack
       std::vector<double> values;
     };
 
+    TimeSeries() = default;
+
+    /// A table of given columns, which may differ in length (e.g. values at cuts and at their
+    /// midpoints); append() needs equal lengths.
+    explicit TimeSeries(std::vector<Column> columns);
+
     /// Declares a column; all columns must be declared before the first row.
     void add_column(const std::string &name, const std::string &unit, const std::string &description,
                     bool integer = false);
@@ -35,6 +44,12 @@ namespace anticrack
     [[nodiscard]] std::size_t rows() const { return columns_.empty() ? 0 : columns_.front().values.size(); }
     [[nodiscard]] const std::vector<Column> &columns() const { return columns_; }
     [[nodiscard]] const Column *find(const std::string &name) const;
+    /// The values of column `name`; throws std::logic_error if there is none.
+    [[nodiscard]] const std::vector<double> &values(const std::string &name) const;
+
+    /// Replaces the values of every column, in declaration order, by what `read_column` returns for
+    /// it (e.g. read back from a checkpoint stream that holds columns() in that order).
+    void replace_values(const std::function<std::vector<double>(const Column &)> &read_column);
 
     /// Writes `file` (via file.tmp and a rename); `attributes` become string attributes of "/".
     void write(const std::string &file, const std::map<std::string, std::string> &attributes) const;

@@ -35,17 +35,17 @@ namespace anticrack::fem
         , log_(options.log, comm)
         , model_(scene, comm)
         , fields_(options.output_directory + "/fields", comm)
-        , series_({{"time", "s", "time since the saw started", {}},
-                   {"cut_length", "m", "saw cut length", {}},
-                   {"crack_tip", "m", "far end of the failed weak layer from the cut end", {}},
-                   {"touchdown_front", "m", "far end of the locked-up (collapsed and closed) weak layer", {}},
-                   {"elastic_energy", "J/m", "stored elastic energy (per m of column width)", {}},
-                   {"kinetic_energy", "J/m", "kinetic energy", {}},
-                   {"dissipated_energy", "J/m", "plastic dissipation", {}},
-                   {"viscous_energy", "J/m", "bulk viscosity and damping", {}},
-                   {"removed_by_saw", "J/m", "elastic energy of the material the saw removed", {}},
-                   {"external_work", "J/m", "work of gravity", {}},
-                   {"time_step", "s", "explicit time step", {}}})
+        , series_(series_of({{"time", "s", "time since the saw started"},
+                             {"cut_length", "m", "saw cut length"},
+                             {"crack_tip", "m", "far end of the failed weak layer from the cut end"},
+                             {"touchdown_front", "m", "far end of the locked-up (collapsed and closed) weak layer"},
+                             {"elastic_energy", "J/m", "stored elastic energy (per m of column width)"},
+                             {"kinetic_energy", "J/m", "kinetic energy"},
+                             {"dissipated_energy", "J/m", "plastic dissipation"},
+                             {"viscous_energy", "J/m", "bulk viscosity and damping"},
+                             {"removed_by_saw", "J/m", "elastic energy of the material the saw removed"},
+                             {"external_work", "J/m", "work of gravity"},
+                             {"time_step", "s", "explicit time step"}}))
       {}
 
       Json run()
@@ -175,13 +175,13 @@ namespace anticrack::fem
                                  format(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
                                  ", dt = " + format(dynamics.time_step(), 3) + " s)");
         const Energies e = per_width<dim>(dynamics.energies(), scene_);
-        series_.add_row({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
-                         e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});
+        series_.append({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
+                        e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});
       }
 
       void write_series() const
       {
-        series_.write(options_.output_directory + "/series.h5",
+        write_on_root(series_, options_.output_directory + "/series.h5",
                       "dynamic PST time series (energies per m of column width)", comm_);
       }
 
@@ -239,7 +239,8 @@ namespace anticrack::fem
         for (const double value : {cut_, next_series_, next_field_, wall_, fronts_.crack_tip, fronts_.touchdown,
                                    critical_cut_.value_or(-1.), critical_time_.value_or(-1.)})
           checkpoint::write(out, value);
-        series_.save(out);
+        for (const TimeSeries::Column &column : series_.columns())
+          checkpoint::write_vector(out, column.values);
         fields_.save(out);
       }
 
@@ -275,7 +276,11 @@ namespace anticrack::fem
             checkpoint::read(in, *value);
           if (critical_cut >= 0)
             critical_cut_ = critical_cut, critical_time_ = critical_time;
-          series_.load(in);
+          series_.replace_values([&](const TimeSeries::Column &column) {
+            std::vector<double> values;
+            checkpoint::read_vector(in, values, -1, "time series " + column.name);
+            return values;
+          });
           fields_.load(in);
         }
         catch (const checkpoint::Mismatch &e)
@@ -295,8 +300,8 @@ namespace anticrack::fem
         // still within two element lengths of the saw: that cut is the critical cut length (the
         // detection itself waits for a lead of one slab thickness, so that a tip that only jumps
         // ahead of the saw by a few elements is not taken for a running crack).
-        const auto &t = series_.column("time"), &tip = series_.column("crack_tip"),
-                   &td = series_.column("touchdown_front"), &cuts = series_.column("cut_length");
+        const auto &t = series_.values("time"), &tip = series_.values("crack_tip"),
+                   &td = series_.values("touchdown_front"), &cuts = series_.values("cut_length");
         std::optional<double> critical_cut = critical_cut_, critical_time = critical_time_;
         if (critical_time_)
           for (std::size_t k = 0; k < t.size() && t[k] <= *critical_time_; ++k)

@@ -59,13 +59,14 @@ namespace anticrack::fem
                                     (midpoints[k + 1] - midpoints[k]);
 
     // Columns of different lengths: Π at the cuts, G at their midpoints.
-    TimeSeries table({{"cut_length", "m", "cut length a", cuts},
-                      {"potential_energy", "J/m", "total potential energy per unit width at each cut", potentials},
-                      {"midpoint_cut_length", "m", "midpoints of consecutive cuts, where G is given", midpoints},
-                      {"energy_release_rate", "J/m^2", "G = -dPi/da of the FE model", release_rates},
+    TimeSeries table({{"cut_length", "m", "cut length a", false, cuts},
+                      {"potential_energy", "J/m", "total potential energy per unit width at each cut", false, potentials},
+                      {"midpoint_cut_length", "m", "midpoints of consecutive cuts, where G is given", false, midpoints},
+                      {"energy_release_rate", "J/m^2", "G = -dPi/da of the FE model", false, release_rates},
                       {"energy_release_rate_beam", "J/m^2",
-                       "beam on an elastic foundation, fem/closed_forms.h (NaN: several slab layers)", beam_rates}});
-    table.write(options.output_directory + "/energy_release_rate.h5", "energy release rate of a saw cut", comm);
+                       "beam on an elastic foundation, fem/closed_forms.h (NaN: several slab layers)", false, beam_rates}});
+    write_on_root(table, options.output_directory + "/energy_release_rate.h5", "energy release rate of a saw cut",
+                  comm);
     FieldRecord fields(options.output_directory + "/fields", comm);
     u.update_ghost_values();
     fields.write(model, u, cuts.back());

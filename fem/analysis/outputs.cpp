@@ -28,6 +28,21 @@ namespace anticrack::fem
     return out.str();
   }
 
+  TimeSeries series_of(const std::vector<SeriesColumn> &columns)
+  {
+    TimeSeries series;
+    for (const SeriesColumn &c : columns)
+      series.add_column(c.name, c.unit, c.description);
+    return series;
+  }
+
+  void write_on_root(const TimeSeries &series, const std::string &file, const std::string &description,
+                     MPI_Comm communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      series.write(file, {{"description", description}});
+  }
+
   FieldRecord::FieldRecord(std::string directory, MPI_Comm communicator)
     : directory_(std::move(directory)), communicator_(communicator)
   {

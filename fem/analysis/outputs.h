@@ -1,18 +1,14 @@
-// What the three analyses of fem/analysis/ share: the progress log, the .pvd record of the field
-// outputs, the parts of summary.json's results (mesh, energies per width, the beam model of
+// What the three analyses of fem/analysis/ share: the progress log, the time series' writer, the
+// .pvd record of the field outputs, the parts of summary.json's results (mesh, energies per width, the beam model of
 // fem/closed_forms.h) and the start of both PSTs (gravity equilibrium, self-propagation lead).
 // Templates on dim are explicitly instantiated for 2 and 3 in outputs.cpp.
 #pragma once
 
 #include "fem/analysis/snowpack_run.h"
 #include "fem/closed_forms.h"
-#include "fem/model/checkpoint.h"
 #include "fem/model/snowpack_model.h"
-#include "util/hdf5_file.h"
+#include "util/time_series.h"
 
-#include <deal.II/base/mpi.h>
-
-#include <filesystem>
 
 #include <optional>
 #include <ostream>
@@ -45,62 +41,18 @@ namespace anticrack::fem
   /// `value` with `precision` significant digits (log lines and messages).
   std::string format(double value, int precision = 4);
 
-  /// Columns of a time series, written by rank 0 as one HDF5 dataset per column with its unit.
-  class TimeSeries
+  /// A column of doubles of a time series.
+  struct SeriesColumn
   {
-  public:
-    struct Column
-    {
-      std::string name, unit, description;
-      std::vector<double> values;
-    };
-
-    explicit TimeSeries(std::vector<Column> columns) : columns_(std::move(columns)) {}
-
-    void add_row(const std::vector<double> &row)
-    {
-      for (unsigned int k = 0; k < columns_.size(); ++k)
-        columns_[k].values.push_back(row[k]);
-    }
-
-    const std::vector<double> &column(const std::string &name) const
-    {
-      for (const Column &c : columns_)
-        if (c.name == name)
-          return c.values;
-      throw std::logic_error("no time-series column " + name);
-    }
-
-    void save(std::ostream &out) const
-    {
-      for (const Column &c : columns_)
-        checkpoint::write_vector(out, c.values);
-    }
-
-    void load(std::istream &in)
-    {
-      for (Column &c : columns_)
-        checkpoint::read_vector(in, c.values, -1, "time series " + c.name);
-    }
-
-    /// Writes file (via file.tmp and a rename, so a reader never sees half a file) on rank 0.
-    void write(const std::string &file, const std::string &description, MPI_Comm communicator) const
-    {
-      if (dealii::Utilities::MPI::this_mpi_process(communicator) != 0)
-        return;
-      const std::string temporary = file + ".tmp";
-      {
-        hdf5::Handle h5 = hdf5::create_file(temporary);
-        hdf5::write_string_attribute(h5.id, "description", description);
-        for (const Column &c : columns_)
-          hdf5::write_doubles(h5.id, c.name, c.values, c.unit, c.description);
-      }
-      std::filesystem::rename(temporary, file);
-    }
-
-  private:
-    std::vector<Column> columns_;
+    std::string name, unit, description;
   };
+
+  /// A time series of these columns, without rows.
+  TimeSeries series_of(const std::vector<SeriesColumn> &columns);
+
+  /// Writes `series` to `file` with its `description` (util/time_series.h) on rank 0.
+  void write_on_root(const TimeSeries &series, const std::string &file, const std::string &description,
+                     MPI_Comm communicator);
 
   /// The .pvd record of the field outputs, rewritten after every output by rank 0.
   class FieldRecord

@@ -29,12 +29,12 @@ namespace anticrack::fem
     const double dx = scene.pst.column_length / model.n_columns();
     const double nominal_step = scene.analysis.saw_step > 0 ? scene.analysis.saw_step : dx;
     const double lead = self_propagation_lead(scene);
-    TimeSeries series({{"cut_length", "m", "saw cut length a", {}},
-                       {"crack_tip", "m", "far end of the failed weak layer from the cut end", {}},
-                       {"touchdown_front", "m", "far end of the locked-up weak layer from the cut end", {}},
-                       {"elastic_energy", "J/m", "stored elastic energy", {}},
-                       {"dissipated_energy", "J/m", "plastic dissipation", {}},
-                       {"newton_iterations", "1", "Newton iterations of the step", {}}});
+    TimeSeries series = series_of({{"cut_length", "m", "saw cut length a"},
+                                   {"crack_tip", "m", "far end of the failed weak layer from the cut end"},
+                                   {"touchdown_front", "m", "far end of the locked-up weak layer from the cut end"},
+                                   {"elastic_energy", "J/m", "stored elastic energy"},
+                                   {"dissipated_energy", "J/m", "plastic dissipation"},
+                                   {"newton_iterations", "1", "Newton iterations of the step"}});
     double cut = 0, step = nominal_step;
     std::optional<double> critical;
     std::string reason;
@@ -66,7 +66,7 @@ namespace anticrack::fem
       previous = u;
       const CrackFronts fronts = model.crack_fronts(scene.analysis.failure_fraction);
       const Energies e = per_width<dim>(model.energies(), scene);
-      series.add_row({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)result.iterations});
+      series.append({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)result.iterations});
       log.line("[fem] cut ", format(cut), " m: crack tip ", format(fronts.crack_tip), " m, ", result.iterations,
                " Newton iterations");
       if (fronts.crack_tip - cut >= lead)
@@ -79,7 +79,8 @@ namespace anticrack::fem
     }
     u.update_ghost_values();
     fields.write(model, u, 1);
-    series.write(options.output_directory + "/series.h5", "quasi-static PST, one row per converged saw step", comm);
+    write_on_root(series, options.output_directory + "/series.h5", "quasi-static PST, one row per converged saw step",
+                comm);
 
     Json results;
     results["analysis"] = "quasi-static";
