@@ -11,19 +11,15 @@
 // underlying integer, Quat -> 4 doubles (w, x, y, z).
 #include "dem/io/state_hdf5.h"
 
+#include "util/atomic_file.h"
 #include "util/hdf5_file.h"
 
 #include <hdf5.h>
 
 #include <array>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <fcntl.h>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
-#include <unistd.h>
 #include <utility>
 
 namespace anticrack::dem::io
@@ -535,50 +531,25 @@ namespace anticrack::dem::io
              "is " + std::to_string(version) + ", this build reads version " + std::to_string(format_version));
     }
 
-    /// Makes `file` durable before it is renamed (the rename itself is atomic, the data is not).
-    void flush_to_disk(const std::string &file)
-    {
-      const int descriptor = ::open(file.c_str(), O_RDONLY);
-      if (descriptor < 0 || ::fsync(descriptor) != 0)
-      {
-        const std::string reason = std::strerror(errno);
-        if (descriptor >= 0)
-          ::close(descriptor);
-        fail(file, "cannot flush to disk (" + reason + ")");
-      }
-      ::close(descriptor);
-    }
-
-    /// Writes `file` through `file.tmp` + rename; `content(root)` fills the new file.
+    /// Writes `file` atomically (util/atomic_file.h); `content(root)` fills the new file.
     template <class Content>
-    void write_atomically(const std::string &file, bool durable, Content &&content)
+    void write_hdf5_atomically(const std::string &file, bool durable, Content &&content)
     {
       const hdf5::QuietErrors quiet; // errors are reported through our exceptions
-      const std::string temporary = file + ".tmp";
-      try
-      {
-        hdf5::Handle root = hdf5::create_file(temporary);
-        content(root);
-        hdf5::check(root.close_now(), "close file " + temporary);
-        if (durable)
-          flush_to_disk(temporary);
-        if (std::rename(temporary.c_str(), file.c_str()) != 0)
-        {
-          const std::string reason = std::strerror(errno);
-          fail(file, "cannot rename " + temporary + " to it (" + reason + ")");
-        }
-      }
-      catch (...)
-      {
-        std::remove(temporary.c_str());
-        throw;
-      }
+      write_atomically(
+        file,
+        [&](const std::string &temporary) {
+          hdf5::Handle root = hdf5::create_file(temporary);
+          content(root);
+          hdf5::check(root.close_now(), "close file " + temporary);
+        },
+        durable);
     }
   } // namespace
 
   void write_snapshot(const std::string &file, const DemSystem &system)
   {
-    write_atomically(file, false, [&](const hdf5::Handle &root) {
+    write_hdf5_atomically(file, false, [&](const hdf5::Handle &root) {
       write_header(root, snapshot_format, system);
       const ParticleStore &particles = system.particles;
       const hdf5::Handle particle_group = create_array_group(root, "particles", particles.size());
@@ -601,7 +572,7 @@ namespace anticrack::dem::io
 
   void write_checkpoint(const std::string &file, const DemSystem &system)
   {
-    write_atomically(file, true, [&](const hdf5::Handle &root) {
+    write_hdf5_atomically(file, true, [&](const hdf5::Handle &root) {
       write_header(root, checkpoint_format, system);
       write_attribute(root, "initial_balance", system.initial_balance);
 
