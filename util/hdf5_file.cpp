@@ -1,22 +1,62 @@
 #include "util/hdf5_file.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace anticrack::hdf5
 {
-  Handle::Handle(hid_t i, herr_t (*c)(hid_t), const std::string &what) : id(i), close(c)
+  std::string innermost_error()
+  {
+    std::string description;
+    H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned depth, const H5E_error2_t *error, void *data) -> herr_t {
+        if (depth == 0 && error->desc != nullptr)
+          *static_cast<std::string *>(data) = error->desc;
+        return 0;
+      },
+      &description);
+    H5Eclear2(H5E_DEFAULT);
+    return description;
+  }
+
+  namespace
+  {
+    [[noreturn]] void fail(const std::string &what)
+    {
+      const std::string reason = innermost_error();
+      throw std::runtime_error("HDF5: cannot " + what + (reason.empty() ? "" : " (" + reason + ")"));
+    }
+  } // namespace
+
+  herr_t check(const herr_t status, const std::string &what)
+  {
+    if (status < 0)
+      fail(what);
+    return status;
+  }
+
+  hid_t check_id(const hid_t id, const std::string &what)
   {
     if (id < 0)
-      throw std::runtime_error("HDF5: cannot " + what);
+      fail(what);
+    return id;
   }
 
-  Handle::~Handle()
+  Handle::Handle(hid_t i, Closer c, const std::string &what) : id(check_id(i, what)), closer_(c) {}
+
+  Handle::~Handle() { close_now(); }
+
+  Handle::Handle(Handle &&other) noexcept : id(other.id), closer_(other.closer_) { other.id = -1; }
+
+  herr_t Handle::close_now()
   {
-    if (id >= 0)
-      close(id);
+    if (id < 0)
+      return 0;
+    const hid_t open = id;
+    id = -1;
+    return closer_(open);
   }
-
-  Handle::Handle(Handle &&other) noexcept : id(other.id), close(other.close) { other.id = -1; }
 
   std::string location(hid_t object, const std::string &name)
   {
@@ -29,25 +69,6 @@ namespace anticrack::hdf5
     return where;
   }
 
-  namespace
-  {
-    /// Variable-length UTF-8 strings, the type every string here is written and read as.
-    Handle utf8_string_type()
-    {
-      Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy the string type");
-      H5Tset_size(type.id, H5T_VARIABLE);
-      H5Tset_cset(type.id, H5T_CSET_UTF8);
-      return type;
-    }
-
-    Handle open_dataset(hid_t group, const std::string &name)
-    {
-      if (!exists(group, name))
-        throw std::runtime_error("HDF5: " + location(group, name) + " does not exist");
-      return Handle(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "open " + location(group, name));
-    }
-  } // namespace
-
   Handle create_file(const std::string &file)
   {
     return Handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + file);
@@ -57,7 +78,7 @@ namespace anticrack::hdf5
   {
     const QuietErrors quiet;
     return Handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-                  "open " + file + " (missing, or not an HDF5 file)");
+                  "open file " + file + " (missing, or not an HDF5 file)");
   }
 
   Handle create_group(hid_t parent, const std::string &name)
@@ -108,42 +129,80 @@ namespace anticrack::hdf5
     return names;
   }
 
-  void write_string_attribute(hid_t object, const std::string &name, const std::string &value)
+  // ---------------------------------------------------------------------------------------------
+  // Strings
+
+  Handle string_type(const H5T_cset_t character_set)
   {
-    const Handle type = utf8_string_type();
-    const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
-    const Handle attribute(H5Acreate2(object, name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT),
-                           H5Aclose, "create attribute " + location(object) + "@" + name);
-    const char *text = value.c_str();
-    if (H5Awrite(attribute.id, type.id, &text) < 0)
-      throw std::runtime_error("HDF5: cannot write attribute " + location(object) + "@" + name);
+    Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy the string type");
+    check(H5Tset_size(type.id, H5T_VARIABLE), "make the string type variable-length");
+    check(H5Tset_cset(type.id, character_set), "set the character set of the string type");
+    return type;
   }
 
-  void write_number_attribute(hid_t object, const std::string &name, double value)
+  Handle string_type_for(const hid_t stored, const std::string &where)
   {
-    const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
-    const Handle attribute(H5Acreate2(object, name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT),
-                           H5Aclose, "create attribute " + location(object) + "@" + name);
-    if (H5Awrite(attribute.id, H5T_NATIVE_DOUBLE, &value) < 0)
-      throw std::runtime_error("HDF5: cannot write attribute " + location(object) + "@" + name);
+    const Handle stored_type(stored, H5Tclose, "query the type of " + where);
+    if (H5Tget_class(stored_type.id) != H5T_STRING || H5Tis_variable_str(stored_type.id) <= 0)
+      throw std::runtime_error("HDF5: " + where + " is not made of variable-length strings");
+    return string_type(H5Tget_cset(stored_type.id));
   }
+
+  // ---------------------------------------------------------------------------------------------
+  // Attributes
 
   bool has_attribute(hid_t object, const std::string &name) { return H5Aexists(object, name.c_str()) > 0; }
 
-  std::string read_string_attribute(hid_t object, const std::string &name)
+  Handle open_attribute(hid_t object, const std::string &name)
   {
     const std::string where = location(object) + "@" + name;
     if (!has_attribute(object, name))
       throw std::runtime_error("HDF5: attribute " + where + " does not exist");
-    const Handle attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + where);
-    const Handle stored(H5Aget_type(attribute.id), H5Tclose, "query the type of " + where);
-    if (H5Tget_class(stored.id) != H5T_STRING || !H5Tis_variable_str(stored.id))
-      throw std::runtime_error("HDF5: attribute " + where + " is not a variable-length string");
-    const Handle type = utf8_string_type();
-    H5Tset_cset(type.id, H5Tget_cset(stored.id));
+    return Handle(H5Aopen(object, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + where);
+  }
+
+  void write_attribute(hid_t object, const std::string &name, hid_t file_type, hid_t memory_type,
+                       const void *values, hsize_t elements)
+  {
+    const std::string where = location(object) + "@" + name;
+    const Handle space(elements == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &elements, nullptr), H5Sclose,
+                       "create the data space of attribute " + where);
+    const Handle attribute(H5Acreate2(object, name.c_str(), file_type, space.id, H5P_DEFAULT, H5P_DEFAULT),
+                           H5Aclose, "create attribute " + where);
+    check(H5Awrite(attribute.id, memory_type, values), "write attribute " + where);
+  }
+
+  void read_attribute(hid_t object, const std::string &name, hid_t memory_type, void *values, hsize_t elements)
+  {
+    const std::string where = location(object) + "@" + name;
+    const Handle attribute = open_attribute(object, name);
+    const Handle space(H5Aget_space(attribute.id), H5Sclose, "query the size of attribute " + where);
+    const hssize_t stored = H5Sget_simple_extent_npoints(space.id);
+    if (stored != static_cast<hssize_t>(elements))
+      throw std::runtime_error("HDF5: attribute " + where + " has " + std::to_string(stored) + " elements, expected " +
+                               std::to_string(elements));
+    check(H5Aread(attribute.id, memory_type, values), "read attribute " + where);
+  }
+
+  void write_string_attribute(hid_t object, const std::string &name, const std::string &value)
+  {
+    const Handle type = string_type();
+    const char *text = value.c_str();
+    write_attribute(object, name, type.id, type.id, &text, 1);
+  }
+
+  void write_number_attribute(hid_t object, const std::string &name, double value)
+  {
+    write_attribute(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, 1);
+  }
+
+  std::string read_string_attribute(hid_t object, const std::string &name)
+  {
+    const std::string where = location(object) + "@" + name;
+    const Handle attribute = open_attribute(object, name);
+    const Handle type = string_type_for(H5Aget_type(attribute.id), "attribute " + where);
     char *text = nullptr;
-    if (H5Aread(attribute.id, type.id, &text) < 0)
-      throw std::runtime_error("HDF5: cannot read attribute " + where);
+    check(H5Aread(attribute.id, type.id, &text), "read attribute " + where);
     std::string value = text != nullptr ? text : "";
     H5free_memory(text);
     return value;
@@ -152,9 +211,7 @@ namespace anticrack::hdf5
   double read_number_attribute(hid_t object, const std::string &name)
   {
     const std::string where = location(object) + "@" + name;
-    if (!has_attribute(object, name))
-      throw std::runtime_error("HDF5: attribute " + where + " does not exist");
-    const Handle attribute(H5Aopen(object, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + where);
+    const Handle attribute = open_attribute(object, name);
     const Handle stored(H5Aget_type(attribute.id), H5Tclose, "query the type of " + where);
     if (H5Tget_class(stored.id) == H5T_STRING)
     {
@@ -172,38 +229,85 @@ namespace anticrack::hdf5
       throw std::runtime_error("HDF5: attribute " + where + " = \"" + text + "\" is not a number");
     }
     double value = 0;
-    if (H5Aread(attribute.id, H5T_NATIVE_DOUBLE, &value) < 0)
-      throw std::runtime_error("HDF5: cannot read attribute " + where + " as a number");
+    check(H5Aread(attribute.id, H5T_NATIVE_DOUBLE, &value), "read attribute " + where + " as a number");
     return value;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Datasets
+
+  Handle write_dataset(hid_t group, const std::string &name, hid_t file_type, hid_t memory_type,
+                       const std::vector<hsize_t> &dims, const void *values)
+  {
+    const std::string where = location(group, name);
+    const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
+                       "create the data space of " + where);
+    Handle set(H5Dcreate2(group, name.c_str(), file_type, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+               H5Dclose, "create dataset " + where);
+    hsize_t count = 1;
+    for (const hsize_t d : dims)
+      count *= d;
+    if (count > 0)
+      check(H5Dwrite(set.id, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), "write " + where);
+    return set;
+  }
+
+  Handle open_dataset(hid_t group, const std::string &name)
+  {
+    if (!exists(group, name))
+      throw std::runtime_error("HDF5: " + location(group, name) + " does not exist");
+    return Handle(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, "open " + location(group, name));
+  }
+
+  std::pair<Handle, hsize_t> open_table(hid_t group, const std::string &name, hsize_t columns, std::int64_t rows)
+  {
+    const std::string where = location(group, name);
+    Handle set = open_dataset(group, name);
+    const Handle space(H5Dget_space(set.id), H5Sclose, "query the shape of " + where);
+    const int rank = check(H5Sget_simple_extent_ndims(space.id), "query the shape of " + where);
+    hsize_t dims[2] = {0, 1};
+    if (rank == 1 || rank == 2)
+      check(H5Sget_simple_extent_dims(space.id, dims, nullptr), "query the shape of " + where);
+    const bool rows_match = rows == any_rows || dims[0] == static_cast<hsize_t>(rows);
+    if (rank != (columns == 1 ? 1 : 2) || dims[1] != columns || !rows_match)
+    {
+      std::string found = "rank " + std::to_string(rank);
+      if (rank == 1 || rank == 2)
+        found = "shape (" + std::to_string(dims[0]) + (rank == 2 ? ", " + std::to_string(dims[1]) : "") + ")";
+      const std::string rows_text = rows == any_rows ? "n" : std::to_string(rows);
+      throw std::runtime_error("HDF5: " + where + " has " + found + ", expected shape (" + rows_text +
+                               (columns == 1 ? "" : ", " + std::to_string(columns)) + ")");
+    }
+    return {std::move(set), dims[0]};
+  }
+
+  void read_dataset(hid_t dataset, hid_t memory_type, void *values, const std::string &where)
+  {
+    check(H5Dread(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), "read " + where);
   }
 
   void write_doubles(hid_t group, const std::string &name, const std::vector<double> &values,
                      const std::string &units, const std::string &description, const std::vector<hsize_t> &shape)
   {
     const std::vector<hsize_t> dims = shape.empty() ? std::vector<hsize_t>{values.size()} : shape;
-    const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
-                       "create a data space");
-    const Handle set(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                     H5Dclose, "create dataset " + location(group, name));
-    if (!values.empty() && H5Dwrite(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-      throw std::runtime_error("HDF5: cannot write " + location(group, name));
+    const Handle set = write_dataset(group, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, values.data());
     write_string_attribute(set.id, "units", units);
     write_string_attribute(set.id, "description", description);
+  }
+
+  Handle write_string_dataset(hid_t group, const std::string &name, const std::vector<std::string> &values)
+  {
+    const Handle type = string_type();
+    std::vector<const char *> pointers;
+    for (const auto &v : values)
+      pointers.push_back(v.c_str());
+    return write_dataset(group, name, type.id, type.id, {values.size()}, pointers.data());
   }
 
   void write_strings(hid_t group, const std::string &name, const std::vector<std::string> &values,
                      const std::string &description)
   {
-    const Handle type = utf8_string_type();
-    const hsize_t n = values.size();
-    const Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a data space");
-    const Handle set(H5Dcreate2(group, name.c_str(), type.id, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                     H5Dclose, "create dataset " + location(group, name));
-    std::vector<const char *> pointers;
-    for (const auto &v : values)
-      pointers.push_back(v.c_str());
-    if (n > 0 && H5Dwrite(set.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0)
-      throw std::runtime_error("HDF5: cannot write " + location(group, name));
+    const Handle set = write_string_dataset(group, name, values);
     write_string_attribute(set.id, "description", description);
   }
 
@@ -218,26 +322,19 @@ namespace anticrack::hdf5
     for (const hsize_t d : dims)
       count *= d;
     std::vector<double> values(count);
-    if (count > 0 && H5Dread(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0)
-      throw std::runtime_error("HDF5: cannot read " + location(group, name) + " as numbers");
+    if (count > 0)
+      read_dataset(set.id, H5T_NATIVE_DOUBLE, values.data(), location(group, name) + " as numbers");
     if (shape != nullptr)
       *shape = dims;
     return values;
   }
 
-  std::vector<std::string> read_strings(hid_t group, const std::string &name)
+  std::vector<std::string> read_strings(hid_t dataset, hsize_t count, const std::string &where)
   {
-    const Handle set = open_dataset(group, name);
-    const Handle stored(H5Dget_type(set.id), H5Tclose, "query the type of " + location(group, name));
-    if (H5Tget_class(stored.id) != H5T_STRING || !H5Tis_variable_str(stored.id))
-      throw std::runtime_error("HDF5: " + location(group, name) + " is not a variable-length string dataset");
-    const Handle type = utf8_string_type();
-    H5Tset_cset(type.id, H5Tget_cset(stored.id));
-    const Handle space(H5Dget_space(set.id), H5Sclose, "query " + location(group, name));
-    const hssize_t n = H5Sget_simple_extent_npoints(space.id);
-    std::vector<char *> texts(static_cast<std::size_t>(std::max<hssize_t>(n, 0)), nullptr);
-    if (n > 0 && H5Dread(set.id, type.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()) < 0)
-      throw std::runtime_error("HDF5: cannot read " + location(group, name));
+    const Handle type = string_type_for(H5Dget_type(dataset), where);
+    std::vector<char *> texts(count, nullptr);
+    if (count > 0)
+      read_dataset(dataset, type.id, texts.data(), where);
     std::vector<std::string> values;
     for (char *text : texts)
     {
@@ -245,5 +342,13 @@ namespace anticrack::hdf5
       H5free_memory(text);
     }
     return values;
+  }
+
+  std::vector<std::string> read_strings(hid_t group, const std::string &name)
+  {
+    const Handle set = open_dataset(group, name);
+    const Handle space(H5Dget_space(set.id), H5Sclose, "query " + location(group, name));
+    const hssize_t n = H5Sget_simple_extent_npoints(space.id);
+    return read_strings(set.id, static_cast<hsize_t>(std::max<hssize_t>(n, 0)), location(group, name));
   }
 } // namespace anticrack::hdf5

@@ -1,11 +1,11 @@
 #include "util/run_summary.h"
 
+#include "util/atomic_file.h"
+
 #include <Eigen/Core>
 #include <hdf5.h>
 #include <omp.h>
 
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 // Both come from CMake (util/CMakeLists.txt): util links neither deal.II nor git.
@@ -41,16 +41,9 @@ namespace anticrack
 
   void write_json_atomically(const std::string &file, const Json &json)
   {
-    const std::string temporary = file + ".tmp";
-    {
-      std::ofstream out(temporary);
-      if (!out)
-        throw std::runtime_error("cannot write " + temporary);
+    write_text_atomically(file, [&](std::ostream &out) {
       // Non-finite numbers (a failed run) become null rather than invalid JSON.
       out << json.dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
-      if (!out)
-        throw std::runtime_error("cannot write " + temporary);
-    }
-    std::filesystem::rename(temporary, file);
+    });
   }
 } // namespace anticrack

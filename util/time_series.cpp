@@ -1,10 +1,10 @@
 #include "util/time_series.h"
 
+#include "util/atomic_file.h"
 #include "util/hdf5_file.h"
 
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <stdexcept>
 #include <utility>
 
@@ -68,8 +68,7 @@ namespace anticrack
 
   void TimeSeries::write(const std::string &file, const std::map<std::string, std::string> &attributes) const
   {
-    const std::string temporary = file + ".tmp";
-    {
+    write_atomically(file, [&](const std::string &temporary) {
       const Handle f = hdf5::create_file(temporary);
       for (const auto &[key, value] : attributes)
         write_string_attribute(f.id, key, value);
@@ -91,8 +90,7 @@ namespace anticrack
         write_string_attribute(set.id, "units", c.unit);
         write_string_attribute(set.id, "description", c.description);
       }
-    }
-    std::filesystem::rename(temporary, file);
+    });
   }
 
   void TimeSeries::read(const std::string &file)

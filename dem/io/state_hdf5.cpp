@@ -1,9 +1,9 @@
-// HDF5 snapshots and checkpoints of the DEM system (file layout documented in io_hdf5.h).
+// HDF5 snapshots and checkpoints of the DEM system (file layout documented in state_hdf5.h).
 //
-// Structure: a small RAII layer over the HDF5 C API (Handle closes any id, Node is a file or group
-// that knows its file name and path for error messages), one generic reader and writer per kind
-// of thing (array dataset, attribute, string), and field lists that name each array once and are
-// used by both the writer and the reader, so the two cannot drift apart:
+// Structure: the project's HDF5 layer (util/hdf5_file.h: handles, groups, attributes, table
+// datasets, strings), one generic reader and writer per kind of thing (array dataset, attribute)
+// that maps the C++ element types onto it, and field lists that name each array once and are used
+// by both the writer and the reader, so the two cannot drift apart:
 //   - structure-of-arrays stores (particles, contacts, bonds) list their std::vector members;
 //   - arrays of structs (walls, clumps) list accessors; the writer gathers one column per field
 //     (ragged std::vector fields are concatenated with a per-item count) and the reader scatters.
@@ -11,19 +11,15 @@
 // underlying integer, Quat -> 4 doubles (w, x, y, z).
 #include "dem/io/state_hdf5.h"
 
+#include "util/atomic_file.h"
 #include "util/hdf5_file.h"
 
 #include <hdf5.h>
 
 #include <array>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
-#include <fcntl.h>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
-#include <unistd.h>
 #include <utility>
 
 namespace anticrack::dem::io
@@ -33,127 +29,12 @@ namespace anticrack::dem::io
     constexpr const char *snapshot_format = "anticrack-dem-snapshot";
     constexpr const char *checkpoint_format = "anticrack-dem-checkpoint";
     constexpr int format_version = 1;
-    constexpr Index any_rows = -1;
-
-    // ------------------------------------------------------------------------------------------
-    // Errors
-
-    /// Description of the innermost entry of HDF5's error stack (then cleared), or "".
-    std::string innermost_hdf5_error()
-    {
-      std::string description;
-      H5Ewalk2(
-        H5E_DEFAULT, H5E_WALK_UPWARD,
-        [](unsigned depth, const H5E_error2_t *error, void *data) -> herr_t {
-          if (depth == 0 && error->desc != nullptr)
-            *static_cast<std::string *>(data) = error->desc;
-          return 0;
-        },
-        &description);
-      H5Eclear2(H5E_DEFAULT);
-      return description;
-    }
+    constexpr Index any_rows = hdf5::any_rows;
 
     [[noreturn]] void fail(const std::string &where, const std::string &message)
     {
       throw std::runtime_error("anticrack::dem::io: " + where + ": " + message);
     }
-
-    /// Returns `status` when it is a valid id / success, throws otherwise.
-    template <class Status>
-    Status check(Status status, const char *action, const std::string &where)
-    {
-      if (status < 0)
-      {
-        const std::string detail = innermost_hdf5_error();
-        fail(where, std::string("cannot ") + action + (detail.empty() ? "" : " (" + detail + ")"));
-      }
-      return status;
-    }
-
-    // ------------------------------------------------------------------------------------------
-    // RAII handles
-
-    /// Owns one HDF5 id and closes it with the matching H5?close. Construction checks the id: a
-    /// failed H5?create / H5?open throws "<where>: cannot <action> (<HDF5 description>)".
-    class Handle
-    {
-    public:
-      using Closer = herr_t (*)(hid_t);
-      Handle(hid_t id, Closer closer, const char *action, const std::string &where)
-        : id_(check(id, action, where)), closer_(closer) {}
-      Handle(Handle &&other) noexcept
-        : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
-      Handle &operator=(Handle &&) = delete;
-      Handle(const Handle &) = delete;
-      Handle &operator=(const Handle &) = delete;
-      ~Handle() { close(); }
-
-      [[nodiscard]] hid_t get() const { return id_; }
-      /// Closes now; returns the HDF5 status (closing twice is a no-op).
-      herr_t close() { return id_ < 0 ? 0 : closer_(std::exchange(id_, H5I_INVALID_HID)); }
-
-    private:
-      hid_t id_;
-      Closer closer_;
-    };
-
-    /// A file or a group, with the names needed for error messages.
-    class Node
-    {
-    public:
-      static Node create_file(const std::string &file)
-      {
-        const hid_t id = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-        return {file, "", Handle(id, H5Fclose, "create file", file)};
-      }
-      static Node open_file(const std::string &file)
-      {
-        const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-        return {file, "", Handle(id, H5Fclose, "open file", file)};
-      }
-
-      [[nodiscard]] Node create_group(const std::string &name) const
-      {
-        const hid_t group = H5Gcreate2(id(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-        return {file_, path_ + "/" + name, Handle(group, H5Gclose, "create group", where(name))};
-      }
-      [[nodiscard]] Node open_group(const std::string &name) const
-      {
-        require_link(name);
-        const hid_t group = H5Gopen2(id(), name.c_str(), H5P_DEFAULT);
-        return {file_, path_ + "/" + name, Handle(group, H5Gclose, "open group", where(name))};
-      }
-
-      /// Whether this node has a child `name`.
-      [[nodiscard]] bool has(const std::string &name) const
-      {
-        return check(H5Lexists(id(), name.c_str(), H5P_DEFAULT), "look up", where(name)) > 0;
-      }
-
-      /// Throws a "missing" error when this node has no child `name`.
-      void require_link(const std::string &name) const
-      {
-        if (check(H5Lexists(id(), name.c_str(), H5P_DEFAULT), "look up", where(name)) <= 0)
-          fail(where(name), "missing (not an anticrack file, or written by an incompatible version?)");
-      }
-
-      /// "file:/group/name", for messages.
-      [[nodiscard]] std::string where(const std::string &name = "") const
-      {
-        return file_ + ":" + path_ + "/" + name;
-      }
-      [[nodiscard]] hid_t id() const { return handle_.get(); }
-      /// Closes a file explicitly so that failures while flushing are reported.
-      void close() { check(handle_.close(), "close file", file_); }
-
-    private:
-      Node(std::string file, std::string path, Handle handle)
-        : file_(std::move(file)), path_(std::move(path)), handle_(std::move(handle)) {}
-      std::string file_;
-      std::string path_;
-      Handle handle_;
-    };
 
     // ------------------------------------------------------------------------------------------
     // Element types: how a C++ element is stored
@@ -226,216 +107,92 @@ namespace anticrack::dem::io
     }
 
     // ------------------------------------------------------------------------------------------
-    // Strings: written as variable-length UTF-8; read as variable-length strings of the stored
-    // character set (HDF5 does not convert between ASCII and UTF-8).
-
-    Handle string_type(const std::string &where, H5T_cset_t character_set = H5T_CSET_UTF8)
-    {
-      Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "create string type for", where);
-      check(H5Tset_size(type.get(), H5T_VARIABLE), "create string type for", where);
-      check(H5Tset_cset(type.get(), character_set), "create string type for", where);
-      return type;
-    }
-
-    /// Memory type for reading strings stored with type `stored` (an attribute's or dataset's).
-    Handle string_type_for(hid_t stored, const std::string &where)
-    {
-      const Handle stored_type(stored, H5Tclose, "query the type of", where);
-      if (H5Tget_class(stored_type.get()) != H5T_STRING || H5Tis_variable_str(stored_type.get()) <= 0)
-        fail(where, "is not made of variable-length strings");
-      return string_type(where, H5Tget_cset(stored_type.get()));
-    }
-
-    void write_string_attribute(hid_t object, const std::string &name, const std::string &value,
-                                const std::string &where)
-    {
-      const Handle type = string_type(where);
-      const Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create dataspace for", where);
-      const Handle attribute(
-        H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-        "create attribute", where);
-      const char *text = value.c_str();
-      check(H5Awrite(attribute.get(), type.get(), &text), "write attribute", where);
-    }
-
-    /// Opens attribute `name` of `node`, with a clear error when it does not exist.
-    Handle open_attribute(const Node &node, const std::string &name, const std::string &where)
-    {
-      if (check(H5Aexists(node.id(), name.c_str()), "look up attribute", where) <= 0)
-        fail(where, "attribute missing (not an anticrack file, or an incompatible version?)");
-      return Handle(H5Aopen(node.id(), name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute", where);
-    }
-
-    std::string read_string_attribute(const Node &node, const std::string &name)
-    {
-      const std::string where = node.where() + "@" + name;
-      const Handle attribute = open_attribute(node, name, where);
-      const Handle type = string_type_for(H5Aget_type(attribute.get()), where);
-      char *text = nullptr;
-      check(H5Aread(attribute.get(), type.get(), &text), "read attribute", where);
-      std::string value = text != nullptr ? text : "";
-      H5free_memory(text);
-      return value;
-    }
-
-    // ------------------------------------------------------------------------------------------
     // Attributes holding one element (scalar, or a small 1-D array for Vec3)
 
     template <class T>
-    void write_attribute(const Node &node, const std::string &name, const T &value)
+    void write_attribute(const hdf5::Handle &object, const std::string &name, const T &value)
     {
       if constexpr (!is_native<T>)
-        write_attribute(node, name, to_stored(value));
+        write_attribute(object, name, to_stored(value));
       else
       {
         using L = Layout<T>;
-        const std::string where = node.where() + "@" + name;
-        const hsize_t columns = L::columns;
-        const hid_t dataspace = columns == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &columns, nullptr);
-        const Handle space(dataspace, H5Sclose, "create dataspace for", where);
         const hid_t type = native_type<typename L::Scalar>();
-        const Handle attribute(H5Acreate2(node.id(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                               H5Aclose, "create attribute", where);
-        check(H5Awrite(attribute.get(), type, &value), "write attribute", where);
+        hdf5::write_attribute(object.id, name, type, type, &value, L::columns);
       }
     }
 
     template <class T>
-    void read_attribute(const Node &node, const std::string &name, T &value)
+    void read_attribute(const hdf5::Handle &object, const std::string &name, T &value)
     {
       if constexpr (!is_native<T>)
       {
         decltype(to_stored(value)) stored{};
-        read_attribute(node, name, stored);
+        read_attribute(object, name, stored);
         from_stored(stored, value);
       }
       else
       {
         using L = Layout<T>;
-        const std::string where = node.where() + "@" + name;
-        const Handle attribute = open_attribute(node, name, where);
-        const Handle space(H5Aget_space(attribute.get()), H5Sclose, "query the size of attribute", where);
-        const hssize_t elements = H5Sget_simple_extent_npoints(space.get());
-        if (elements != static_cast<hssize_t>(L::columns))
-          fail(where, "has " + std::to_string(elements) + " elements, expected " + std::to_string(L::columns));
-        check(H5Aread(attribute.get(), native_type<typename L::Scalar>(), &value), "read attribute", where);
+        hdf5::read_attribute(object.id, name, native_type<typename L::Scalar>(), &value, L::columns);
       }
     }
 
     template <class T>
-    T read_attribute(const Node &node, const std::string &name)
+    T read_attribute(const hdf5::Handle &object, const std::string &name)
     {
       T value{};
-      read_attribute(node, name, value);
+      read_attribute(object, name, value);
       return value;
     }
 
     // ------------------------------------------------------------------------------------------
-    // Array datasets: rows x columns (1-D when there is one column), any number of rows incl. 0
-
-    void write_dataset(const Node &node, const std::string &name, hid_t type, const void *data,
-                       hsize_t rows, hsize_t columns, const std::string &unit)
-    {
-      const std::string where = node.where(name);
-      const hsize_t dims[2] = {rows, columns};
-      const hid_t dataspace = H5Screate_simple(columns == 1 ? 1 : 2, dims, nullptr);
-      const Handle space(dataspace, H5Sclose, "create dataspace for", where);
-      const Handle set(
-        H5Dcreate2(node.id(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-        "create dataset", where);
-      if (rows > 0)
-        check(H5Dwrite(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write dataset", where);
-      write_string_attribute(set.get(), "units", unit, where);
-    }
-
-    /// Opens dataset `name`, checks that it is rows x columns (rows free when expected_rows is
-    /// any_rows) and returns the open dataset with its row count.
-    std::pair<Handle, hsize_t> open_dataset(const Node &node, const std::string &name, hsize_t columns,
-                                            Index expected_rows)
-    {
-      const std::string where = node.where(name);
-      node.require_link(name);
-      Handle set(H5Dopen2(node.id(), name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset", where);
-      const Handle space(H5Dget_space(set.get()), H5Sclose, "query the shape of dataset", where);
-      const int rank = check(H5Sget_simple_extent_ndims(space.get()), "query the shape of dataset", where);
-      hsize_t dims[2] = {0, 1};
-      if (rank == 1 || rank == 2)
-        check(H5Sget_simple_extent_dims(space.get(), dims, nullptr), "query the shape of dataset", where);
-      const bool rows_match = expected_rows == any_rows || dims[0] == static_cast<hsize_t>(expected_rows);
-      if (rank != (columns == 1 ? 1 : 2) || dims[1] != columns || !rows_match)
-      {
-        std::string found = "rank " + std::to_string(rank);
-        if (rank == 1 || rank == 2)
-          found = "shape (" + std::to_string(dims[0]) + (rank == 2 ? ", " + std::to_string(dims[1]) : "") + ")";
-        const std::string rows_text = expected_rows == any_rows ? "n" : std::to_string(expected_rows);
-        fail(where, "has " + found + ", expected shape (" + rows_text +
-                      (columns == 1 ? "" : ", " + std::to_string(columns)) + ")");
-      }
-      return {std::move(set), dims[0]};
-    }
-
-    void write_strings(const Node &node, const std::string &name, const std::vector<std::string> &values,
-                       const std::string &unit)
-    {
-      std::vector<const char *> texts;
-      for (const std::string &value : values)
-        texts.push_back(value.c_str());
-      const Handle type = string_type(node.where(name));
-      write_dataset(node, name, type.get(), texts.data(), texts.size(), 1, unit);
-    }
-
-    void read_strings(const Node &node, const std::string &name, std::vector<std::string> &values, Index rows)
-    {
-      const std::string where = node.where(name);
-      const auto [set, count] = open_dataset(node, name, 1, rows);
-      const Handle type = string_type_for(H5Dget_type(set.get()), where);
-      std::vector<char *> texts(count, nullptr);
-      if (count > 0)
-        check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()), "read dataset",
-              where);
-      values.clear();
-      for (char *text : texts)
-      {
-        values.emplace_back(text != nullptr ? text : "");
-        H5free_memory(text);
-      }
-    }
+    // Array datasets: rows x columns (1-D when there is one column), any number of rows incl. 0,
+    // each with its `units` attribute
 
     /// Writes one array: numbers (N), Vec3 (N x 3), 4-arrays (N x 4), strings, or any type with a
     /// to_stored conversion.
     template <class T>
-    void write_array(const Node &node, const std::string &name, const std::vector<T> &values,
-                     const std::string &unit)
+    void write_array(const hdf5::Handle &group, const std::string &name, const std::vector<T> &values, const std::string &unit)
     {
       if constexpr (std::is_same_v<T, std::string>)
-        write_strings(node, name, values, unit);
+      {
+        const hdf5::Handle set = hdf5::write_string_dataset(group.id, name, values);
+        hdf5::write_string_attribute(set.id, "units", unit);
+      }
       else if constexpr (!is_native<T>)
       {
         std::vector<decltype(to_stored(std::declval<T>()))> stored;
         stored.reserve(values.size());
         for (const auto &value : values) // (auto, not T: std::vector<bool> yields proxies)
           stored.push_back(to_stored(static_cast<T>(value)));
-        write_array(node, name, stored, unit);
+        write_array(group, name, stored, unit);
       }
       else
       {
         using L = Layout<T>;
         static_assert(sizeof(T) == L::columns * sizeof(typename L::Scalar), "element is not a packed array");
-        write_dataset(node, name, native_type<typename L::Scalar>(), values.data(), values.size(), L::columns,
-                      unit);
+        const hid_t type = native_type<typename L::Scalar>();
+        const std::vector<hsize_t> dims =
+          L::columns == 1 ? std::vector<hsize_t>{values.size()} : std::vector<hsize_t>{values.size(), L::columns};
+        const hdf5::Handle set = hdf5::write_dataset(group.id, name, type, type, dims, values.data());
+        hdf5::write_string_attribute(set.id, "units", unit);
       }
     }
 
     /// Reads one array written by write_array; `rows` is the required length (or any_rows).
     template <class T>
-    void read_array(const Node &node, const std::string &name, std::vector<T> &values, Index rows)
+    void read_array(const hdf5::Handle &group, const std::string &name, std::vector<T> &values, Index rows)
     {
       if constexpr (std::is_same_v<T, std::string>)
-        read_strings(node, name, values, rows);
+      {
+        const auto [set, count] = hdf5::open_table(group.id, name, 1, rows);
+        values = hdf5::read_strings(set.id, count, hdf5::location(group.id, name));
+      }
       else if constexpr (!is_native<T>)
       {
         std::vector<decltype(to_stored(std::declval<T>()))> stored;
-        read_array(node, name, stored, rows);
+        read_array(group, name, stored, rows);
         values.resize(stored.size());
         for (std::size_t k = 0; k < stored.size(); ++k)
         {
@@ -447,47 +204,43 @@ namespace anticrack::dem::io
       else
       {
         using L = Layout<T>;
-        const auto [set, count] = open_dataset(node, name, L::columns, rows);
+        const auto [set, count] = hdf5::open_table(group.id, name, L::columns, rows);
         values.resize(count);
         if (count > 0)
-        {
-          const hid_t type = native_type<typename L::Scalar>();
-          check(H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "read dataset",
-                node.where(name));
-        }
+          hdf5::read_dataset(set.id, native_type<typename L::Scalar>(), values.data(), hdf5::location(group.id, name));
       }
     }
 
     // ------------------------------------------------------------------------------------------
     // Validation helpers for the reader
 
-    Index read_count(const Node &group)
+    Index read_count(const hdf5::Handle &group)
     {
       const auto count = read_attribute<Index>(group, "count");
       if (count < 0)
-        fail(group.where() + "@count", "negative count " + std::to_string(count));
+        fail(hdf5::location(group.id) + "@count", "negative count " + std::to_string(count));
       return count;
     }
 
     /// Every value of `values` must lie in [lower, upper); `rule` explains why, for the message.
     template <class T>
-    void check_range(const Node &node, const std::string &name, const std::vector<T> &values, Index lower,
+    void check_range(const hdf5::Handle &node, const std::string &name, const std::vector<T> &values, Index lower,
                      Index upper, const std::string &rule)
     {
       for (std::size_t k = 0; k < values.size(); ++k)
         if (values[k] < lower || values[k] >= upper)
-          fail(node.where(name), "entry " + std::to_string(k) + " is " + std::to_string(values[k]) +
+          fail(hdf5::location(node.id, name), "entry " + std::to_string(k) + " is " + std::to_string(values[k]) +
                                    ", outside [" + std::to_string(lower) + ", " + std::to_string(upper) +
                                    "): " + rule);
     }
 
     /// Run-state arrays are empty before initialise() and `rows` long after it.
     template <class T>
-    void check_empty_or_rows(const Node &node, const std::string &name, const std::vector<T> &values,
+    void check_empty_or_rows(const hdf5::Handle &node, const std::string &name, const std::vector<T> &values,
                              Index rows)
     {
       if (!values.empty() && static_cast<Index>(values.size()) != rows)
-        fail(node.where(name),
+        fail(hdf5::location(node.id, name),
              "has " + std::to_string(values.size()) + " rows, expected 0 or " + std::to_string(rows));
     }
 
@@ -634,20 +387,20 @@ namespace anticrack::dem::io
     // Group writers and readers built on the field lists
 
     /// Creates group `name` with its `count` attribute.
-    Node create_array_group(const Node &parent, const std::string &name, Index count)
+    hdf5::Handle create_array_group(const hdf5::Handle &parent, const std::string &name, Index count)
     {
-      Node group = parent.create_group(name);
+      hdf5::Handle group = hdf5::create_group(parent.id, name);
       write_attribute(group, "count", count);
       return group;
     }
 
-    auto array_writer(const Node &group)
+    auto array_writer(const hdf5::Handle &group)
     {
       return [&group](const char *name, const auto &values, const char *unit) {
         write_array(group, name, values, unit);
       };
     }
-    auto array_reader(const Node &group, Index rows)
+    auto array_reader(const hdf5::Handle &group, Index rows)
     {
       return [&group, rows](const char *name, auto &values, const char *) {
         read_array(group, name, values, rows);
@@ -657,10 +410,10 @@ namespace anticrack::dem::io
     /// Writes an array of structs one column per field; ragged vector fields are concatenated and
     /// accompanied by `<name>_count`.
     template <class Struct, class Fields>
-    void write_table(const Node &parent, const std::string &name, const std::vector<Struct> &items,
+    void write_table(const hdf5::Handle &parent, const std::string &name, const std::vector<Struct> &items,
                      Fields fields)
     {
-      const Node group = create_array_group(parent, name, static_cast<Index>(items.size()));
+      const hdf5::Handle group = create_array_group(parent, name, static_cast<Index>(items.size()));
       fields([&](const char *field, auto access, const char *unit) {
         using T = std::decay_t<decltype(access(std::declval<const Struct &>()))>;
         if constexpr (is_vector<T>)
@@ -687,9 +440,9 @@ namespace anticrack::dem::io
 
     /// Reads what write_table wrote into `items` (resized to the stored count).
     template <class Struct, class Fields>
-    void read_table(const Node &parent, const std::string &name, std::vector<Struct> &items, Fields fields)
+    void read_table(const hdf5::Handle &parent, const std::string &name, std::vector<Struct> &items, Fields fields)
     {
-      const Node group = parent.open_group(name);
+      const hdf5::Handle group = hdf5::open_group(parent.id, name);
       items.assign(read_count(group), Struct{});
       fields([&](const char *field, auto access, const char *) {
         using T = std::decay_t<decltype(access(std::declval<Struct &>()))>;
@@ -702,7 +455,7 @@ namespace anticrack::dem::io
           for (Index count : counts)
           {
             if (count < 0)
-              fail(group.where(count_name), "negative count " + std::to_string(count));
+              fail(hdf5::location(group.id, count_name), "negative count " + std::to_string(count));
             total += count;
           }
           T concatenated;
@@ -724,17 +477,17 @@ namespace anticrack::dem::io
       });
     }
 
-    void write_domain(const Node &root, const Domain &domain)
+    void write_domain(const hdf5::Handle &root, const Domain &domain)
     {
-      const Node group = root.create_group("domain");
+      const hdf5::Handle group = hdf5::create_group(root.id, "domain");
       write_array(group, "lower", std::vector<double>(domain.lower.begin(), domain.lower.end()), "m");
       write_array(group, "upper", std::vector<double>(domain.upper.begin(), domain.upper.end()), "m");
       write_array(group, "periodic", std::vector<int>(domain.periodic.begin(), domain.periodic.end()), "-");
     }
 
-    Domain read_domain(const Node &root)
+    Domain read_domain(const hdf5::Handle &root)
     {
-      const Node group = root.open_group("domain");
+      const hdf5::Handle group = hdf5::open_group(root.id, "domain");
       std::vector<double> lower, upper;
       std::vector<int> periodic;
       read_array(group, "lower", lower, 3);
@@ -750,85 +503,60 @@ namespace anticrack::dem::io
       return domain;
     }
 
-    void write_energy(const Node &root, const EnergyLedger &ledger)
+    void write_energy(const hdf5::Handle &root, const EnergyLedger &ledger)
     {
-      const Node group = root.create_group("energy");
-      write_string_attribute(group.id(), "units", "J", group.where());
+      const hdf5::Handle group = hdf5::create_group(root.id, "energy");
+      hdf5::write_string_attribute(group.id, "units", "J");
       energy_fields(ledger, [&](const char *name, double value) { write_attribute(group, name, value); });
     }
 
-    void write_header(const Node &root, const char *format, const DemSystem &system)
+    void write_header(const hdf5::Handle &root, const char *format, const DemSystem &system)
     {
-      write_string_attribute(root.id(), "format", format, root.where());
+      hdf5::write_string_attribute(root.id, "format", format);
       write_attribute(root, "version", format_version);
-      write_string_attribute(root.id(), "units", "SI: m, kg, s, N, Pa, J; time and dt in s", root.where());
+      hdf5::write_string_attribute(root.id, "units", "SI: m, kg, s, N, Pa, J; time and dt in s");
       write_attribute(root, "time", system.time);
       write_attribute(root, "step", system.step_count);
       write_attribute(root, "dt", system.dt);
     }
 
-    void require_format(const Node &root, const char *format)
+    void require_format(const hdf5::Handle &root, const char *format)
     {
-      const std::string found = read_string_attribute(root, "format");
+      const std::string found = hdf5::read_string_attribute(root.id, "format");
       if (found != format)
-        fail(root.where() + "@format", "is \"" + found + "\", expected \"" + format + "\"");
+        fail(hdf5::location(root.id) + "@format", "is \"" + found + "\", expected \"" + format + "\"");
       const int version = read_attribute<int>(root, "version");
       if (version != format_version)
-        fail(root.where() + "@version",
+        fail(hdf5::location(root.id) + "@version",
              "is " + std::to_string(version) + ", this build reads version " + std::to_string(format_version));
     }
 
-    /// Makes `file` durable before it is renamed (the rename itself is atomic, the data is not).
-    void flush_to_disk(const std::string &file)
-    {
-      const int descriptor = ::open(file.c_str(), O_RDONLY);
-      if (descriptor < 0 || ::fsync(descriptor) != 0)
-      {
-        const std::string reason = std::strerror(errno);
-        if (descriptor >= 0)
-          ::close(descriptor);
-        fail(file, "cannot flush to disk (" + reason + ")");
-      }
-      ::close(descriptor);
-    }
-
-    /// Writes `file` through `file.tmp` + rename; `content(root)` fills the new file.
+    /// Writes `file` atomically (util/atomic_file.h); `content(root)` fills the new file.
     template <class Content>
-    void write_atomically(const std::string &file, bool durable, Content &&content)
+    void write_hdf5_atomically(const std::string &file, bool durable, Content &&content)
     {
       const hdf5::QuietErrors quiet; // errors are reported through our exceptions
-      const std::string temporary = file + ".tmp";
-      try
-      {
-        Node root = Node::create_file(temporary);
-        content(root);
-        root.close();
-        if (durable)
-          flush_to_disk(temporary);
-        if (std::rename(temporary.c_str(), file.c_str()) != 0)
-        {
-          const std::string reason = std::strerror(errno);
-          fail(file, "cannot rename " + temporary + " to it (" + reason + ")");
-        }
-      }
-      catch (...)
-      {
-        std::remove(temporary.c_str());
-        throw;
-      }
+      write_atomically(
+        file,
+        [&](const std::string &temporary) {
+          hdf5::Handle root = hdf5::create_file(temporary);
+          content(root);
+          hdf5::check(root.close_now(), "close file " + temporary);
+        },
+        durable);
     }
   } // namespace
 
   void write_snapshot(const std::string &file, const DemSystem &system)
   {
-    write_atomically(file, false, [&](const Node &root) {
+    write_hdf5_atomically(file, false, [&](const hdf5::Handle &root) {
       write_header(root, snapshot_format, system);
       const ParticleStore &particles = system.particles;
-      const Node particle_group = create_array_group(root, "particles", particles.size());
+      const hdf5::Handle particle_group = create_array_group(root, "particles", particles.size());
       particle_arrays(particles, array_writer(particle_group));
 
       const BondList &bonds = system.bonds;
-      const Node bond_group = create_array_group(root, "bonds", bonds.size());
+      const hdf5::Handle bond_group = create_array_group(root, "bonds", bonds.size());
       bond_state_arrays(bonds, array_writer(bond_group));
       std::vector<double> sigma(bonds.size()), tau(bonds.size());
       for (Index b = 0; b < bonds.size(); ++b)
@@ -844,21 +572,21 @@ namespace anticrack::dem::io
 
   void write_checkpoint(const std::string &file, const DemSystem &system)
   {
-    write_atomically(file, true, [&](const Node &root) {
+    write_hdf5_atomically(file, true, [&](const hdf5::Handle &root) {
       write_header(root, checkpoint_format, system);
       write_attribute(root, "initial_balance", system.initial_balance);
 
-      const Node particles = create_array_group(root, "particles", system.particles.size());
+      const hdf5::Handle particles = create_array_group(root, "particles", system.particles.size());
       particle_arrays(system.particles, array_writer(particles));
       write_array(particles, "previous_velocity", system.previous_velocity, "m/s");
       write_array(particles, "previous_angular_velocity", system.previous_angular_velocity, "rad/s");
       write_array(particles, "neighbor_reference_position", system.neighbor_reference_positions(), "m");
       write_attribute(root, "critical_time_step", system.critical_time_step_estimate());
 
-      const Node contacts = create_array_group(root, "contacts", system.contacts.size());
+      const hdf5::Handle contacts = create_array_group(root, "contacts", system.contacts.size());
       contact_arrays(system.contacts, array_writer(contacts));
 
-      const Node bonds = create_array_group(root, "bonds", system.bonds.size());
+      const hdf5::Handle bonds = create_array_group(root, "bonds", system.bonds.size());
       bond_state_arrays(system.bonds, array_writer(bonds));
       bond_restart_arrays(system.bonds, array_writer(bonds));
 
@@ -868,7 +596,7 @@ namespace anticrack::dem::io
       write_array(root, "wall_dashpot", system.wall_dashpot, "N");
       write_domain(root, system.domain);
 
-      const Node settings = root.create_group("settings");
+      const hdf5::Handle settings = hdf5::create_group(root.id, "settings");
       settings_fields(system.settings,
                       [&](const char *name, const auto &value) { write_attribute(settings, name, value); });
       write_energy(root, system.ledger);
@@ -878,21 +606,21 @@ namespace anticrack::dem::io
   ExternalSample read_sample(const std::string &file)
   {
     const hdf5::QuietErrors quiet; // errors are reported through our exceptions
-    const Node root = Node::open_file(file);
+    const hdf5::Handle root = hdf5::open_file_read_only(file);
     ExternalSample sample;
-    const Node particles = root.open_group("particles");
+    const hdf5::Handle particles = hdf5::open_group(root.id, "particles");
     read_array(particles, "position", sample.position, any_rows);
     const auto n = static_cast<Index>(sample.position.size());
     read_array(particles, "radius", sample.radius, n);
     for (Index p = 0; p < n; ++p)
       if (!(sample.radius[p] > 0))
-        fail(particles.where("radius"), "sphere " + std::to_string(p) + " has radius " +
+        fail(hdf5::location(particles.id, "radius"), "sphere " + std::to_string(p) + " has radius " +
                                           std::to_string(sample.radius[p]) + " m; radii must be positive");
-    if (particles.has("clump_id"))
+    if (hdf5::exists(particles.id, "clump_id"))
       read_array(particles, "clump_id", sample.clump_id, n);
-    if (!root.has("bonds"))
+    if (!hdf5::exists(root.id, "bonds"))
       return sample;
-    const Node bonds = root.open_group("bonds");
+    const hdf5::Handle bonds = hdf5::open_group(root.id, "bonds");
     std::vector<Index> i, j;
     read_array(bonds, "i", i, any_rows);
     const auto m = static_cast<Index>(i.size());
@@ -900,23 +628,23 @@ namespace anticrack::dem::io
     check_range(bonds, "i", i, 0, n, "bond ends name spheres of the file");
     check_range(bonds, "j", j, 0, n, "bond ends name spheres of the file");
     std::vector<std::uint8_t> state(m, 0);
-    if (bonds.has("state"))
+    if (hdf5::exists(bonds.id, "state"))
       read_array(bonds, "state", state, m);
     std::vector<double> radius;
-    if (bonds.has("area"))
+    if (hdf5::exists(bonds.id, "area"))
     {
       read_array(bonds, "area", radius, m);
       for (double &r : radius)
         r = r > 0 ? std::sqrt(r / M_PI) : r; // R_bar = sqrt(A / pi)
     }
-    else if (bonds.has("radius"))
+    else if (hdf5::exists(bonds.id, "radius"))
       read_array(bonds, "radius", radius, m);
     for (Index b = 0; b < m; ++b)
     {
       if (state[b] != 0)
         continue;
       if (!radius.empty() && !(radius[b] > 0))
-        fail(bonds.where(bonds.has("area") ? "area" : "radius"),
+        fail(hdf5::location(bonds.id, hdf5::exists(bonds.id, "area") ? "area" : "radius"),
              "bond " + std::to_string(b) + " has a non-positive cross-section");
       sample.bond_i.push_back(i[b]);
       sample.bond_j.push_back(j[b]);
@@ -929,7 +657,7 @@ namespace anticrack::dem::io
   void read_checkpoint(const std::string &file, DemSystem &system)
   {
     const hdf5::QuietErrors quiet; // errors are reported through our exceptions
-    const Node root = Node::open_file(file);
+    const hdf5::Handle root = hdf5::open_file_read_only(file);
     require_format(root, checkpoint_format);
 
     // Read into a staging system and move into `system` only once everything has been validated.
@@ -939,7 +667,7 @@ namespace anticrack::dem::io
     read_attribute(root, "dt", staged.dt);
     read_attribute(root, "initial_balance", staged.initial_balance);
 
-    const Node particles = root.open_group("particles");
+    const hdf5::Handle particles = hdf5::open_group(root.id, "particles");
     const Index n = read_count(particles);
     staged.particles.resize(n);
     particle_arrays(staged.particles, array_reader(particles, n));
@@ -953,12 +681,12 @@ namespace anticrack::dem::io
     double critical_time_step = 0;
     read_attribute(root, "critical_time_step", critical_time_step);
 
-    const Node contacts = root.open_group("contacts");
+    const hdf5::Handle contacts = hdf5::open_group(root.id, "contacts");
     const Index contact_count = read_count(contacts);
     contact_arrays(staged.contacts, array_reader(contacts, contact_count));
     staged.contacts.load.assign(contact_count, PairLoad{});
 
-    const Node bonds = root.open_group("bonds");
+    const hdf5::Handle bonds = hdf5::open_group(root.id, "bonds");
     const Index bond_count = read_count(bonds);
     staged.bonds.resize(bond_count);
     bond_state_arrays(staged.bonds, array_reader(bonds, bond_count));
@@ -972,10 +700,10 @@ namespace anticrack::dem::io
     check_empty_or_rows(root, "wall_dashpot", staged.wall_dashpot, static_cast<Index>(staged.walls.size()) * n);
     staged.domain = read_domain(root);
 
-    const Node settings = root.open_group("settings");
+    const hdf5::Handle settings = hdf5::open_group(root.id, "settings");
     settings_fields(staged.settings,
                     [&](const char *name, auto &value) { read_attribute(settings, name, value); });
-    const Node energy = root.open_group("energy");
+    const hdf5::Handle energy = hdf5::open_group(root.id, "energy");
     energy_fields(staged.ledger, [&](const char *name, double &value) { read_attribute(energy, name, value); });
 
     // --- cross references
@@ -986,7 +714,7 @@ namespace anticrack::dem::io
     check_range(particles, "clump_id", staged.particles.clump_id, -1, clump_count,
                 "clump ids are -1 or name a stored clump");
     const std::string particle_rule = "indices name stored particles";
-    const auto check_pair_indices = [&](const Node &group, const auto &pairs) {
+    const auto check_pair_indices = [&](const hdf5::Handle &group, const auto &pairs) {
       check_range(group, "i", pairs.i, 0, n, particle_rule);
       check_range(group, "j", pairs.j, 0, n, particle_rule);
     };
@@ -994,14 +722,14 @@ namespace anticrack::dem::io
     check_pair_indices(bonds, staged.bonds);
     for (const BondState state : staged.bonds.state)
       if (to_stored(state) > to_stored(BondState::broken_shear))
-        fail(bonds.where("state"), "unknown bond state " + std::to_string(to_stored(state)));
-    const Node clumps = root.open_group("clumps");
+        fail(hdf5::location(bonds.id, "state"), "unknown bond state " + std::to_string(to_stored(state)));
+    const hdf5::Handle clumps = hdf5::open_group(root.id, "clumps");
     for (const Clump &clump : staged.clumps)
     {
       check_range(clumps, "members", clump.members, 0, n, particle_rule);
       if (clump.members.size() != clump.member_offset.size() ||
           clump.applied_force.time.size() != clump.applied_force.value.size())
-        fail(clumps.where(), "the counts of members and member_offset, or of applied_force_time and "
+        fail(hdf5::location(clumps.id), "the counts of members and member_offset, or of applied_force_time and "
                              "applied_force_value, differ");
     }
 

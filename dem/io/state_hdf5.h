@@ -23,7 +23,7 @@
 // member_offset and applied-force samples stored concatenated with a per-clump `<name>_count`;
 // quaternions as w, x, y, z), walls, wall_shear, the domain, the IntegrationSettings (attributes
 // of /settings), time, step_count, dt, the EnergyLedger (attributes of /energy) and
-// initial_balance. State added to those structs must be added to the field lists in io_hdf5.cpp.
+// initial_balance. State added to those structs must be added to the field lists in state_hdf5.cpp.
 //
 // Bit-for-bit restarts: the checkpoint also holds the neighbour list's reference positions and the
 // last critical-step estimate, and resume() does not rebuild the list, so a checkpoint can be

@@ -4,6 +4,8 @@
 // every array and derives the VTK type from the element type.
 #include "dem/io/state_vtp.h"
 
+#include "util/atomic_file.h"
+
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -89,30 +91,6 @@ namespace anticrack::dem::io
       out << "<Points>\n";
       put_data_array(out, "position", points);
       out << "</Points>\n";
-    }
-
-    /// Writes `file` through `file.tmp` + rename, so readers never see a partial file.
-    template <class Content>
-    void write_text_atomically(const std::string &file, Content &&content)
-    {
-      const std::string temporary = file + ".tmp";
-      try
-      {
-        std::ofstream out(temporary);
-        if (!out)
-          throw std::runtime_error("anticrack::dem::io: cannot open " + temporary + " for writing");
-        out.imbue(std::locale::classic()); // no digit grouping in the counts, whatever the global locale
-        content(out);
-        out.close();
-        if (!out)
-          throw std::runtime_error("anticrack::dem::io: cannot write " + temporary);
-        std::filesystem::rename(temporary, file);
-      }
-      catch (...)
-      {
-        std::remove(temporary.c_str());
-        throw;
-      }
     }
 
     std::string xml_escape(std::string_view text)
