@@ -88,6 +88,29 @@ namespace anticrack::dem
 
   namespace parameters
   {
+    /// Whether the variant `value` of a selection declares `entry`: `variants_of_entry` lists, for
+    /// each entry that belongs to some variants only, which ones; an entry it does not list belongs
+    /// to every variant. (DEM/Sample/Type and DEM/Loading/Test.)
+    template <typename Variant>
+    bool variant_has_entry(const std::map<std::string, std::vector<Variant>> &variants_of_entry, const Variant value,
+                           const std::string &entry)
+    {
+      const auto variants = variants_of_entry.find(entry);
+      return variants == variants_of_entry.end() ||
+             std::find(variants->second.begin(), variants->second.end(), value) != variants->second.end();
+    }
+
+    /// Declares an entry only when the chosen variant has it (every variant: `variant` empty).
+    template <typename Variant, typename HasEntry>
+    auto declarer(ParameterHandler &prm, const std::optional<Variant> variant, HasEntry has_entry)
+    {
+      return [&prm, variant, has_entry](const std::string &name, const std::string &default_value,
+                                        const Patterns::PatternBase &pattern, const std::string &documentation) {
+        if (!variant || has_entry(*variant, name))
+          prm.declare_entry(name, default_value, pattern, documentation);
+      };
+    }
+
     // ------------------------------------------------------------------------------- Output
     void Output::declare_parameters(ParameterHandler &prm)
     {
@@ -287,18 +310,12 @@ namespace anticrack::dem
         {"Packing pressure [Pa]", {T::dense_random_packing}},
         {"Disc diameter [m]", {T::dense_random_packing}},
       };
-      const auto types = types_of_entry.find(entry);
-      return types == types_of_entry.end() ||
-             std::find(types->second.begin(), types->second.end(), type) != types->second.end();
+      return variant_has_entry(types_of_entry, type, entry);
     }
 
     void Sample::declare_parameters(ParameterHandler &prm, const std::optional<Type> type)
     {
-      const auto declare = [&](const std::string &name, const std::string &default_value,
-                               const Patterns::PatternBase &pattern, const std::string &documentation) {
-        if (!type || has_entry(*type, name))
-          prm.declare_entry(name, default_value, pattern, documentation);
-      };
+      const auto declare = declarer(prm, type, has_entry);
       prm.enter_subsection("Sample");
       prm.declare_entry("Type", "simple cubic lattice", Patterns::Selection(type_names().pattern()),
                         "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
@@ -656,18 +673,12 @@ namespace anticrack::dem
         {"Platen speed [m/s]", {T::platen_compression}},
         {"Post-peak fraction", {T::platen_compression}},
       };
-      const auto tests = tests_of_entry.find(entry);
-      return tests == tests_of_entry.end() ||
-             std::find(tests->second.begin(), tests->second.end(), test) != tests->second.end();
+      return variant_has_entry(tests_of_entry, test, entry);
     }
 
     void Loading::declare_parameters(ParameterHandler &prm, const std::optional<Test> test)
     {
-      const auto declare = [&](const std::string &name, const std::string &default_value,
-                               const Patterns::PatternBase &pattern, const std::string &documentation) {
-        if (!test || has_entry(*test, name))
-          prm.declare_entry(name, default_value, pattern, documentation);
-      };
+      const auto declare = declarer(prm, test, has_entry);
       prm.enter_subsection("Loading");
       prm.declare_entry("Test", "clump force", Patterns::Selection(test_names().pattern()),
                         "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
