@@ -6,6 +6,7 @@
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "util/input_error.h"
+#include "util/mpi_session.h"
 #include "fem/material/material_file.h"
 #include "util/parameter_files.h"
 #include "util/run_summary.h"
@@ -31,16 +32,6 @@ namespace anticrack::coupling
 
   namespace
   {
-    /// Rank of this process when started by mpirun (the campaign of a scene runs on every rank; only
-    /// rank 0 calibrates).
-    int launcher_rank()
-    {
-      for (const char *variable : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
-        if (const char *value = std::getenv(variable))
-          return std::atoi(value);
-      return 0;
-    }
-
     /// The material file name of microstructure m: material.prm for a campaign of one microstructure.
     std::string material_file_name(std::size_t m, std::size_t count)
     {
@@ -67,7 +58,8 @@ namespace anticrack::coupling
       run.threads = options.threads;
       run.command_line = options.command_line;
       exit_code = dem::run_campaign(scene, run);
-      if (exit_code != exit_success || launcher_rank() != 0)
+      // The campaign ran on every rank; only rank 0 calibrates.
+      if (exit_code != exit_success || MpiSession::get().rank() != 0)
         return "";
       return (fs::path(run.output_directory) / "campaign.h5").string();
     }

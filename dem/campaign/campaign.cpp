@@ -4,18 +4,16 @@
 #include "dem/scene/model.h"
 #include "util/hdf5_file.h"
 #include "util/input_error.h"
+#include "util/mpi_session.h"
 #include "util/progress.h"
 #include "dem/scene/parameters.h"
 #include "util/run_summary.h"
 #include "dem/lab/force_history.h"
 
-#include <mpi.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -31,61 +29,6 @@ namespace anticrack::dem
   namespace
   {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-    // ------------------------------------------------------------------------------ MPI
-    /// MPI for the lifetime of a campaign, only when the process was started by mpirun (a serial
-    /// run does not initialise MPI at all, which keeps it free of launcher requirements).
-    class MpiSession
-    {
-    public:
-      MpiSession()
-      {
-        const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMI_SIZE") ||
-                              std::getenv("PMIX_RANK");
-        int initialised = 0;
-        MPI_Initialized(&initialised);
-        if (launched && !initialised)
-        {
-          int provided = 0;
-          MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-          owns_ = true;
-          initialised = 1;
-        }
-        if (initialised)
-        {
-          active_ = true;
-          MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-          MPI_Comm_size(MPI_COMM_WORLD, &size_);
-        }
-      }
-      ~MpiSession()
-      {
-        if (owns_)
-          MPI_Finalize();
-      }
-      MpiSession(const MpiSession &) = delete;
-      MpiSession &operator=(const MpiSession &) = delete;
-
-      [[nodiscard]] int rank() const { return rank_; }
-      [[nodiscard]] int size() const { return size_; }
-      void barrier() const
-      {
-        if (active_)
-          MPI_Barrier(MPI_COMM_WORLD);
-      }
-      /// Logical OR of `flag` over the ranks.
-      [[nodiscard]] bool any(bool flag) const
-      {
-        int local = flag ? 1 : 0, global = local;
-        if (active_)
-          MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-        return global != 0;
-      }
-
-    private:
-      bool owns_ = false, active_ = false;
-      int rank_ = 0, size_ = 1;
-    };
 
     // ---------------------------------------------------------------------------- tests
     struct CampaignTest
@@ -432,7 +375,7 @@ namespace anticrack::dem
                            name + "). Use --resume to run only the tests that have not completed, "
                            "--overwrite to start again, or another directory.");
 
-    const MpiSession mpi;
+    const MpiSession &mpi = MpiSession::get();
     const bool root = mpi.rank() == 0;
     if (root)
     {
