@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -68,6 +69,8 @@ namespace anticrack::dem
         return std::nullopt;
       return dealii::Utilities::string_to_double(value);
     }
+
+    const char *const axis_name[3] = {"x", "y", "z"};
   } // namespace
 
   std::string format_number(const double x)
@@ -85,6 +88,12 @@ namespace anticrack::dem
     s << v[0] << ", " << v[1] << ", " << v[2];
     return s.str();
   }
+
+  namespace
+  {
+    /// A vector value in a message: "(x, y, z)".
+    std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
+  } // namespace
 
   namespace parameters
   {
@@ -147,6 +156,14 @@ namespace anticrack::dem
       prm.leave_subsection();
     }
 
+    void Output::check(Problems &problems) const
+    {
+      if (write_paraview && snapshot_interval == 0)
+        problems.add("Output/Write ParaView", "true",
+                     "ParaView files are written at the snapshot steps: set Output/Snapshot "
+                     "interval [steps] > 0");
+    }
+
     // ------------------------------------------------------------------------------- Domain
     void Domain::declare_parameters(ParameterHandler &prm)
     {
@@ -172,6 +189,15 @@ namespace anticrack::dem
       for (const auto &axis : dealii::Utilities::split_string_list(prm.get("Periodic axes"), ','))
         periodic[axis == "x" ? 0 : axis == "y" ? 1 : 2] = true;
       prm.leave_subsection();
+    }
+
+    void Domain::check(Problems &problems) const
+    {
+      for (int a = 0; a < 3; ++a)
+        if (!(length()[a] > 0))
+          problems.add("DEM/Domain/Upper corner [m]", vec(upper),
+                       std::string("must exceed DEM/Domain/Lower corner [m] = ") + vec(lower) + " along " +
+                         axis_name[a]);
     }
 
     // ----------------------------------------------------------------------------- Material
@@ -219,6 +245,30 @@ namespace anticrack::dem
       contact.young_modulus = prm.get_double("Young modulus [Pa]");
       contact.poisson_ratio = prm.get_double("Poisson ratio");
       prm.leave_subsection();
+    }
+
+    void Material::check(Problems &problems) const
+    {
+      // Moduli that patterns only bound from below by zero.
+      if (!(density > 0))
+        problems.add("DEM/Material/Density [kg/m^3]", density, "must be positive");
+      if (contact.law == dem::ContactLaw::linear)
+      {
+        if (!(contact.contact_modulus > 0))
+          problems.add("DEM/Material/Contact modulus [Pa]", contact.contact_modulus,
+                       "must be positive for the linear contact law");
+        if (!(contact.stiffness_ratio > 0))
+          problems.add("DEM/Material/Stiffness ratio", contact.stiffness_ratio, "must be positive");
+      }
+      else
+      {
+        if (!(contact.young_modulus > 0))
+          problems.add("DEM/Material/Young modulus [Pa]", contact.young_modulus,
+                       "must be positive for the Hertz-Mindlin law");
+        if (!(contact.poisson_ratio < 0.5))
+          problems.add("DEM/Material/Poisson ratio", contact.poisson_ratio,
+                       "must be below 0.5 for the Hertz-Mindlin law");
+      }
     }
 
     // --------------------------------------------------------------------------------- Bond
@@ -270,6 +320,20 @@ namespace anticrack::dem
       bond.moment_factor = prm.get_double("Moment contribution factor");
       gap_tolerance = prm.get_double("Gap tolerance");
       prm.leave_subsection();
+    }
+
+    void Bond::check(Problems &problems) const
+    {
+      if (!bond.enabled)
+        return;
+      if (!(bond.modulus > 0))
+        problems.add("DEM/Bond/Modulus [Pa]", bond.modulus, "must be positive");
+      if (!(bond.stiffness_ratio > 0))
+        problems.add("DEM/Bond/Stiffness ratio", bond.stiffness_ratio, "must be positive");
+      if (!(bond.radius_multiplier > 0))
+        problems.add("DEM/Bond/Radius multiplier", bond.radius_multiplier, "must be positive");
+      if (!(friction_angle_deg < 90))
+        problems.add("DEM/Bond/Friction angle [deg]", friction_angle_deg, "must be below 90");
     }
 
     // ------------------------------------------------------------------------------- Sample
@@ -478,6 +542,193 @@ namespace anticrack::dem
       prm.leave_subsection();
     }
 
+    namespace
+    {
+      /// " for DEM/Sample/Type = <type>": the end of a message that holds for this type only.
+      std::string for_sample_type(const Sample::Type type)
+      {
+        return " for DEM/Sample/Type = " + Sample::type_names().name(type);
+      }
+
+      /// The Verlet skin the run will use (DemSystem::choose_skin): the scene's, or 0.1 x the mean radius.
+      double verlet_skin(const Integration &integration, const double mean_radius)
+      {
+        return integration.settings.verlet_skin > 0 ? integration.settings.verlet_skin : 0.1 * mean_radius;
+      }
+
+      /// Reports a radius that is not positive; whether it is.
+      bool check_radius(const Sample &s, Problems &problems)
+      {
+        if (s.radius > 0)
+          return true;
+        problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
+        return false;
+      }
+
+      /// Mean radius R and half width w of the generators' uniform radius distribution: 0 <= w < R.
+      void check_radius_distribution(const Sample &s, Problems &problems)
+      {
+        if (check_radius(s, problems) && !(s.radius_half_width < s.radius))
+          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
+                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
+                         " (allowed: 0 <= w < R)");
+      }
+
+      void check_lattice(const Sample &s, const Dem &d, Problems &problems)
+      {
+        check_radius(s, problems);
+        if (!(s.spacing > 0))
+          problems.add("DEM/Sample/Spacing [m]", s.spacing, "must be positive");
+        else if (s.radius > 0.5 * s.spacing * (1 + 1e-12))
+          problems.add("DEM/Sample/Radius [m]", s.radius,
+                       "must be at most half of DEM/Sample/Spacing [m] = " + format_number(s.spacing) +
+                         ", or neighbouring spheres start overlapping");
+        const Bond &b = d.bond;
+        if (b.bond.enabled && s.radius > 0 && s.spacing - 2 * s.radius > b.gap_tolerance * s.radius * (1 + 1e-12))
+          problems.add("DEM/Bond/Gap tolerance", b.gap_tolerance,
+                       "no lattice neighbours would be bonded: their gap spacing - 2 R = " +
+                         format_number(s.spacing - 2 * s.radius) +
+                         " m exceeds tolerance x R; raise the tolerance or set DEM/Bond/Enabled = "
+                         "false");
+        const Vec3 length = d.domain.length();
+        const double tol = 1e-9 * length.cwiseAbs().maxCoeff();
+        for (int a = 0; a < 3; ++a)
+        {
+          const double extent = s.lattice_size[a] * s.spacing;
+          const double top = s.origin[a] + extent;
+          if (s.origin[a] < d.domain.lower[a] - tol || top > d.domain.upper[a] + tol)
+          {
+            std::ostringstream why;
+            why << "the lattice spans [" << s.origin[a] << ", " << top << "] m along " << axis_name[a]
+                << " (origin + " << s.lattice_size[a] << " x spacing " << s.spacing
+                << " m), outside the domain [" << d.domain.lower[a] << ", " << d.domain.upper[a] << "] m";
+            problems.add("DEM/Sample/Origin [m]", vec(s.origin), why.str());
+          }
+          if (d.domain.periodic[a] && length[a] > 0)
+          {
+            // Minimum-image search: a contact partner must be nearer than half the period.
+            const double needed = 2 * (2 * s.radius + verlet_skin(d.integration, s.radius));
+            if (!(length[a] > needed))
+              problems.add(std::string("DEM/Domain/Periodic axes"), axis_name[a],
+                           "the period along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                             " m) must exceed 2 (2 R + skin) = " + format_number(needed) +
+                             " m for unique minimum images");
+          }
+        }
+      }
+
+      void check_sticky_hard_spheres(const Sample &s, Problems &problems)
+      {
+        const std::string why_type = for_sample_type(s.type);
+        if (s.particle_count < 8)
+          problems.add("DEM/Sample/Particle count", s.particle_count, "must be at least 8" + why_type);
+        if (!(s.volume_fraction > 0))
+          problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
+        check_radius(s, problems);
+        if (!(s.well_width > 0))
+          problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
+        if (!(s.cluster_move_fraction < 1))
+          problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
+                       "must be in [0, 1): single-sphere moves are needed to make and break clusters");
+        const bool use_z = s.target_coordination > 0;
+        if (use_z && s.stickiness > 0)
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be 0 when DEM/Sample/Target coordination number = " +
+                         format_number(s.target_coordination) + " > 0 selects tau; set one of the two to 0");
+        else if (!use_z && !(s.stickiness > 0))
+          problems.add("DEM/Sample/Stickiness", s.stickiness,
+                       "must be positive (at least tau_min(phi)) unless DEM/Sample/Target "
+                       "coordination number > 0 selects it");
+        else if (s.volume_fraction > 0 && s.volume_fraction < 1)
+        {
+          const double tau_min = dem::shs::minimum_stickiness(s.volume_fraction);
+          if (!use_z && s.stickiness < tau_min)
+            problems.add("DEM/Sample/Stickiness", s.stickiness,
+                         "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
+                           " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
+                           " (allowed: tau >= tau_min(phi), docs/physics.md §1.4); raise tau or lower phi");
+          if (use_z)
+            try
+            {
+              dem::shs::stickiness_for_coordination(s.volume_fraction, s.target_coordination);
+            }
+            catch (const dem::SetupError &e)
+            {
+              problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
+            }
+        }
+      }
+
+      void check_ballistic_deposition(const Sample &s, const Dem &d, Problems &problems)
+      {
+        const std::string why_type = for_sample_type(s.type);
+        if (d.domain.periodic[0] != d.domain.periodic[1] || d.domain.periodic[2])
+        {
+          std::string axes;
+          for (int a = 0; a < 3; ++a)
+            if (d.domain.periodic[a])
+              axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
+          problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
+                       "must be x, y (laterally periodic specimen) or empty (sides opened after "
+                       "deposition)" + why_type + "; z is never periodic: spheres are dropped onto "
+                       "the base z = lower z");
+        }
+        check_radius_distribution(s, problems);
+        const Vec3 length = d.domain.length();
+        const double r_max = s.radius + s.radius_half_width;
+        const double needed = std::max(8 * s.radius, 2 * (2 * r_max + verlet_skin(d.integration, s.radius)));
+        for (int a = 0; a < 2; ++a)
+          if (s.radius > 0 && length[a] > 0 && !(length[a] >= needed))
+            problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
+                         "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
+                           " m) must be at least " + format_number(needed) +
+                           " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
+      }
+
+      void check_dense_random_packing(const Sample &s, const Dem &d, Problems &problems)
+      {
+        const std::string why_type = for_sample_type(s.type);
+        check_radius_distribution(s, problems);
+        const double modulus = dem::contact_law_modulus(d.material.contact);
+        if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
+          problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
+                       "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" +
+                         why_type);
+        const Vec3 length = d.domain.length();
+        if (s.disc_diameter > 0 &&
+            (s.disc_diameter > length[0] * (1 + 1e-12) || s.disc_diameter > length[2] * (1 + 1e-12)))
+          problems.add("DEM/Sample/Disc diameter [m]", s.disc_diameter,
+                       "must fit in the domain's x-z section (" + format_number(length[0]) + " x " +
+                         format_number(length[2]) + " m)");
+      }
+
+      void check_snapshot(const Sample &s, Problems &problems)
+      {
+        if (s.snapshot_file.empty())
+          problems.add("DEM/Sample/Snapshot file", "(empty)",
+                       "name the HDF5 snapshot to read when DEM/Sample/Type = snapshot");
+        else if (!std::ifstream(s.snapshot_file))
+          problems.add("DEM/Sample/Snapshot file", s.snapshot_file, "cannot be opened");
+      }
+    } // namespace
+
+    void Sample::check(Problems &problems, const Dem &dem) const
+    {
+      switch (type)
+      {
+        case Type::simple_cubic_lattice:
+          return check_lattice(*this, dem, problems);
+        case Type::snapshot:
+          return check_snapshot(*this, problems);
+        case Type::sticky_hard_spheres:
+          return check_sticky_hard_spheres(*this, problems);
+        case Type::ballistic_deposition:
+          return check_ballistic_deposition(*this, dem, problems);
+        case Type::dense_random_packing:
+          return check_dense_random_packing(*this, dem, problems);
+      }
+    }
+
     // -------------------------------------------------------------------------- Integration
     void Integration::declare_parameters(ParameterHandler &prm)
     {
@@ -524,6 +775,15 @@ namespace anticrack::dem
       settings.energy_drift_tolerance = prm.get_double("Energy drift tolerance");
       settings.stability_check_interval = prm.get_integer("Stability check interval [steps]");
       prm.leave_subsection();
+    }
+
+    void Integration::check(Problems &problems) const
+    {
+      if (!(settings.local_damping < 1))
+        problems.add("DEM/Integration/Local damping", settings.local_damping, "must be below 1");
+      if (!(settings.time_step_safety > 0))
+        problems.add("DEM/Integration/Time step safety factor", settings.time_step_safety,
+                     "must be in (0, 1]");
     }
 
     // -------------------------------------------------------------------------------- Walls
@@ -593,6 +853,30 @@ namespace anticrack::dem
       for_each_wall_face(prm, [&](int f) { face[f].parse_parameters(prm); });
     }
 
+    void Walls::check(Problems &problems, const Domain &domain) const
+    {
+      for (int f = 0; f < 6; ++f)
+      {
+        const WallFace &wall = face[f];
+        if (!wall.active)
+          continue;
+        const int a = axis(f);
+        if (domain.periodic[a])
+          problems.add(path(f) + "/Active", "true",
+                       std::string("a wall cannot sit on the periodic axis ") + axis_name[a] +
+                         " (see DEM/Domain/Periodic axes)");
+        if (wall.control == dem::WallControl::servo)
+        {
+          if (!(wall.servo_gain > 0))
+            problems.add(path(f) + "/Servo gain [m/(s N)]", wall.servo_gain,
+                         "must be positive for a servo-controlled wall");
+          if (!(wall.max_speed > 0))
+            problems.add(path(f) + "/Max speed [m/s]", wall.max_speed,
+                         "must be positive for a servo-controlled wall");
+        }
+      }
+    }
+
     // ------------------------------------------------------------------- Boundary particles
     void BoundaryParticles::declare_parameters(ParameterHandler &prm)
     {
@@ -637,6 +921,27 @@ namespace anticrack::dem
         clump_force_direction.normalize();
       clump_rotation_locked = prm.get_bool("Clump rotation locked");
       prm.leave_subsection();
+    }
+
+    void BoundaryParticles::check(Problems &problems) const
+    {
+      if (fix_below && clump_above && *clump_above < *fix_below)
+        problems.add("DEM/Boundary particles/Clump above [m]", *clump_above,
+                     "must not be below DEM/Boundary particles/Fix below [m] = " + format_number(*fix_below) +
+                       ": a sphere cannot be fixed and clumped");
+      if (clump_above && clump_force_rate != 0 && clump_force_direction.norm() == 0)
+        problems.add("DEM/Boundary particles/Clump force direction", vec(clump_force_direction),
+                     "must be a nonzero vector when the clump force rate is nonzero");
+      if (fix_below && base_thickness)
+        problems.add("DEM/Boundary particles/Base thickness [mean radii]", *base_thickness,
+                     "and Fix below [m] both select the base; leave one of them empty");
+      if (clump_above && actuator_thickness)
+        problems.add("DEM/Boundary particles/Actuator thickness [mean radii]", *actuator_thickness,
+                     "and Clump above [m] both select the clump; leave one of them empty");
+      for (const auto &[name, value] : {std::pair{"Base thickness [mean radii]", base_thickness},
+                                        {"Actuator thickness [mean radii]", actuator_thickness}})
+        if (value && !(*value > 0))
+          problems.add(std::string("DEM/Boundary particles/") + name, *value, "must be positive");
     }
 
     // ------------------------------------------------------------------------------ Loading
@@ -782,6 +1087,98 @@ namespace anticrack::dem
       prm.leave_subsection();
     }
 
+    namespace
+    {
+      /// Entries of DEM/Loading that a test needs positive, though their patterns allow zero.
+      void require_positive(Problems &problems, std::initializer_list<std::pair<const char *, double>> entries,
+                            const std::string &why)
+      {
+        for (const auto &[name, value] : entries)
+          if (!(value > 0))
+            problems.add(std::string("DEM/Loading/") + name, value, why);
+      }
+
+      void check_triaxial(const Loading &l, const Dem &d, Problems &problems)
+      {
+        for (int a = 0; a < 3; ++a)
+          if (d.domain.periodic[a])
+            problems.add("DEM/Domain/Periodic axes", axis_name[a],
+                         "the triaxial test walls every face of the domain: no axis may be periodic");
+        for (int f = 0; f < 6; ++f)
+          if (d.walls.face[f].active)
+            problems.add(Walls::path(f) + "/Active", "true",
+                         "the triaxial test adds its own six servo walls; leave DEM/Walls inactive");
+        require_positive(problems,
+                         {{"Confining pressure [Pa]", l.confining_pressure},
+                          {"Axial strain rate [1/s]", l.axial_strain_rate},
+                          {"Final axial strain", l.final_axial_strain}},
+                         "must be positive for the triaxial test");
+      }
+
+      void check_platen_compression(const Loading &l, const Dem &d, Problems &problems)
+      {
+        if (!d.walls.face[4].active || !d.walls.face[5].active)
+          problems.add("DEM/Walls/z- and z+/Active", "false",
+                       "platen compression drives the walls z- and z+: activate both");
+        if (!(l.platen_speed > 0))
+          problems.add("DEM/Loading/Platen speed [m/s]", l.platen_speed, "must be positive");
+        if (!(l.post_peak_fraction > 0))
+          problems.add("DEM/Loading/Post-peak fraction", l.post_peak_fraction, "must be in (0, 1)");
+      }
+
+      /// Tilted gravity and simple shear load the clump against the fixed base.
+      void check_fixed_base_and_clump(const Loading &l, const Dem &d, Problems &problems)
+      {
+        if (!(d.has_clump() && d.boundary.has_fixed_base()))
+          problems.add("DEM/Loading/Test", Loading::test_names().name(l.test),
+                       "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
+                       "[mean radii], Clump above [m] or Actuator thickness [mean radii])");
+      }
+
+      void check_tilted_gravity(const Loading &l, const Dem &d, Problems &problems)
+      {
+        check_fixed_base_and_clump(l, d, problems);
+        if (!(d.integration.settings.gravity.norm() > 0))
+          problems.add("DEM/Integration/Gravity [m/s^2]", vec(d.integration.settings.gravity),
+                       "must be nonzero for DEM/Loading/Test = tilted gravity (its magnitude is g; the direction "
+                       "is DEM/Boundary particles/Clump force direction)");
+      }
+
+      void check_simple_shear(const Loading &l, const Dem &d, Problems &problems)
+      {
+        check_fixed_base_and_clump(l, d, problems);
+        require_positive(problems,
+                         {{"Normal stress [Pa]", l.normal_stress},
+                          {"Shear velocity [m/s]", l.shear_velocity},
+                          {"Consolidation time [s]", l.consolidation_time},
+                          {"Final shear strain", l.final_shear_strain}},
+                         "must be positive for simple shear");
+        if (!d.domain.periodic[0])
+          problems.add("DEM/Domain/Periodic axes", "(x not periodic)",
+                       "simple shear drives the platen along x: the specimen must be periodic along x");
+        if (l.adaptive)
+          problems.add("DEM/Loading/Adaptive rate", "true",
+                       "adapts a force ramp; simple shear is displacement-controlled (set false)");
+      }
+    } // namespace
+
+    void Loading::check(Problems &problems, const Dem &dem) const
+    {
+      switch (test)
+      {
+        case Test::clump_force:
+          return; // what it needs is the clump's (check_clump_sources_and_users)
+        case Test::tilted_gravity:
+          return check_tilted_gravity(*this, dem, problems);
+        case Test::simple_shear:
+          return check_simple_shear(*this, dem, problems);
+        case Test::triaxial:
+          return check_triaxial(*this, dem, problems);
+        case Test::platen_compression:
+          return check_platen_compression(*this, dem, problems);
+      }
+    }
+
     // ------------------------------------------------------------------------------ Bedding
     void Bedding::declare_parameters(ParameterHandler &prm)
     {
@@ -821,6 +1218,16 @@ namespace anticrack::dem
       spec.cohesion = prm.get_double("Cohesion [Pa]");
       spec.friction_angle = prm.get_double("Friction angle [deg]") * M_PI / 180.0;
       prm.leave_subsection();
+    }
+
+    void Bedding::check(Problems &problems, const Bond &bond) const
+    {
+      if (!enabled)
+        return;
+      if (!bond.bond.enabled)
+        problems.add("DEM/Bedding/Enabled", "true", "weakens bonds: DEM/Bond/Enabled must be true");
+      if (!(spec.spacing > 0))
+        problems.add("DEM/Bedding/Spacing [m]", spec.spacing, "must be positive");
     }
 
     // ---------------------------------------------------------------------------------- DEM
@@ -942,6 +1349,36 @@ namespace anticrack::dem
       quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
       prm.leave_subsection();
     }
+
+    void Campaign::check(Problems &problems, const SceneKind kind, const Dem &dem) const
+    {
+      if (!enabled())
+      {
+        if (kind != SceneKind::dem)
+          problems.add("Campaign/Loading angles [deg]", "(empty)",
+                       "a " + scene_kind_names().name(kind) + " scene runs the test at these angles: give at "
+                       "least one (or make it one run: set Scene = dem, without subsection Campaign)");
+        return;
+      }
+      using Test = Loading::Test;
+      const Test test = dem.loading.test;
+      if (test != Test::clump_force && test != Test::tilted_gravity && test != Test::simple_shear)
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run the clump tests at loading angles; the triaxial and platen tests have none");
+      if (test == Test::simple_shear)
+        problems.add("Campaign/Loading angles [deg]", "(set)",
+                     "campaigns run load-controlled tests at loading angles; simple shear has none");
+      const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";
+      if (!dem.has_clump() || !dem.boundary.has_fixed_base() || !(dem.boundary.clump_force_rate > 0))
+        problems.add("Campaign/Loading angles [deg]", "(" + std::to_string(loading_angles_deg.size()) + " angles)",
+                     why + "a fixed base (DEM/Boundary particles/Fix below [m] or Base thickness [mean "
+                     "radii]), a clump (Clump above [m] or Actuator thickness [mean radii]) and Clump force "
+                     "rate [N/s] > 0");
+      if (!(dem.loading.stop_strain > 0))
+        problems.add("DEM/Loading/Stop strain", dem.loading.stop_strain,
+                     "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
+                     "DEM/Steps after its failure");
+    }
   } // namespace parameters
 
   const EnumTable<SceneKind> &scene_kind_names()
@@ -983,379 +1420,81 @@ namespace anticrack::dem
       campaign.parse_parameters(prm);
   }
 
-  // --------------------------------------------------------------------------- validation
+  // ------------------------------------------------------------------- cross-subsection rules
   namespace
   {
-    std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
+    // The clump comes from DEM/Boundary particles (Clump above [m] or Actuator thickness) or from
+    // the actuator layer of DEM/Sample, and DEM/Loading uses it: these rules relate subsections and
+    // belong to none of them.
 
-    void validate(const SceneParameters &scene, Problems &problems)
+    /// The actuator layer against the boundary particles and the box; the loading that needs a clump.
+    void check_clump_sources_and_users(const parameters::Dem &d, Problems &problems)
     {
-      using parameters::Sample;
-      const auto &d = scene.dem;
-      const char *axis_name[3] = {"x", "y", "z"};
-
-      if (scene.output.write_paraview && scene.output.snapshot_interval == 0)
-        problems.add("Output/Write ParaView", "true",
-                     "ParaView files are written at the snapshot steps: set Output/Snapshot "
-                     "interval [steps] > 0");
-      if (scene.components.empty())
-        problems.add("Components", "(empty)", "choose at least one component (dem)");
-
-      // The box.
-      const Vec3 length = d.domain.upper - d.domain.lower;
-      for (int a = 0; a < 3; ++a)
-        if (!(length[a] > 0))
-          problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
-                       std::string("must exceed DEM/Domain/Lower corner [m] = ") +
-                         vec(d.domain.lower) + " along " + axis_name[a]);
-
-      // Moduli that patterns only bound from below by zero.
-      const auto &m = d.material;
-      if (!(m.density > 0))
-        problems.add("DEM/Material/Density [kg/m^3]", m.density, "must be positive");
-      if (m.contact.law == dem::ContactLaw::linear)
-      {
-        if (!(m.contact.contact_modulus > 0))
-          problems.add("DEM/Material/Contact modulus [Pa]", m.contact.contact_modulus,
-                       "must be positive for the linear contact law");
-        if (!(m.contact.stiffness_ratio > 0))
-          problems.add("DEM/Material/Stiffness ratio", m.contact.stiffness_ratio, "must be positive");
-      }
-      else
-      {
-        if (!(m.contact.young_modulus > 0))
-          problems.add("DEM/Material/Young modulus [Pa]", m.contact.young_modulus,
-                       "must be positive for the Hertz-Mindlin law");
-        if (!(m.contact.poisson_ratio < 0.5))
-          problems.add("DEM/Material/Poisson ratio", m.contact.poisson_ratio,
-                       "must be below 0.5 for the Hertz-Mindlin law");
-      }
-
-      const auto &b = d.bond;
-      if (b.bond.enabled)
-      {
-        if (!(b.bond.modulus > 0))
-          problems.add("DEM/Bond/Modulus [Pa]", b.bond.modulus, "must be positive");
-        if (!(b.bond.stiffness_ratio > 0))
-          problems.add("DEM/Bond/Stiffness ratio", b.bond.stiffness_ratio, "must be positive");
-        if (!(b.bond.radius_multiplier > 0))
-          problems.add("DEM/Bond/Radius multiplier", b.bond.radius_multiplier, "must be positive");
-        if (!(b.friction_angle_deg < 90))
-          problems.add("DEM/Bond/Friction angle [deg]", b.friction_angle_deg, "must be below 90");
-      }
-
-      // The sample.
-      const auto &s = d.sample;
-      if (s.type == Sample::Type::simple_cubic_lattice)
-      {
-        if (!(s.radius > 0))
-          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
-        if (!(s.spacing > 0))
-          problems.add("DEM/Sample/Spacing [m]", s.spacing, "must be positive");
-        else if (s.radius > 0.5 * s.spacing * (1 + 1e-12))
-          problems.add("DEM/Sample/Radius [m]", s.radius,
-                       "must be at most half of DEM/Sample/Spacing [m] = " +
-                         format_number(s.spacing) + ", or neighbouring spheres start overlapping");
-        if (b.bond.enabled && s.radius > 0 &&
-            s.spacing - 2 * s.radius > b.gap_tolerance * s.radius * (1 + 1e-12))
-          problems.add("DEM/Bond/Gap tolerance", b.gap_tolerance,
-                       "no lattice neighbours would be bonded: their gap spacing - 2 R = " +
-                         format_number(s.spacing - 2 * s.radius) +
-                         " m exceeds tolerance x R; raise the tolerance or set DEM/Bond/Enabled = "
-                         "false");
-        const double tol = 1e-9 * length.cwiseAbs().maxCoeff();
-        for (int a = 0; a < 3; ++a)
-        {
-          const double extent = s.lattice_size[a] * s.spacing;
-          const double top = s.origin[a] + extent;
-          if (s.origin[a] < d.domain.lower[a] - tol || top > d.domain.upper[a] + tol)
-          {
-            std::ostringstream why;
-            why << "the lattice spans [" << s.origin[a] << ", " << top << "] m along "
-                << axis_name[a] << " (origin + " << s.lattice_size[a] << " x spacing " << s.spacing
-                << " m), outside the domain [" << d.domain.lower[a] << ", " << d.domain.upper[a]
-                << "] m";
-            problems.add("DEM/Sample/Origin [m]", vec(s.origin), why.str());
-          }
-          if (d.domain.periodic[a] && length[a] > 0)
-          {
-            // Minimum-image search: a contact partner must be nearer than half the period.
-            const double skin = d.integration.settings.verlet_skin > 0 ?
-                                  d.integration.settings.verlet_skin :
-                                  0.1 * s.radius;
-            const double needed = 2 * (2 * s.radius + skin);
-            if (!(length[a] > needed))
-              problems.add(std::string("DEM/Domain/Periodic axes"), axis_name[a],
-                           "the period along " + std::string(axis_name[a]) + " (" +
-                             format_number(length[a]) + " m) must exceed 2 (2 R + skin) = " +
-                             format_number(needed) + " m for unique minimum images");
-          }
-        }
-      }
-      else if (s.type == Sample::Type::sticky_hard_spheres)
-      {
-        const std::string why_type = " for DEM/Sample/Type = sticky hard spheres";
-        if (s.particle_count < 8)
-          problems.add("DEM/Sample/Particle count", s.particle_count, "must be at least 8" + why_type);
-        if (!(s.volume_fraction > 0))
-          problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
-        if (!(s.radius > 0))
-          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
-        if (!(s.well_width > 0))
-          problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
-        if (!(s.cluster_move_fraction < 1))
-          problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
-                       "must be in [0, 1): single-sphere moves are needed to make and break clusters");
-        const bool use_z = s.target_coordination > 0;
-        if (use_z && s.stickiness > 0)
-          problems.add("DEM/Sample/Stickiness", s.stickiness,
-                       "must be 0 when DEM/Sample/Target coordination number = " +
-                         format_number(s.target_coordination) +
-                         " > 0 selects tau; set one of the two to 0");
-        else if (!use_z && !(s.stickiness > 0))
-          problems.add("DEM/Sample/Stickiness", s.stickiness,
-                       "must be positive (at least tau_min(phi)) unless DEM/Sample/Target "
-                       "coordination number > 0 selects it");
-        else if (s.volume_fraction > 0 && s.volume_fraction < 1)
-        {
-          const double tau_min = dem::shs::minimum_stickiness(s.volume_fraction);
-          if (!use_z && s.stickiness < tau_min)
-            problems.add("DEM/Sample/Stickiness", s.stickiness,
-                         "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
-                           " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
-                           " (allowed: tau >= tau_min(phi), docs/physics.md §1.4); raise tau or lower phi");
-          if (use_z)
-            try
-            {
-              dem::shs::stickiness_for_coordination(s.volume_fraction, s.target_coordination);
-            }
-            catch (const dem::SetupError &e)
-            {
-              problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
-            }
-        }
-      }
-      else if (s.type == Sample::Type::ballistic_deposition)
-      {
-        const std::string why_type = " for DEM/Sample/Type = ballistic deposition";
-        if (d.domain.periodic[0] != d.domain.periodic[1] || d.domain.periodic[2])
-        {
-          std::string axes;
-          for (int a = 0; a < 3; ++a)
-            if (d.domain.periodic[a])
-              axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
-          problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
-                       "must be x, y (laterally periodic specimen) or empty (sides opened after "
-                       "deposition)" + why_type + "; z is never periodic: spheres are dropped onto "
-                       "the base z = lower z");
-        }
-        if (!(s.radius > 0))
-          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
-        else if (!(s.radius_half_width < s.radius))
-          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
-                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
-                         " (allowed: 0 <= w < R)");
-        const double r_max = s.radius + s.radius_half_width;
-        const double skin = d.integration.settings.verlet_skin > 0 ? d.integration.settings.verlet_skin :
-                                                                     0.1 * s.radius;
-        const double needed = std::max(8 * s.radius, 2 * (2 * r_max + skin));
-        for (int a = 0; a < 2; ++a)
-          if (s.radius > 0 && length[a] > 0 && !(length[a] >= needed))
-            problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
-                         "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
-                           " m) must be at least " + format_number(needed) +
-                           " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
-      }
-      else if (s.type == Sample::Type::dense_random_packing)
-      {
-        const std::string why_type = " for DEM/Sample/Type = dense random packing";
-        if (!(s.radius > 0))
-          problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
-        else if (!(s.radius_half_width < s.radius))
-          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
-                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
-                         " (allowed: 0 <= w < R)");
-        const double modulus = dem::contact_law_modulus(d.material.contact);
-        if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
-          problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
-                       "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" + why_type);
-        if (s.disc_diameter > 0 && (s.disc_diameter > length[0] * (1 + 1e-12) || s.disc_diameter > length[2] * (1 + 1e-12)))
-          problems.add("DEM/Sample/Disc diameter [m]", s.disc_diameter,
-                       "must fit in the domain's x-z section (" + format_number(length[0]) + " x " +
-                         format_number(length[2]) + " m)");
-      }
-      else
-      {
-        if (s.snapshot_file.empty())
-          problems.add("DEM/Sample/Snapshot file", "(empty)",
-                       "name the HDF5 snapshot to read when DEM/Sample/Type = snapshot");
-        else if (!std::ifstream(s.snapshot_file))
-          problems.add("DEM/Sample/Snapshot file", s.snapshot_file, "cannot be opened");
-      }
-
-      // Integration.
-      const auto &in = d.integration.settings;
-      if (!(in.local_damping < 1))
-        problems.add("DEM/Integration/Local damping", in.local_damping, "must be below 1");
-      if (!(in.time_step_safety > 0))
-        problems.add("DEM/Integration/Time step safety factor", in.time_step_safety,
-                     "must be in (0, 1]");
-
-      // Walls.
-      for (int f = 0; f < 6; ++f)
-      {
-        const auto &w = d.walls.face[f];
-        if (!w.active)
-          continue;
-        const std::string path = std::string("DEM/Walls/") + parameters::Walls::face_names[f];
-        const int a = parameters::Walls::axis(f);
-        if (d.domain.periodic[a])
-          problems.add(path + "/Active", "true",
-                       std::string("a wall cannot sit on the periodic axis ") + axis_name[a] +
-                         " (see DEM/Domain/Periodic axes)");
-        if (w.control == dem::WallControl::servo)
-        {
-          if (!(w.servo_gain > 0))
-            problems.add(path + "/Servo gain [m/(s N)]", w.servo_gain,
-                         "must be positive for a servo-controlled wall");
-          if (!(w.max_speed > 0))
-            problems.add(path + "/Max speed [m/s]", w.max_speed,
-                         "must be positive for a servo-controlled wall");
-        }
-      }
-
-      // Boundary particles.
       const auto &bp = d.boundary;
-      if (bp.fix_below && bp.clump_above && *bp.clump_above < *bp.fix_below)
-        problems.add("DEM/Boundary particles/Clump above [m]", *bp.clump_above,
-                     "must not be below DEM/Boundary particles/Fix below [m] = " +
-                       format_number(*bp.fix_below) + ": a sphere cannot be fixed and clumped");
-      if (bp.clump_above && bp.clump_force_rate != 0 && bp.clump_force_direction.norm() == 0)
-        problems.add("DEM/Boundary particles/Clump force direction", vec(bp.clump_force_direction),
-                     "must be a nonzero vector when the clump force rate is nonzero");
-      if (bp.fix_below && bp.base_thickness)
-        problems.add("DEM/Boundary particles/Base thickness [mean radii]", *bp.base_thickness,
-                     "and Fix below [m] both select the base; leave one of them empty");
-      if (bp.clump_above && bp.actuator_thickness)
-        problems.add("DEM/Boundary particles/Actuator thickness [mean radii]", *bp.actuator_thickness,
-                     "and Clump above [m] both select the clump; leave one of them empty");
-      for (const auto &[name, value] : {std::pair{"Base thickness [mean radii]", bp.base_thickness},
-                                        {"Actuator thickness [mean radii]", bp.actuator_thickness}})
-        if (value && !(*value > 0))
-          problems.add(std::string("DEM/Boundary particles/") + name, *value, "must be positive");
-      const bool has_clump = bp.clump_above || bp.actuator_thickness || d.sample.actuator_count > 0;
-      if (d.sample.actuator_count > 0)
+      const auto &s = d.sample;
+      if (s.actuator_count > 0)
       {
-        if (d.sample.type != Sample::Type::ballistic_deposition)
-          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+        if (s.type != parameters::Sample::Type::ballistic_deposition)
+          problems.add("DEM/Sample/Actuator layer count", s.actuator_count,
                        "an actuator layer is deposited on a ballistic deposit only (DEM/Sample/Type)");
         if (bp.clump_above || bp.actuator_thickness)
-          problems.add("DEM/Sample/Actuator layer count", d.sample.actuator_count,
+          problems.add("DEM/Sample/Actuator layer count", s.actuator_count,
                        "the actuator layer is the clump: leave DEM/Boundary particles/Clump above [m] and "
                        "Actuator thickness [mean radii] empty");
-        if (!(d.sample.actuator_radius > 0))
-          problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius, "must be positive");
+        if (!(s.actuator_radius > 0))
+          problems.add("DEM/Sample/Actuator layer radius [m]", s.actuator_radius, "must be positive");
         else
+        {
+          const Vec3 length = d.domain.length();
           for (int a = 0; a < 2; ++a)
-            if (!(length[a] >= 8 * d.sample.actuator_radius))
-              problems.add("DEM/Sample/Actuator layer radius [m]", d.sample.actuator_radius,
+            if (!(length[a] >= 8 * s.actuator_radius))
+              problems.add("DEM/Sample/Actuator layer radius [m]", s.actuator_radius,
                            "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
                              " m) must be at least 4 actuator diameters");
+        }
       }
-      if (d.loading.adaptive && !(has_clump && bp.clump_force_rate > 0))
+      if (d.loading.adaptive && !(d.has_clump() && bp.clump_force_rate > 0))
         problems.add("DEM/Loading/Adaptive rate", "true",
                      "adapts the clump force ramp: it needs a clump (DEM/Boundary particles/Clump above "
                      "[m] or Actuator thickness [mean radii]) and Clump force rate [N/s] > 0");
-      if (d.loading.stop_strain > 0 && !has_clump)
+      if (d.loading.stop_strain > 0 && !d.has_clump())
         problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
                      "measures the clump's displacement: it needs a clump (DEM/Boundary particles)");
-      if (d.bedding.enabled)
-      {
-        if (!d.bond.bond.enabled)
-          problems.add("DEM/Bedding/Enabled", "true", "weakens bonds: DEM/Bond/Enabled must be true");
-        if (!(d.bedding.spec.spacing > 0))
-          problems.add("DEM/Bedding/Spacing [m]", d.bedding.spec.spacing, "must be positive");
-      }
-      using LoadingTest = parameters::Loading::Test;
-      const bool clump_test = d.loading.test == LoadingTest::clump_force || d.loading.test == LoadingTest::tilted_gravity ||
-                              d.loading.test == LoadingTest::simple_shear;
-      if (d.loading.test == LoadingTest::triaxial)
-      {
-        for (int a = 0; a < 3; ++a)
-          if (d.domain.periodic[a])
-            problems.add("DEM/Domain/Periodic axes", axis_name[a],
-                         "the triaxial test walls every face of the domain: no axis may be periodic");
-        for (int f = 0; f < 6; ++f)
-          if (d.walls.face[f].active)
-            problems.add(std::string("DEM/Walls/") + parameters::Walls::face_names[f] + "/Active", "true",
-                         "the triaxial test adds its own six servo walls; leave DEM/Walls inactive");
-        for (const auto &[name, value] : {std::pair{"Confining pressure [Pa]", d.loading.confining_pressure},
-                                          {"Axial strain rate [1/s]", d.loading.axial_strain_rate},
-                                          {"Final axial strain", d.loading.final_axial_strain}})
-          if (!(value > 0))
-            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for the triaxial test");
-      }
-      if (d.loading.test == LoadingTest::platen_compression)
-      {
-        if (!d.walls.face[4].active || !d.walls.face[5].active)
-          problems.add("DEM/Walls/z- and z+/Active", "false",
-                       "platen compression drives the walls z- and z+: activate both");
-        if (!(d.loading.platen_speed > 0))
-          problems.add("DEM/Loading/Platen speed [m/s]", d.loading.platen_speed, "must be positive");
-        if (!(d.loading.post_peak_fraction > 0))
-          problems.add("DEM/Loading/Post-peak fraction", d.loading.post_peak_fraction, "must be in (0, 1)");
-      }
-      if (!clump_test && scene.campaign.enabled())
-        problems.add("Campaign/Loading angles [deg]", "(set)",
-                     "campaigns run the clump tests at loading angles; the triaxial and platen tests have none");
-      if (d.loading.test != LoadingTest::clump_force && clump_test && !(has_clump && (bp.fix_below || bp.base_thickness)))
-        problems.add("DEM/Loading/Test", d.loading.test == LoadingTest::simple_shear ? "simple shear" : "tilted gravity",
-                     "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
-                     "[mean radii], Clump above [m] or Actuator thickness [mean radii])");
-      if (d.loading.test == LoadingTest::tilted_gravity && !(d.integration.settings.gravity.norm() > 0))
-        problems.add("DEM/Integration/Gravity [m/s^2]", vec(d.integration.settings.gravity),
-                     "must be nonzero for DEM/Loading/Test = tilted gravity (its magnitude is g; the direction "
-                     "is DEM/Boundary particles/Clump force direction)");
-      if (d.loading.test == LoadingTest::simple_shear)
-      {
-        for (const auto &[name, value] : {std::pair{"Normal stress [Pa]", d.loading.normal_stress},
-                                          {"Shear velocity [m/s]", d.loading.shear_velocity},
-                                          {"Consolidation time [s]", d.loading.consolidation_time},
-                                          {"Final shear strain", d.loading.final_shear_strain}})
-          if (!(value > 0))
-            problems.add(std::string("DEM/Loading/") + name, value, "must be positive for simple shear");
-        if (!d.domain.periodic[0])
-          problems.add("DEM/Domain/Periodic axes", "(x not periodic)",
-                       "simple shear drives the platen along x: the specimen must be periodic along x");
-        if (d.loading.adaptive)
-          problems.add("DEM/Loading/Adaptive rate", "true",
-                       "adapts a force ramp; simple shear is displacement-controlled (set false)");
-      }
-      if (scene.kind != SceneKind::dem && !scene.campaign.enabled())
-        problems.add("Campaign/Loading angles [deg]", "(empty)",
-                     "a " + scene_kind_names().name(scene.kind) + " scene runs the test at these angles: give at "
-                     "least one (or make it one run: set Scene = dem, without subsection Campaign)");
-      if (scene.campaign.enabled() && d.loading.test == LoadingTest::simple_shear)
-        problems.add("Campaign/Loading angles [deg]", "(set)",
-                     "campaigns run load-controlled tests at loading angles; simple shear has none");
-      if (scene.campaign.enabled())
-      {
-        const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";
-        if (!has_clump || !(bp.fix_below || bp.base_thickness) || !(bp.clump_force_rate > 0))
-          problems.add("Campaign/Loading angles [deg]", "(" + std::to_string(scene.campaign.loading_angles_deg.size()) + " angles)",
-                       why + "a fixed base (DEM/Boundary particles/Fix below [m] or Base thickness [mean "
-                       "radii]), a clump (Clump above [m] or Actuator thickness [mean radii]) and Clump force "
-                       "rate [N/s] > 0");
-        if (!(d.loading.stop_strain > 0))
-          problems.add("DEM/Loading/Stop strain", d.loading.stop_strain,
-                       "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
-                       "DEM/Steps after its failure");
-      }
-      if (!has_clump && bp.clump_force_rate != 0)
-        problems.add("DEM/Boundary particles/Clump force rate [N/s]", bp.clump_force_rate,
-                     "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
     }
 
+    /// Apart from the rules above only because its message has always closed the list.
+    void check_clump_force_rate_has_a_clump(const parameters::Dem &d, Problems &problems)
+    {
+      if (!d.has_clump() && d.boundary.clump_force_rate != 0)
+        problems.add("DEM/Boundary particles/Clump force rate [N/s]", d.boundary.clump_force_rate,
+                     "loads a clump, but DEM/Boundary particles/Clump above [m] is empty");
+    }
+  } // namespace
+
+  void SceneParameters::check(Problems &problems) const
+  {
+    // The order of the calls is the order of the messages, which a user reads as one list:
+    // subsection by subsection, with the clump's rules where they have always been.
+    const parameters::Dem &d = dem;
+    output.check(problems);
+    if (components.empty())
+      problems.add("Components", "(empty)", "choose at least one component (dem)");
+    d.domain.check(problems);
+    d.material.check(problems);
+    d.bond.check(problems);
+    d.sample.check(problems, d);
+    d.integration.check(problems);
+    d.walls.check(problems, d.domain);
+    d.boundary.check(problems);
+    check_clump_sources_and_users(d, problems);
+    d.bedding.check(problems, d.bond);
+    d.loading.check(problems, d);
+    campaign.check(problems, kind, d);
+    check_clump_force_rate_has_a_clump(d, problems);
+  }
+
+  namespace
+  {
     std::string read_file_bytes(const std::string &file)
     {
       std::ifstream in(file, std::ios::binary);
@@ -1548,7 +1687,7 @@ namespace anticrack::dem
     scene.resume_key_sha256 = resume_key(prm);
 
     Problems problems("scene file <" + file + ">");
-    validate(scene, problems);
+    scene.check(problems);
     problems.throw_if_any();
     return scene;
   }

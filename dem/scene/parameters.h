@@ -32,6 +32,11 @@ namespace dealii
   class ParameterHandler;
 }
 
+namespace anticrack
+{
+  class Problems;
+}
+
 namespace anticrack::dem
 {
   /// The scene kinds that read DEM scenes (app/scenes.cpp has the table of all kinds).
@@ -47,6 +52,7 @@ namespace anticrack::dem
   {
     struct Sample;
     struct Loading;
+    struct Dem;
   }
 
   /// What a declaration of the DEM scene entries is for: one scene kind and one variant of each
@@ -78,6 +84,8 @@ namespace anticrack::dem
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// ParaView files need snapshot steps.
+      void check(Problems &problems) const;
     };
 
     /// subsection DEM/Domain: the simulation box.
@@ -87,8 +95,12 @@ namespace anticrack::dem
       Vec3 upper = Vec3::Constant(0.02);
       std::array<bool, 3> periodic = {false, false, false};
 
+      [[nodiscard]] Vec3 length() const { return upper - lower; }
+
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// The upper corner above the lower one along every axis.
+      void check(Problems &problems) const;
     };
 
     /// subsection DEM/Material: density and the contact law of every sphere (and of the walls).
@@ -99,6 +111,8 @@ namespace anticrack::dem
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// The density and the moduli of the chosen contact law, which patterns bound only by zero.
+      void check(Problems &problems) const;
     };
 
     /// subsection DEM/Bond: parallel bonds created between touching spheres.
@@ -110,6 +124,8 @@ namespace anticrack::dem
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// Moduli and friction angle of enabled bonds.
+      void check(Problems &problems) const;
     };
 
     /// subsection DEM/Sample: where the spheres come from.
@@ -157,6 +173,10 @@ namespace anticrack::dem
       /// Declares Type and the entries of `type` (every entry of every type if empty).
       static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Type> type);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// The entries of this type, and what the type needs of the rest of `dem` (the DEM/ this sample
+      /// belongs to): a lattice inside the domain and bonded by the gap tolerance, periods and boxes
+      /// wide enough for the neighbour search, a packing pressure below the contact modulus.
+      void check(Problems &problems, const Dem &dem) const;
     };
 
     /// subsection DEM/Integration: time stepping, damping and stability checks.
@@ -166,6 +186,8 @@ namespace anticrack::dem
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// Local damping below 1, a positive safety factor.
+      void check(Problems &problems) const;
     };
 
     /// The names of the wall controls in a scene file (DEM/Walls/<face>/Control).
@@ -194,9 +216,13 @@ namespace anticrack::dem
       /// Axis (0, 1, 2) and side (-1 lower, +1 upper) of face f.
       static int axis(int f) { return f / 2; }
       static int side(int f) { return f % 2 == 0 ? -1 : 1; }
+      /// "DEM/Walls/<face>": where messages find face f.
+      static std::string path(int f) { return std::string("DEM/Walls/") + face_names[f]; }
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// Active walls off the periodic axes of `domain`, servo walls with a gain and a speed cap.
+      void check(Problems &problems, const Domain &domain) const;
     };
 
     /// subsection DEM/Boundary particles: fixed base and a loaded rigid clump on top.
@@ -210,8 +236,12 @@ namespace anticrack::dem
       Vec3 clump_force_direction = -Vec3::UnitZ(); ///< normalised when parsed (if nonzero)
       bool clump_rotation_locked = false;
 
+      [[nodiscard]] bool has_fixed_base() const { return fix_below || base_thickness; }
+
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// The base and the clump chosen once each, below one another, thicknesses positive.
+      void check(Problems &problems) const;
     };
 
     /// subsection DEM/Loading: adaptive quasi-static ramp of the clump force and the end of a test.
@@ -249,6 +279,9 @@ namespace anticrack::dem
       /// Declares Test and the entries of `test` (every entry of every test if empty).
       static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Test> test);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// The entries of this test, and what the test needs of the rest of `dem` (the DEM/ this
+      /// loading belongs to): its walls and periodic axes, a fixed base and a clump, gravity.
+      void check(Problems &problems, const Dem &dem) const;
     };
 
     /// subsection DEM/Bedding: bonds crossing a family of parallel planes get their own strengths
@@ -261,6 +294,8 @@ namespace anticrack::dem
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// Enabled bedding weakens bonds (`bond` must be enabled) at a positive spacing.
+      void check(Problems &problems, const Bond &bond) const;
     };
 
     /// subsection DEM.
@@ -278,6 +313,13 @@ namespace anticrack::dem
       BoundaryParticles boundary;
       Loading loading;
       Bedding bedding;
+
+      /// A clump to load: Boundary particles/Clump above [m] or Actuator thickness, or the sample's
+      /// actuator layer.
+      [[nodiscard]] bool has_clump() const
+      {
+        return boundary.clump_above || boundary.actuator_thickness || sample.actuator_count > 0;
+      }
 
       static void declare_parameters(dealii::ParameterHandler &prm, const Declaration &declaration);
       void parse_parameters(dealii::ParameterHandler &prm);
@@ -310,6 +352,9 @@ namespace anticrack::dem
       static const EnumTable<QuasiStaticCheck> &check_names();
       static void declare_parameters(dealii::ParameterHandler &prm);
       void parse_parameters(dealii::ParameterHandler &prm);
+      /// Angles where a scene of `kind` needs them, and what a campaign needs of `dem`: a
+      /// load-controlled clump test with a fixed base, a clump, a rate and a stop strain.
+      void check(Problems &problems, SceneKind kind, const Dem &dem) const;
     };
   } // namespace parameters
 
@@ -335,6 +380,9 @@ namespace anticrack::dem
 
     static void declare_parameters(dealii::ParameterHandler &prm, const Declaration &declaration);
     void parse_parameters(dealii::ParameterHandler &prm);
+    /// Everything a single pattern cannot check: each subsection's check, then the rules between
+    /// subsections that belong to none (the clump's).
+    void check(Problems &problems) const;
   };
 
   /// "DEM/Boundary particles/Clump force rate [N/s]" -> {"DEM", "Boundary particles", "Clump force
