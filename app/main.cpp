@@ -16,6 +16,7 @@
 #include "coupling/calibrate.h"
 #include "dem/core/types.h"
 #include "util/input_error.h"
+#include "util/mpi_session.h"
 
 #include <CLI/CLI.hpp>
 
@@ -37,7 +38,7 @@ namespace
   void print_framed_error(const std::string &title, const std::string &message)
   {
     // Under mpirun every rank finds the same bad input: rank 0 reports it.
-    if (const char *rank = std::getenv("OMPI_COMM_WORLD_RANK"); rank && std::string(rank) != "0")
+    if (launcher_rank() != 0)
       return;
     const std::string rule(78, '-');
     std::cerr << "\n" << rule << "\n" << title << "\n\n" << message << "\n" << rule << "\n";

@@ -7,6 +7,7 @@
 #include "fem/analysis/run.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/input_error.h"
+#include "util/mpi_session.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -14,6 +15,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace anticrack::app
@@ -75,7 +77,14 @@ namespace anticrack::app
       {"calibration", "a campaign and the continuum material calibrated from it (subsections Campaign, Calibration)",
        coupling::declare_calibration_scene, coupling::check_calibration_scene, coupling::run_calibration_scene},
       {"snowpack", "a layered snowpack and its saw test with the FE solver (subsection Snowpack)",
-       [](dealii::ParameterHandler &prm, const std::string &, bool) { fem::declare_snowpack_scene(prm); },
+       [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
+       {
+         using Type = fem::Analysis::Type;
+         const std::optional<Type> type = !file.empty() ? fem::analysis_type_in(read_scene_file(file), file)
+                                          : every       ? std::optional<Type>()
+                                                        : Type::explicit_dynamics; // the default type
+         fem::declare_snowpack_scene(prm, type);
+       },
        [](const std::string &file, int) { fem::check_snowpack_scene(file); },
        fem::run_snowpack_scene},
     }};
@@ -88,23 +97,13 @@ namespace anticrack::app
       throw InputError(where + "unknown scene kind `" + name + "` (allowed: " + scene_kind_names() + ")");
     }
 
-    std::string file_text(const std::string &file)
-    {
-      std::ifstream in(file, std::ios::binary);
-      if (!in)
-        throw InputError("Cannot read the scene file <" + file + ">.");
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
-    }
-
     /// The first pass: the kind a scene file says it is (`set Scene = KIND`), or for a scene
     /// written before that entry, the kind its subsections suggest (a top-level Snowpack: a
     /// snowpack scene; Campaign/Loading angles: a campaign; otherwise one DEM run), with a note
     /// on rank 0. A file that sets nothing is refused: it would run every default.
     const SceneKind &kind_of(const std::string &file)
     {
-      const std::vector<ParameterSetting> settings = scan_parameter_settings(file_text(file));
+      const std::vector<ParameterSetting> settings = scan_parameter_settings(read_scene_file(file));
       if (settings.empty())
         throw InputError("The scene file <" + file + "> sets nothing: a scene says what it is (set Scene = " +
                          scene_kind_names() + ") and sets the entries of that kind (`anticrack params --scene "
@@ -121,7 +120,7 @@ namespace anticrack::app
                  !setting.value.empty())
           inferred = "campaign";
       }
-      if (const char *rank = std::getenv("OMPI_COMM_WORLD_RANK"); !rank || std::string(rank) == "0")
+      if (launcher_rank() == 0)
         std::cerr << "anticrack: note: " << file << " does not say what it is; read as a `" << inferred
                   << "` scene (add `set Scene = " << inferred << "` to say so)\n";
       return kind_named(inferred, "");

@@ -5,19 +5,22 @@
 
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
-#include "util/input_error.h"
-#include "util/mpi_session.h"
 #include "fem/material/material_file.h"
-#include "util/parameter_files.h"
-#include "util/run_summary.h"
 #include "params/calibration_error.h"
 #include "params/calibration_output.h"
+#include "util/atomic_file.h"
+#include "util/input_error.h"
+#include "util/mpi_session.h"
+#include "util/parameter_files.h"
+#include "util/phase_timer.h"
+#include "util/run_summary.h"
 
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #ifndef ANTICRACK_SCRIPTS_DIR
 #  define ANTICRACK_SCRIPTS_DIR "scripts"
@@ -77,12 +80,17 @@ namespace anticrack::coupling
           throw InputError((directory / name).string() + " exists: an earlier calibration is in " +
                            directory.string() + "; choose another directory or pass --overwrite");
 
+    PhaseTimer timer;
     int exit_code = exit_success;
-    const std::string campaign_file = from_scene ? campaign_of_scene(options, exit_code) : options.input;
+    std::string campaign_file = options.input;
+    if (from_scene)
+    {
+      const auto phase = timer.scope("campaign");
+      campaign_file = campaign_of_scene(options, exit_code);
+    }
     if (campaign_file.empty())
       return exit_code;
 
-    const auto calibration_start = std::chrono::steady_clock::now();
     params::Calibration calibration;
     try
     {
@@ -94,7 +102,13 @@ namespace anticrack::coupling
         calibration_options.poisson_ratio = options.poisson_ratio;
       calibration_options.bootstrap_samples = options.bootstrap_samples;
       calibration_options.seed = options.seed;
-      calibration = params::calibrate(params::read_campaign(campaign_file), calibration_options);
+      params::CampaignData campaign;
+      {
+        const auto phase = timer.scope("read campaign");
+        campaign = params::read_campaign(campaign_file);
+      }
+      const auto phase = timer.scope("fits and intervals");
+      calibration = params::calibrate(campaign, calibration_options);
     }
     catch (const params::CalibrationError &e)
     {
@@ -103,6 +117,8 @@ namespace anticrack::coupling
 
     // Everything is computed and every material file is read back as the FE solver reads it; only
     // then are files written, each through a temporary name.
+    std::optional<PhaseTimer::Scope> output_phase;
+    output_phase.emplace(timer, "output");
     const std::string version = version_info()["anticrack"].get<std::string>();
     std::vector<std::string> material_names, material_texts;
     for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
@@ -114,9 +130,8 @@ namespace anticrack::coupling
     fs::create_directories(directory);
     for (std::size_t m = 0; m < material_names.size(); ++m)
     {
-      const fs::path file = directory / material_names[m], temporary = file.string() + ".tmp";
-      std::ofstream(temporary) << material_texts[m];
-      fs::rename(temporary, file);
+      write_text_atomically((directory / material_names[m]).string(),
+                            [&](std::ostream &out) { out << material_texts[m]; });
     }
     params::write_calibration_data(calibration, (directory / "calibration.h5").string());
 
@@ -126,9 +141,12 @@ namespace anticrack::coupling
     summary["input"] = options.input;
     summary["calibration"] = params::calibration_summary(calibration);
     summary["outputs"] = Json{{"data", "calibration.h5"}, {"materials", material_names}, {"summary", "summary.json"}};
+    output_phase.reset();
     const auto now = std::chrono::steady_clock::now();
+    // The plots (a Python script, after summary.json) are not among the phases.
     summary["timing"] = Json{{"wall_s", std::chrono::duration<double>(now - start).count()},
-                             {"calibration_s", std::chrono::duration<double>(now - calibration_start).count()}};
+                             {"calibration_s", timer.seconds("read campaign") + timer.seconds("fits and intervals")},
+                             {"phases", timer.to_json()}};
     summary["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), summary);
 

@@ -200,9 +200,7 @@ namespace anticrack::params
 
   void write_calibration_data(const Calibration &calibration, const std::string &file)
   {
-    const std::string temporary = file + ".tmp";
-    {
-      const hdf5::Handle f = hdf5::create_file(temporary);
+    hdf5::write_file_atomically(file, [&](const hdf5::Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-calibration");
       hdf5::write_number_attribute(f.id, "format_version", 1);
       hdf5::write_string_attribute(f.id, "campaign_file", calibration.campaign.file);
@@ -252,8 +250,7 @@ namespace anticrack::params
         hdf5::write_number_attribute(g.id, "reference_thickness", mm.modulus ? mm.modulus->reference_thickness :
                                                                              mm.strength->reference_thickness);
       }
-    }
-    std::filesystem::rename(temporary, file);
+    });
   }
 
   nlohmann::ordered_json calibration_summary(const Calibration &calibration)

@@ -50,3 +50,37 @@ def edit_scene(text, changes, insert=None, remove=()):
     if missing:
         raise SceneEditError(f"the scene no longer has {sorted(missing)}; update the test that edits it")
     return "\n".join(lines) + "\n"
+
+
+def paths_in(text):
+    """Every subsection and entry path of a .prm text ("Analysis/Explicit", "PST/Saw", ...)."""
+    found, path = set(), []
+    for line in text.splitlines():
+        stripped = line.strip()
+        opening = re.match(r"subsection\s+(.*\S)\s*$", stripped)
+        if opening:
+            path.append(opening.group(1))
+            found.add("/".join(path))
+        elif stripped == "end":
+            path.pop()
+        else:
+            entry = re.match(r"set\s+(.*?)\s*=", stripped)
+            if entry:
+                found.add("/".join(path + [entry.group(1)]))
+    return found
+
+
+# What a dynamic PST scene sets that the other analyses do not declare (the snowpack reader refuses
+# them there, naming the analysis they belong to): deleted by hand when a user turns a dynamic PST
+# into a quasi-static one or an energy release rate.
+ONLY_DYNAMIC = ["PST/Saw", "PST/Saw speed [m/s]", "Analysis/Explicit", "Output"]
+ONLY_PST = ["Analysis/Crack detection", "Analysis/Crack band regularisation", "Analysis/Newton/Gravity steps"]
+
+
+def as_analysis(text, analysis_type, changes=None):
+    """A dynamic PST scene as one of Analysis/Type `analysis_type` with `changes`: the entries the
+    new analysis does not declare (ONLY_DYNAMIC, and ONLY_PST for the energy release rate) dropped."""
+    drop = {"quasi-static": ONLY_DYNAMIC, "energy release rate": ONLY_DYNAMIC + ONLY_PST}[analysis_type]
+    present = paths_in(text)
+    return edit_scene(text, {**(changes or {}), "Analysis/Type": analysis_type},
+                      remove=[p for p in drop if p in present])

@@ -1,5 +1,7 @@
 #include "util/hdf5_file.h"
 
+#include "util/atomic_file.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -72,6 +74,20 @@ namespace anticrack::hdf5
   Handle create_file(const std::string &file)
   {
     return Handle(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "create " + file);
+  }
+
+  void write_file_atomically(const std::string &file, const std::function<void(const Handle &root)> &content,
+                             const bool durable)
+  {
+    const QuietErrors quiet; // errors are reported through our exceptions
+    write_atomically(
+      file,
+      [&](const std::string &temporary) {
+        Handle root = create_file(temporary);
+        content(root);
+        check(root.close_now(), "close file " + temporary);
+      },
+      durable);
   }
 
   Handle open_file_read_only(const std::string &file)

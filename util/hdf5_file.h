@@ -9,6 +9,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,6 +66,11 @@ namespace anticrack::hdf5
   std::string location(hid_t object, const std::string &name = "");
 
   Handle create_file(const std::string &file);       ///< truncates an existing file
+  /// Writes the HDF5 file `file` atomically (util/atomic_file.h): `content(root)` fills a new file
+  /// at the temporary path, which is closed (errors reported) and renamed over `file`. `durable`:
+  /// flushed to disk before the rename (checkpoints).
+  void write_file_atomically(const std::string &file, const std::function<void(const Handle &root)> &content,
+                             bool durable = false);
   Handle open_file_read_only(const std::string &file);
   Handle create_group(hid_t parent, const std::string &name);
   Handle open_group(hid_t parent, const std::string &name);

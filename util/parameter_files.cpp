@@ -114,14 +114,19 @@ namespace anticrack
     return settings;
   }
 
-  std::string scene_kind_in_file(const std::string &file)
+  std::string read_scene_file(const std::string &file)
   {
     std::ifstream in(file, std::ios::binary);
     if (!in)
-      throw InputError("cannot read the scene file <" + file + ">");
+      throw InputError("Cannot read the scene file <" + file + ">.");
     std::ostringstream text;
     text << in.rdbuf();
-    for (const ParameterSetting &setting : scan_parameter_settings(text.str()))
+    return text.str();
+  }
+
+  std::string scene_kind_in_file(const std::string &file)
+  {
+    for (const ParameterSetting &setting : scan_parameter_settings(read_scene_file(file)))
       if (setting.path.size() == 1 && setting.path.front() == "Scene")
         return setting.value;
     return "";

@@ -42,6 +42,9 @@ namespace anticrack
   /// to, and refuse a file that sets nothing.
   std::vector<ParameterSetting> scan_parameter_settings(const std::string &text);
 
+  /// The bytes of a scene file; throws InputError naming the file if it cannot be read.
+  std::string read_scene_file(const std::string &file);
+
   /// The value of a top-level `set Scene = KIND` of a parameter file, or "" if it has none;
   /// throws InputError if the file cannot be read.
   std::string scene_kind_in_file(const std::string &file);

@@ -1,14 +1,16 @@
 #include "dem/campaign/campaign.h"
 
 #include "dem/campaign/campaign_file.h"
+#include "dem/lab/force_history.h"
 #include "dem/scene/model.h"
+#include "dem/scene/parameters.h"
+#include "util/console.h"
 #include "util/hdf5_file.h"
 #include "util/input_error.h"
 #include "util/mpi_session.h"
+#include "util/phase_timer.h"
 #include "util/progress.h"
-#include "dem/scene/parameters.h"
 #include "util/run_summary.h"
-#include "dem/lab/force_history.h"
 
 #include <algorithm>
 #include <chrono>
@@ -377,6 +379,7 @@ namespace anticrack::dem
 
     const MpiSession &mpi = MpiSession::get();
     const bool root = mpi.rank() == 0;
+    PhaseTimer timer; // rank 0's phases: its own tests, then campaign.h5 and summary.json
     if (root)
     {
       if (options.overwrite && !options.resume)
@@ -393,8 +396,7 @@ namespace anticrack::dem
     apply_thread_count(threads);
 
     const auto [first, last] = block_of(tests, mpi.rank(), mpi.size());
-    if (root)
-      std::cout << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
+    root_console() << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
                 << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
                 << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
                 << " (quasi-static references included) on " << mpi.size() << " rank(s) x "
@@ -438,15 +440,22 @@ namespace anticrack::dem
         outcomes[t.id] = read_outcome(t, o.output_directory);
         continue;
       }
-      if (cached_sample != std::pair{t.microstructure, t.realization})
+      const bool build = cached_sample != std::pair{t.microstructure, t.realization};
+      if (build)
       {
         sample = build_dem_model(test_scene, threads);
         cached_sample = {t.microstructure, t.realization};
       }
       auto model = std::make_unique<DemModel>(*sample);
+      if (!build)
+        model->build_seconds = 0; // the sample was built (and timed) for an earlier test
       model->system.clumps[model->clump].applied_force =
         dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
-      const DemRunRecord run = run_dem_model(test_scene, std::move(model), o);
+      timer.add("samples", model->build_seconds);
+      const DemRunRecord run = [&] {
+        const auto phase = timer.scope("tests");
+        return run_dem_model(test_scene, std::move(model), o);
+      }();
       any_failed = any_failed || run.exit_code != exit_success;
       const TestOutcome &outcome = outcomes[t.id] = outcome_of(t, run.summary, run.failure_analysis);
       std::ostringstream line;
@@ -467,14 +476,14 @@ namespace anticrack::dem
       return any_failed ? exit_numerical_failure : exit_success;
 
     // --- rank 0: campaign.h5 and summary.json; the other ranks' tests from their files
+    std::optional<PhaseTimer::Scope> output_phase;
+    output_phase.emplace(timer, "output");
     for (const auto &t : tests)
       if (!outcomes.count(t.id))
         outcomes[t.id] = read_outcome(t, directory / "tests" / t.id);
 
     const fs::path campaign_file = directory / "campaign.h5";
-    const fs::path temporary = directory / "campaign.h5.tmp";
-    {
-      const Handle f = hdf5::create_file(temporary.string());
+    hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
       hdf5::write_string_attribute(f.id, "format_version", "2");
       hdf5::write_string_attribute(f.id, "scene_file", scene.file);
@@ -570,8 +579,7 @@ namespace anticrack::dem
         hdf5::write_doubles(g.id, "base_relative_difference", base_difference, "-",
                       "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
       }
-    }
-    fs::rename(temporary, campaign_file);
+    });
 
     // summary.json
     Json s;
@@ -655,6 +663,8 @@ namespace anticrack::dem
     timing["sum_of_test_wall_s"] = test_wall;
     timing["ranks"] = mpi.size();
     timing["threads_per_rank"] = dem::DemSystem::threads();
+    output_phase.reset();
+    timing["phases"] = timer.to_json();
     s["timing"] = timing;
     s["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), s);

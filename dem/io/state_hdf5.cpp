@@ -530,26 +530,11 @@ namespace anticrack::dem::io
         fail(hdf5::location(root.id) + "@version",
              "is " + std::to_string(version) + ", this build reads version " + std::to_string(format_version));
     }
-
-    /// Writes `file` atomically (util/atomic_file.h); `content(root)` fills the new file.
-    template <class Content>
-    void write_hdf5_atomically(const std::string &file, bool durable, Content &&content)
-    {
-      const hdf5::QuietErrors quiet; // errors are reported through our exceptions
-      write_atomically(
-        file,
-        [&](const std::string &temporary) {
-          hdf5::Handle root = hdf5::create_file(temporary);
-          content(root);
-          hdf5::check(root.close_now(), "close file " + temporary);
-        },
-        durable);
-    }
   } // namespace
 
   void write_snapshot(const std::string &file, const DemSystem &system)
   {
-    write_hdf5_atomically(file, false, [&](const hdf5::Handle &root) {
+    hdf5::write_file_atomically(file, [&](const hdf5::Handle &root) {
       write_header(root, snapshot_format, system);
       const ParticleStore &particles = system.particles;
       const hdf5::Handle particle_group = create_array_group(root, "particles", particles.size());
@@ -572,7 +557,7 @@ namespace anticrack::dem::io
 
   void write_checkpoint(const std::string &file, const DemSystem &system)
   {
-    write_hdf5_atomically(file, true, [&](const hdf5::Handle &root) {
+    hdf5::write_file_atomically(file, [&](const hdf5::Handle &root) {
       write_header(root, checkpoint_format, system);
       write_attribute(root, "initial_balance", system.initial_balance);
 
@@ -600,7 +585,7 @@ namespace anticrack::dem::io
       settings_fields(system.settings,
                       [&](const char *name, const auto &value) { write_attribute(settings, name, value); });
       write_energy(root, system.ledger);
-    });
+    }, /*durable=*/true);
   }
 
   ExternalSample read_sample(const std::string &file)

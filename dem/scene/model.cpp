@@ -14,6 +14,7 @@
 #include "dem/lab/simple_shear.h"
 #include "dem/lab/measurements.h"
 
+#include <chrono>
 #include <omp.h>
 
 #include <algorithm>
@@ -302,6 +303,7 @@ namespace anticrack::dem
   std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, const int threads)
   {
     const auto &d = scene.dem;
+    const auto start = std::chrono::steady_clock::now();
     auto model = std::make_unique<DemModel>();
     dem::DemSystem &system = model->system;
     apply_thread_count(threads);
@@ -369,6 +371,7 @@ namespace anticrack::dem
     {
       throw InputError("Invalid scene file <" + scene.file + ">: " + e.what());
     }
+    model->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return model;
   }
 

@@ -40,6 +40,9 @@ namespace anticrack::dem
     std::optional<dem::DepositionReport> ballistic_deposition;
     std::optional<dem::DensePackingReport> dense_packing;
     std::array<Index, 6> box_walls{-1, -1, -1, -1, -1, -1}; ///< the triaxial test's walls (BoxFace order)
+    /// Wall time of build_dem_model (the sample generator, bonds, walls) [s]; a run reports it as
+    /// its "sample and model" phase (0 for a copy of a model built for an earlier test).
+    double build_seconds = 0;
   };
 
   /// Builds and initialises the model; `threads` <= 0 means all available.

@@ -1495,14 +1495,6 @@ namespace anticrack::dem
 
   namespace
   {
-    std::string read_file_bytes(const std::string &file)
-    {
-      std::ifstream in(file, std::ios::binary);
-      if (!in)
-        throw InputError("Cannot open the scene file <" + file + ">.");
-      return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-
     /// Hash of the model-defining part of the parameters; see SceneParameters::resume_key_sha256.
     std::string resume_key(const ParameterHandler &prm)
     {
@@ -1629,7 +1621,7 @@ namespace anticrack::dem
     SceneParameters scene;
     scene.file = file;
     scene.declare_more = declare_more;
-    const std::string bytes = read_file_bytes(file);
+    const std::string bytes = read_scene_file(file);
     scene.file_sha256 = util::sha256_hex(bytes);
 
     ParameterHandler prm;
@@ -1710,7 +1702,7 @@ namespace anticrack::dem
   {
     try
     {
-      return declaration_of(read_file_bytes(file), file, kind, {});
+      return declaration_of(read_scene_file(file), file, kind, {});
     }
     catch (const dealii::ExceptionBase &e)
     {

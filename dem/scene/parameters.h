@@ -1,5 +1,5 @@
 // Scene files: deal.II ParameterHandler input (.prm), one parameter struct per subsection with
-// declare_parameters / parse_parameters (the step-44 layout), gathered in SceneParameters.
+// declare_parameters / parse_parameters / check (the step-44 layout), gathered in SceneParameters.
 //
 // Every quantity is SI inside the code; an entry's unit is part of its name ("Radius [m]"), and
 // every help string gives the symbol, the meaning and the unit. Pattern violations and unknown
@@ -8,7 +8,7 @@
 // periodic axis, ...) and reports every problem at once, naming the file, the entry with its
 // subsection path, the value and why it is refused. Nothing is written before this has passed.
 //
-// Only scene_parameters.cpp includes deal.II: the rest of the application sees plain structs.
+// Only dem/scene/parameters.cpp includes deal.II: the rest of the application sees plain structs.
 #pragma once
 
 #include "dem/sample/bedding.h"

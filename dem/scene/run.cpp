@@ -1,16 +1,16 @@
 #include "dem/scene/run.h"
 
-#include "dem/campaign/campaign.h"
-#include "dem/scene/model.h"
-#include "util/time_series.h"
-#include "util/input_error.h"
-#include "util/progress.h"
-#include "util/run_summary.h"
-#include "dem/scene/failure_analysis.h"
 #include "dem/io/state_hdf5.h"
 #include "dem/io/state_vtp.h"
 #include "dem/lab/lab_protocol.h"
 #include "dem/lab/measurements.h"
+#include "dem/scene/failure_analysis.h"
+#include "dem/scene/model.h"
+#include "util/input_error.h"
+#include "util/phase_timer.h"
+#include "util/progress.h"
+#include "util/run_summary.h"
+#include "util/time_series.h"
 
 #include <algorithm>
 #include <chrono>
@@ -164,6 +164,9 @@ namespace anticrack::dem
     // --- time series
     TimeSeries history_;
 
+    // --- where the time goes (summary.json timing.phases)
+    PhaseTimer timer_;
+
     // --- console and ParaView
     std::optional<ProgressReporter> progress_;
     std::optional<dem::io::PvdCollection> pvd_particles_, pvd_bonds_;
@@ -173,6 +176,7 @@ namespace anticrack::dem
     : scene_(scene), model_(std::move(model)), system_(model_->system), options_(options),
       files_{fs::path(options.output_directory)}, total_steps_(scene.dem.steps)
   {
+    timer_.add("sample and model", model_->build_seconds);
     declare_history_columns();
     const auto [low, high] = dem::sphere_extent(system_.particles, 2);
     initial_sample_height_ = high - low;
@@ -409,6 +413,7 @@ namespace anticrack::dem
 
   void DemRun::write_outputs(const bool first, const bool last)
   {
+    const auto phase = timer_.scope("output");
     const auto &o = scene_.output;
     const Index step = system_.step_count;
     if (first || last || multiple_of(step, o.history_interval))
@@ -581,10 +586,13 @@ namespace anticrack::dem
                                      o.progress_interval, control_interval})
           if (interval > 0)
             next = std::min(next, (now / interval + 1) * interval);
-        system_.run(next - now);
-        if (protocol_ && multiple_of(system_.step_count, control_interval))
-          protocol_->control(system_);
-        protocol_finished_ = protocol_ && protocol_->finished(system_);
+        {
+          const auto phase = timer_.scope("time stepping");
+          system_.run(next - now);
+          if (protocol_ && multiple_of(system_.step_count, control_interval))
+            protocol_->control(system_);
+          protocol_finished_ = protocol_ && protocol_->finished(system_);
+        }
         write_outputs(false, system_.step_count == total_steps_ || protocol_finished_);
         if (protocol_finished_)
         {
@@ -629,11 +637,17 @@ namespace anticrack::dem
 
     try
     {
-      write_history();
+      {
+        const auto phase = timer_.scope("output");
+        write_history();
+      }
       // The yield point of this test (Ritter et al.'s (2020) failure criterion) and its companions.
       if (model_->clump >= 0)
+      {
+        const auto phase = timer_.scope("failure analysis");
         failure_analysis_ = analyse_test_history(history_, initial_sample_height_,
                                                  scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
+      }
       summary_ = summary(status, message);
       write_json_atomically(files_.summary().string(), summary_);
     }
@@ -879,6 +893,7 @@ namespace anticrack::dem
     timing["steps"] = steps_done;
     timing["steps_per_s"] = wall_seconds_ > 0 ? steps_done / wall_seconds_ : 0.0;
     timing["threads"] = dem::DemSystem::threads();
+    timing["phases"] = timer_.to_json();
     s["timing"] = timing;
     s["versions"] = version_info();
     return s;

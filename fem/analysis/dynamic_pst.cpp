@@ -2,6 +2,7 @@
 
 #include "fem/analysis/outputs.h"
 #include "fem/model/checkpoint.h"
+#include "util/atomic_file.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
 #include "util/input_error.h"
@@ -32,8 +33,8 @@ namespace anticrack::fem
         : scene_(scene)
         , options_(options)
         , comm_(comm)
-        , log_(options.log, comm)
-        , model_(scene, comm)
+        , log_(root_log(options.log, comm))
+        , model_(scene, comm, options.timer)
         , fields_(options.output_directory + "/fields", comm)
         , series_(series_of({{"time", "s", "time since the saw started"},
                              {"cut_length", "m", "saw cut length"},
@@ -200,16 +201,16 @@ namespace anticrack::fem
         if (rank == 0)
           std::filesystem::create_directories(options_.output_directory + "/checkpoint");
         MPI_Barrier(comm_);
+        const auto phase = model_.timer().scope("output");
         const std::string file = rank_file(step, rank);
-        {
-          std::ofstream out(file + ".tmp", std::ios::binary);
+        write_atomically(file, [&](const std::string &temporary) {
+          std::ofstream out(temporary, std::ios::binary);
           model_.save(out);
           dynamics_->save(out);
           save_run_state(out);
-          if (!out)
-            throw std::runtime_error("cannot write the checkpoint " + file);
-        }
-        std::filesystem::rename(file + ".tmp", file);
+          if (!out.flush())
+            throw std::runtime_error("cannot write the checkpoint " + temporary);
+        }, /*durable=*/true);
         MPI_Barrier(comm_);
         if (rank == 0)
         {
@@ -219,12 +220,8 @@ namespace anticrack::fem
           info["ranks"] = Utilities::MPI::n_mpi_processes(comm_);
           info["dofs"] = model_.n_dofs();
           info["resume_key_sha256"] = scene_.resume_key_sha256;
-          const std::string json = options_.output_directory + "/checkpoint.json";
-          {
-            std::ofstream out(json + ".tmp");
-            out << info.dump(2) << '\n';
-          }
-          std::filesystem::rename(json + ".tmp", json);
+          write_text_atomically(options_.output_directory + "/checkpoint.json",
+                                [&](std::ostream &out) { out << info.dump(2) << '\n'; }, /*durable=*/true);
           // Older steps are no longer needed.
           for (const auto &entry : std::filesystem::directory_iterator(options_.output_directory + "/checkpoint"))
             if (entry.path().filename().string().rfind("step_" + std::to_string(step) + "_", 0) != 0)
@@ -337,7 +334,7 @@ namespace anticrack::fem
         }
         auto optional = [](const std::optional<double> &v) { return v ? Json(*v) : Json(nullptr); };
         Json r;
-        r["analysis"] = "explicit dynamics";
+        r["analysis"] = analysis_type_names().name(scene_.analysis.type);
         r["mesh"] = mesh_json(model_, comm_);
         r["critical_cut_length_m"] = optional(critical_cut);
         r["self_propagation_lead_m"] = lead;
@@ -366,7 +363,7 @@ namespace anticrack::fem
       const SnowpackScene &scene_;
       const SnowpackRunOptions &options_;
       MPI_Comm comm_;
-      Log log_;
+      ConditionalStream log_;
       SnowpackModel<dim> model_;
       std::unique_ptr<ExplicitDynamics<dim>> dynamics_;
       FieldRecord fields_;

@@ -18,8 +18,8 @@ namespace anticrack::fem
   template <int dim>
   Json run_energy_release_rate(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
-    Log log(options.log, comm);
-    SnowpackModel<dim> model(scene, comm);
+    ConditionalStream log = root_log(options.log, comm);
+    SnowpackModel<dim> model(scene, comm, options.timer);
     QuasiStaticSolver<dim> solver(model);
     log.line("[fem] energy release rate: ", model.n_cells(), " cells, ", model.n_dofs(), " dofs, ",
              Utilities::MPI::n_mpi_processes(comm), " rank(s)");
@@ -72,7 +72,7 @@ namespace anticrack::fem
     fields.write(model, u, cuts.back());
 
     Json results;
-    results["analysis"] = "energy release rate";
+    results["analysis"] = analysis_type_names().name(scene.analysis.type);
     results["mesh"] = mesh_json(model, comm);
     results["fracture_energy_J_per_m2"] = G_c;
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);

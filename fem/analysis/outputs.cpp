@@ -17,9 +17,10 @@ namespace anticrack::fem
 {
   using namespace dealii;
 
-  Log::Log(std::ostream *out, MPI_Comm communicator)
-    : out_(Utilities::MPI::this_mpi_process(communicator) == 0 ? out : nullptr)
-  {}
+  ConditionalStream root_log(std::ostream *out, MPI_Comm communicator)
+  {
+    return ConditionalStream(out, Utilities::MPI::this_mpi_process(communicator) == 0);
+  }
 
   std::string format(double value, int precision)
   {
@@ -140,7 +141,7 @@ namespace anticrack::fem
 
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
-                           typename SnowpackModel<dim>::VectorType &u, Log &log)
+                           typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)
   {
     const auto start = std::chrono::steady_clock::now();
     solver.apply_gravity(u, model.scene().analysis.gravity_steps, [&](double load, const NewtonResult &r) {
@@ -162,7 +163,7 @@ namespace anticrack::fem
   template Json mesh_json<2>(const SnowpackModel<2> &, MPI_Comm);
   template Json mesh_json<3>(const SnowpackModel<3> &, MPI_Comm);
   template void gravity_equilibrium<2>(SnowpackModel<2> &, QuasiStaticSolver<2> &, SnowpackModel<2>::VectorType &,
-                                       Log &);
+                                       ConditionalStream &);
   template void gravity_equilibrium<3>(SnowpackModel<3> &, QuasiStaticSolver<3> &, SnowpackModel<3>::VectorType &,
-                                       Log &);
+                                       ConditionalStream &);
 } // namespace anticrack::fem

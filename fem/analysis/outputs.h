@@ -7,6 +7,7 @@
 #include "fem/analysis/snowpack_run.h"
 #include "fem/closed_forms.h"
 #include "fem/model/snowpack_model.h"
+#include "util/console.h"
 #include "util/time_series.h"
 
 
@@ -21,22 +22,8 @@ namespace anticrack::fem
   template <int dim>
   class QuasiStaticSolver;
 
-  /// Progress lines on rank 0 (nullptr: quiet).
-  class Log
-  {
-  public:
-    Log(std::ostream *out, MPI_Comm communicator);
-    template <typename... T>
-    void line(const T &...parts)
-    {
-      if (!out_)
-        return;
-      (*out_ << ... << parts) << std::endl;
-    }
-
-  private:
-    std::ostream *out_;
-  };
+  /// Progress lines on rank 0 of `communicator` (util/console.h); out == nullptr: quiet.
+  ConditionalStream root_log(std::ostream *out, MPI_Comm communicator);
 
   /// `value` with `precision` significant digits (log lines and messages).
   std::string format(double value, int precision = 4);
@@ -104,7 +91,7 @@ namespace anticrack::fem
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
-                           typename SnowpackModel<dim>::VectorType &u, Log &log);
+                           typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log);
 
   /// The crack runs by itself once its tip leads the saw by this distance [m] (both PSTs).
   double self_propagation_lead(const SnowpackScene &scene);

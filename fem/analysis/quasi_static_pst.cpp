@@ -16,8 +16,8 @@ namespace anticrack::fem
   template <int dim>
   Json run_quasi_static_pst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
-    Log log(options.log, comm);
-    SnowpackModel<dim> model(scene, comm);
+    ConditionalStream log = root_log(options.log, comm);
+    SnowpackModel<dim> model(scene, comm, options.timer);
     QuasiStaticSolver<dim> solver(model);
     log.line("[fem] quasi-static PST: ", model.n_cells(), " cells, ", model.n_dofs(), " dofs");
     typename SnowpackModel<dim>::VectorType u;
@@ -83,7 +83,7 @@ namespace anticrack::fem
                 comm);
 
     Json results;
-    results["analysis"] = "quasi-static";
+    results["analysis"] = analysis_type_names().name(scene.analysis.type);
     results["mesh"] = mesh_json(model, comm);
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
     results["critical_cut_length_reason"] =

@@ -1,14 +1,17 @@
 #include "fem/analysis/run.h"
 
-#include "util/input_error.h"
-#include "util/run_options.h"
-#include "util/run_summary.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/scene/snowpack_scene.h"
+#include "util/console.h"
+#include "util/input_error.h"
+#include "util/phase_timer.h"
+#include "util/run_options.h"
+#include "util/run_summary.h"
 #include "util/sha256.h"
 
 #include <deal.II/base/mpi.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
@@ -100,10 +103,13 @@ namespace anticrack::fem
     summary["scene"] = scene_json;
     summary["versions"] = version_info();
 
+    PhaseTimer timer;
+    const auto start = std::chrono::steady_clock::now();
     fem::SnowpackRunOptions run;
     run.output_directory = dir.string();
     run.log = options.quiet ? nullptr : &std::cout;
     run.resume = options.resume;
+    run.timer = &timer;
     int code = exit_success;
     try
     {
@@ -115,9 +121,12 @@ namespace anticrack::fem
       summary["status"] = "failed";
       summary["failure"] = e.what();
       code = exit_numerical_failure;
-      if (root)
-        std::cerr << "anticrack: numerical failure: " << e.what() << "\n";
+      ConditionalStream(&std::cerr, root) << "anticrack: numerical failure: " << e.what() << "\n";
     }
+    // Where the time went (rank 0's; the ranks work in lock step).
+    summary["timing"] = {{"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+                         {"ranks", dealii::Utilities::MPI::n_mpi_processes(comm)},
+                         {"phases", timer.to_json()}};
     if (root)
       write_json_atomically((dir / "summary.json").string(), summary);
     return code;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fem/scene/snowpack_scene.h"
+#include "util/phase_timer.h"
 
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -24,6 +25,9 @@ namespace anticrack::fem
     /// Continue a dynamic PST from DIR/checkpoint.json (same scene but for the end time and the
     /// output, same number of ranks); throws anticrack::InputError if that is not possible.
     bool resume = false;
+    /// Gets the run's phases (mesh and dofs, assembly, linear solves, output; util/phase_timer.h);
+    /// may be null.
+    PhaseTimer *timer = nullptr;
   };
 
   /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that

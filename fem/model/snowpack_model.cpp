@@ -87,14 +87,16 @@ namespace anticrack::fem
   };
 
   template <int dim>
-  SnowpackModel<dim>::SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator)
+  SnowpackModel<dim>::SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator, PhaseTimer *timer)
     : scene_(scene)
     , communicator_(communicator)
+    , timer_(timer ? *timer : own_timer_)
     , triangulation_(communicator)
     , fe_(FE_Q<dim>(scene.mesh.polynomial_degree), dim)
     , dof_handler_(triangulation_)
     , quadrature_(scene.mesh.polynomial_degree + 1)
   {
+    const auto phase = timer_.scope("mesh and dofs");
     for (unsigned int id = 0; id < n_layers(scene.snowpack); ++id)
       layers_.push_back(layer_of(scene.snowpack, id));
     make_mesh();
@@ -349,6 +351,7 @@ namespace anticrack::fem
   template <int dim>
   double SnowpackModel<dim>::evaluate(const VectorType &u, VectorType &internal_force, const Request &request)
   {
+    const auto phase = timer_.scope("assembly");
     const unsigned int n_q = quadrature_.size();
     const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
     const Analysis &analysis = scene_.analysis;
@@ -646,6 +649,7 @@ namespace anticrack::fem
   std::string SnowpackModel<dim>::write_fields(const VectorType &u, const std::string &directory,
                                                const std::string &stem, unsigned int index) const
   {
+    const auto phase = timer_.scope("output");
     const unsigned int n_q = quadrature_.size();
     const unsigned int n_active = triangulation_.n_active_cells();
     enum Field

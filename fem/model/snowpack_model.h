@@ -26,6 +26,7 @@
 #include "fem/material/cohesive_cam_clay.h"
 #include "fem/model/layers.h"
 #include "fem/scene/snowpack_scene.h"
+#include "util/phase_timer.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -98,8 +99,13 @@ namespace anticrack::fem
   public:
     using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
 
-    SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator);
+    /// `timer` (may be null: the model keeps its own) gets the phases "mesh and dofs", "assembly"
+    /// (every evaluate(): the one cell loop, with or without the tangent) and "output" (fields).
+    SnowpackModel(const SnowpackScene &scene, MPI_Comm communicator, PhaseTimer *timer = nullptr);
     ~SnowpackModel();
+
+    /// Where the run's time goes (util/phase_timer.h); the solvers and analyses add their phases.
+    PhaseTimer &timer() const { return timer_; }
 
     const SnowpackScene &scene() const { return scene_; }
     MPI_Comm communicator() const { return communicator_; }
@@ -186,6 +192,8 @@ namespace anticrack::fem
 
     const SnowpackScene &scene_;
     MPI_Comm communicator_;
+    mutable PhaseTimer own_timer_; ///< when the caller gives none
+    PhaseTimer &timer_;
     dealii::parallel::distributed::Triangulation<dim> triangulation_;
     dealii::FESystem<dim> fe_;
     dealii::DoFHandler<dim> dof_handler_;

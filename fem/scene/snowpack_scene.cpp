@@ -3,6 +3,7 @@
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
 #include "util/input_error.h"
+#include "util/parameter_files.h"
 #include "util/problems.h"
 #include "util/sha256.h"
 
@@ -10,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,7 +38,7 @@ namespace anticrack::fem
     {
       prm.declare_entry("Thickness [m]", default_thickness, Double(0),
                         "h: layer thickness measured normal to the slope. Units: m.");
-      prm.declare_entry("Model", default_model, Selection("elastic|cohesive cam-clay"),
+      prm.declare_entry("Model", default_model, Selection(layer_model_names().pattern()),
                         "Constitutive model of the layer: linear elastic, or cohesive Cam-Clay with softening "
                         "(docs/physics.md §2).");
       prm.declare_entry("Material file", "", Anything(),
@@ -58,7 +60,7 @@ namespace anticrack::fem
       Layer layer;
       layer.label = label;
       layer.thickness = prm.get_double("Thickness [m]");
-      layer.model = prm.get("Model") == "elastic" ? Layer::Model::elastic : Layer::Model::cohesive_cam_clay;
+      layer.model = layer_model_names().value(prm.get("Model"));
       layer.collapse_height = prm.get_double("Collapse height [m]");
       layer.densification_modulus = prm.get_double("Densification modulus [Pa]");
       layer.material = parse_material_entries(prm);
@@ -130,31 +132,55 @@ namespace anticrack::fem
 
   double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }
 
-  bool is_snowpack_scene(const std::string &file)
+  const EnumTable<Layer::Model> &layer_model_names()
   {
-    std::ifstream in(file);
-    std::string line;
-    while (std::getline(in, line))
-    {
-      // Top level only: the keyword starts the line (nested subsections are indented or follow
-      // another subsection; a scene that indents its top level is still found by the name).
-      const auto first = line.find_first_not_of(" \t");
-      if (first == std::string::npos || line[first] == '#')
-        continue;
-      std::istringstream words(line.substr(first));
-      std::string keyword, name;
-      words >> keyword;
-      std::getline(words >> std::ws, name);
-      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back())))
-        name.pop_back();
-      if (keyword == "subsection" && name == "Snowpack")
-        return true;
-    }
-    return false;
+    static const EnumTable<Layer::Model> names{{"elastic", Layer::Model::elastic},
+                                               {"cohesive cam-clay", Layer::Model::cohesive_cam_clay}};
+    return names;
   }
 
-  void declare_snowpack_scene(ParameterHandler &prm)
+  const EnumTable<SawTest::CutSide> &cut_side_names()
   {
+    static const EnumTable<SawTest::CutSide> names{{"upslope", SawTest::CutSide::upslope},
+                                                   {"downslope", SawTest::CutSide::downslope}};
+    return names;
+  }
+
+  const EnumTable<SawTest::Saw> &saw_names()
+  {
+    static const EnumTable<SawTest::Saw> names{{"fixed", SawTest::Saw::fixed}, {"advancing", SawTest::Saw::advancing}};
+    return names;
+  }
+
+  const EnumTable<Analysis::Type> &analysis_type_names()
+  {
+    static const EnumTable<Analysis::Type> names{{"energy release rate", Analysis::Type::energy_release_rate},
+                                                 {"quasi-static", Analysis::Type::quasi_static},
+                                                 {"explicit dynamics", Analysis::Type::explicit_dynamics}};
+    return names;
+  }
+
+  const EnumTable<Analysis::LinearSolver> &linear_solver_names()
+  {
+    static const EnumTable<Analysis::LinearSolver> names{{"direct", Analysis::LinearSolver::direct},
+                                                         {"amg", Analysis::LinearSolver::amg}};
+    return names;
+  }
+
+  void declare_snowpack_scene(ParameterHandler &prm, const std::optional<Analysis::Type> type)
+  {
+    // Whether the scene's analysis is one of `types` (every entry is declared without a type).
+    const auto for_analyses = [&](std::initializer_list<Analysis::Type> types) {
+      return !type || std::find(types.begin(), types.end(), *type) != types.end();
+    };
+    using T = Analysis::Type;
+    const bool pst = for_analyses({T::quasi_static, T::explicit_dynamics});
+    const bool dynamic = for_analyses({T::explicit_dynamics});
+
+    // The kind is read by app/scenes.cpp before this declaration; declaring it lets the file say it.
+    prm.declare_entry("Scene", "snowpack", Selection("snowpack"),
+                      "What the scene is: `snowpack`, a layered snowpack and its saw test with the FE solver. "
+                      "A scene without it that has a subsection Snowpack is read as one, with a note.");
     prm.enter_subsection("Snowpack");
     prm.declare_entry("Slope angle [deg]", "0", Double(0, 60),
                       "psi: inclination of the slope; +x points downslope. Units: deg.");
@@ -181,14 +207,17 @@ namespace anticrack::fem
                       "L: length of the isolated column along the slope. Units: m.");
     prm.declare_entry("Column width [m]", "0.3", Double(0),
                       "W: width of the column across the slope (3D only). Units: m.");
-    prm.declare_entry("Cut from", "upslope", Selection("upslope|downslope"),
+    prm.declare_entry("Cut from", "upslope", Selection(cut_side_names().pattern()),
                       "End of the column where the saw enters.");
-    prm.declare_entry("Saw", "advancing", Selection("fixed|advancing"),
-                      "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
-                      "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself).");
+    if (dynamic)
+      prm.declare_entry("Saw", "advancing", Selection(saw_names().pattern()),
+                        "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
+                        "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself).");
     prm.declare_entry("Cut length [m]", "0.3", Double(0),
-                      "a: length of a fixed cut, or the longest cut of an advancing saw. Units: m.");
-    prm.declare_entry("Saw speed [m/s]", "1", Double(0), "v_saw: speed of an advancing saw. Units: m/s.");
+                      "a: the longest cut (energy release rate, quasi-static saw steps), the length of a fixed cut "
+                      "or the longest cut of an advancing saw (explicit dynamics). Units: m.");
+    if (dynamic)
+      prm.declare_entry("Saw speed [m/s]", "1", Double(0), "v_saw: speed of an advancing saw. Units: m/s.");
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh");
@@ -210,29 +239,51 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("Analysis");
-    prm.declare_entry("Type", "explicit dynamics", Selection("energy release rate|quasi-static|explicit dynamics"),
+    prm.declare_entry("Type", analysis_type_names().name(type.value_or(Analysis::Type::explicit_dynamics)),
+                      Selection(type ? analysis_type_names().name(*type) : analysis_type_names().pattern()),
                       "energy release rate: elastic snowpack, G(a) = -dPi/da over every cut length up to `PST/Cut "
                       "length`; quasi-static: gravity, then saw steps with Newton until equilibrium is lost; "
                       "explicit dynamics: gravity equilibrium, then saw and crack propagation in time.");
-    prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0),
-                      "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
-                      "reaches it (energy release rate analysis). Units: J/m^2.");
-    prm.declare_entry("Crack band regularisation", "true", Bool(),
-                      "true: softening layers soften and collapse in one element row with the energy and the "
-                      "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
-                      "1983; docs/physics.md §2, mesh-independent); false: the local model.");
+    if (for_analyses({T::energy_release_rate}))
+      prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0),
+                        "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
+                        "reaches it (energy release rate analysis). Units: J/m^2.");
+    if (pst)
+      prm.declare_entry("Crack band regularisation", "true", Bool(),
+                        "true: softening layers soften and collapse in one element row with the energy and the "
+                        "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
+                        "1983; docs/physics.md §2, mesh-independent); false: the local model.");
     prm.enter_subsection("Newton");
     prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2),
                       "tol: Newton converges when |residual| / |external force| is below it. Dimensionless.");
     prm.declare_entry("Maximum iterations", "25", Integer(2, 500),
                       "Largest number of Newton iterations per load step. Dimensionless.");
-    prm.declare_entry("Linear solver", "direct", Selection("direct|amg"),
+    prm.declare_entry("Linear solver", "direct", Selection(linear_solver_names().pattern()),
                       "direct: MUMPS; amg: GMRES with BoomerAMG (large problems).");
-    prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
-                      "Initial number of load steps of the gravity ramp (a step that fails is halved). Dimensionless.");
-    prm.declare_entry("Saw step [m]", "0", Double(0),
-                      "da: cut increment of the quasi-static saw steps; 0: one element length. Units: m.");
+    if (pst)
+      prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
+                        "Initial number of load steps of the gravity ramp (a step that fails is halved). "
+                        "Dimensionless.");
+    if (for_analyses({T::quasi_static}))
+      prm.declare_entry("Saw step [m]", "0", Double(0),
+                        "da: cut increment of the quasi-static saw steps; 0: one element length. Units: m.");
     prm.leave_subsection();
+    if (pst)
+    {
+      prm.enter_subsection("Crack detection");
+      prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
+                        "f_fail: a weak-layer element has failed when its softening has gone this fraction of the "
+                        "way from p0 to the residual strength. Dimensionless.");
+      prm.declare_entry("Self-propagation lead [m]", "0", Double(0),
+                        "d_lead: the crack runs by itself once its tip leads the saw by this much; 0: the slab "
+                        "thickness. Units: m.");
+      prm.leave_subsection();
+    }
+    if (!dynamic)
+    {
+      prm.leave_subsection();
+      return;
+    }
     prm.enter_subsection("Explicit");
     prm.declare_entry("End time [s]", "1", Double(0), "t_end: simulated time after the saw starts. Units: s.");
     prm.declare_entry("CFL safety factor", "0.5", Double(0.01, 1),
@@ -245,12 +296,6 @@ namespace anticrack::fem
                       "Dimensionless.");
     prm.declare_entry("Mass damping [1/s]", "0", Double(0),
                       "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
-    prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
-                      "f_fail: a weak-layer element has failed when its softening has gone this fraction of the "
-                      "way from p0 to the residual strength. Dimensionless.");
-    prm.declare_entry("Self-propagation lead [m]", "0", Double(0),
-                      "d_lead: the crack runs by itself once its tip leads the saw by this much; 0: the slab "
-                      "thickness. Units: m.");
     prm.leave_subsection();
     prm.leave_subsection();
 
@@ -269,18 +314,66 @@ namespace anticrack::fem
 
   SnowpackScene read_snowpack_scene(const std::string &file)
   {
-    std::ifstream in(file);
-    if (!in)
-      throw InputError("scene " + file + " cannot be read");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return read_snowpack_scene_text(text.str(), file);
+    return read_snowpack_scene_text(read_scene_file(file), file);
   }
+
+  Analysis::Type analysis_type_in(const std::string &text, const std::string &file)
+  {
+    Analysis::Type type = Analysis::Type::explicit_dynamics;
+    for (const ParameterSetting &setting : scan_parameter_settings(text)) // the last one counts, as in deal.II
+      if (setting.path == std::vector<std::string>{"Analysis", "Type"})
+      {
+        try
+        {
+          type = analysis_type_names().value(setting.value);
+        }
+        catch (const std::invalid_argument &)
+        {
+          throw InputError("Invalid scene file <" + file + ">, line " + std::to_string(setting.line) +
+                           ": Analysis/Type = `" + setting.value + "` is none of " +
+                           analysis_type_names().pattern());
+        }
+      }
+    return type;
+  }
+
+  namespace
+  {
+    /// Every entry the text sets that its analysis does not declare though another one does, with
+    /// the analyses it belongs to; entries no snowpack scene knows are left to deal.II's message.
+    void collect_entries_of_other_analyses(const std::string &text, const Analysis::Type type, Problems &problems)
+    {
+      const auto entries_of = [](const std::optional<Analysis::Type> t) {
+        ParameterHandler prm;
+        declare_snowpack_scene(prm, t);
+        return declared_entries(prm);
+      };
+      const auto declared = entries_of(type), known = entries_of(std::nullopt);
+      for (const ParameterSetting &setting : scan_parameter_settings(text))
+        if (!declared.count(setting.path) && known.count(setting.path))
+        {
+          std::string owners;
+          for (const auto &[name, other] : analysis_type_names().rows())
+            if (entries_of(other).count(setting.path))
+              owners += (owners.empty() ? "`" : ", `") + std::string(name) + "`";
+          problems.add(setting.path_text() + " (line " + std::to_string(setting.line) + ")",
+                       "belongs to Analysis/Type = " + owners + ", not to this scene's `" +
+                         analysis_type_names().name(type) + "`");
+        }
+    }
+  } // namespace
 
   SnowpackScene read_snowpack_scene_text(const std::string &text, const std::string &file)
   {
+    {
+      Problems foreign("scene file <" + file + ">");
+      collect_entries_of_other_analyses(text, analysis_type_in(text, file), foreign);
+      foreign.throw_if_any();
+    }
+    // Parsed against every entry: those that the analysis does not declare (refused above when set)
+    // keep their documented defaults, which are the struct's.
     ParameterHandler prm;
-    declare_snowpack_scene(prm);
+    declare_snowpack_scene(prm, std::nullopt);
     try
     {
       std::istringstream input(text);
@@ -324,8 +417,8 @@ namespace anticrack::fem
     prm.enter_subsection("PST");
     pst.column_length = prm.get_double("Column length [m]");
     pst.column_width = prm.get_double("Column width [m]");
-    pst.cut_side = prm.get("Cut from") == "upslope" ? SawTest::CutSide::upslope : SawTest::CutSide::downslope;
-    pst.saw = prm.get("Saw") == "fixed" ? SawTest::Saw::fixed : SawTest::Saw::advancing;
+    pst.cut_side = cut_side_names().value(prm.get("Cut from"));
+    pst.saw = saw_names().value(prm.get("Saw"));
     pst.cut_length = prm.get_double("Cut length [m]");
     pst.saw_speed = prm.get_double("Saw speed [m/s]");
     prm.leave_subsection();
@@ -342,17 +435,13 @@ namespace anticrack::fem
 
     Analysis &analysis = scene.analysis;
     prm.enter_subsection("Analysis");
-    const std::string type = prm.get("Type");
-    analysis.type = type == "energy release rate" ? Analysis::Type::energy_release_rate
-                    : type == "quasi-static"      ? Analysis::Type::quasi_static
-                                                  : Analysis::Type::explicit_dynamics;
+    analysis.type = analysis_type_names().value(prm.get("Type"));
     analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
     analysis.crack_band = prm.get_bool("Crack band regularisation");
     prm.enter_subsection("Newton");
     analysis.newton_tolerance = prm.get_double("Tolerance");
     analysis.newton_max_iterations = prm.get_integer("Maximum iterations");
-    analysis.linear_solver = prm.get("Linear solver") == "direct" ? Analysis::LinearSolver::direct
-                                                                 : Analysis::LinearSolver::amg;
+    analysis.linear_solver = linear_solver_names().value(prm.get("Linear solver"));
     analysis.gravity_steps = prm.get_integer("Gravity steps");
     analysis.saw_step = prm.get_double("Saw step [m]");
     prm.leave_subsection();
@@ -362,6 +451,8 @@ namespace anticrack::fem
     analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
     analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
     analysis.mass_damping = prm.get_double("Mass damping [1/s]");
+    prm.leave_subsection();
+    prm.enter_subsection("Crack detection");
     analysis.failure_fraction = prm.get_double("Failure fraction");
     analysis.self_propagation_lead = prm.get_double("Self-propagation lead [m]");
     prm.leave_subsection();
@@ -380,6 +471,7 @@ namespace anticrack::fem
       prm.print_parameters(json_text, ParameterHandler::ShortJSON);
       auto json = nlohmann::json::parse(json_text.str());
       json.erase("Output");
+      json.erase("Scene");
       auto &explicit_entries = json["Analysis"]["Explicit"];
       for (auto entry = explicit_entries.begin(); entry != explicit_entries.end();)
         entry = entry.key().rfind("End time", 0) == 0 ? explicit_entries.erase(entry) : std::next(entry);

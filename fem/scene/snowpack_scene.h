@@ -1,6 +1,8 @@
 // Snowpack scenes: the layered snowpack, the propagation saw test (PST), the mesh, the analysis and
-// the output of a finite-element run, read from a deal.II parameter file (.prm). A scene is a
-// snowpack scene when it has a top-level `subsection Snowpack` (is_snowpack_scene()).
+// the output of a finite-element run, read from a deal.II parameter file (.prm) that says
+// `set Scene = snowpack` (app/scenes.cpp reads the kind). `Analysis/Type` is read in a first pass and
+// declares only its own entries: an entry of another analysis is refused, naming the analyses it
+// belongs to.
 //
 // Geometry (docs/physics.md §3). The model is built in slope-parallel coordinates: x runs along the slope,
 // downslope positive, from the upslope end of the column (x = 0) to its downslope end (x = L); the
@@ -15,7 +17,9 @@
 #pragma once
 
 #include "fem/material/material_file.h"
+#include "util/enum_table.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -129,6 +133,8 @@ namespace anticrack::fem
     double linear_bulk_viscosity = 0.06; ///< c_1 of the bulk viscosity pressure
     double quadratic_bulk_viscosity = 1.2; ///< c_2 of the bulk viscosity pressure
     double mass_damping = 0;             ///< α_M of the damping force −α_M M v [1/s]
+
+    // crack detection (both PSTs: subsection Analysis/Crack detection)
     /// A weak-layer element counts as failed when its softening has used this fraction of the way
     /// from p0 to the residual strength (the crack tip is the farthest failed element).
     double failure_fraction = 0.9;
@@ -157,11 +163,21 @@ namespace anticrack::fem
     OutputParameters output;
   };
 
-  /// True when `file` has a top-level `subsection Snowpack`.
-  bool is_snowpack_scene(const std::string &file);
+  /// The names of each selection of a snowpack scene (util/enum_table.h): one table per selection,
+  /// for the entry's pattern, the parse, messages and summary.json.
+  const EnumTable<Layer::Model> &layer_model_names();
+  const EnumTable<SawTest::CutSide> &cut_side_names();
+  const EnumTable<SawTest::Saw> &saw_names();
+  const EnumTable<Analysis::Type> &analysis_type_names();
+  const EnumTable<Analysis::LinearSolver> &linear_solver_names();
 
-  /// Declares every entry of a snowpack scene.
-  void declare_snowpack_scene(dealii::ParameterHandler &prm);
+  /// Declares the entries of a snowpack scene whose Analysis/Type is `type` (std::nullopt: the
+  /// entries of every type, as `anticrack params --every-variant` lists them).
+  void declare_snowpack_scene(dealii::ParameterHandler &prm, std::optional<Analysis::Type> type);
+
+  /// The Analysis/Type that the scene text sets (its default, explicit dynamics, when it sets none);
+  /// throws anticrack::InputError naming the file and line of a value that is no type.
+  Analysis::Type analysis_type_in(const std::string &text, const std::string &file);
 
   /// Reads and checks a snowpack scene; throws anticrack::InputError (file, entry, value, range).
   /// Material files are looked up relative to the scene's directory.

@@ -116,7 +116,8 @@ namespace anticrack::fem
         la.to_petsc(residual, la.rhs);
         la.solution = 0;
         SolverControl control(2000, 1e-10 * la.rhs.l2_norm());
-        if (analysis.linear_solver == Analysis::LinearSolver::direct)
+        if (const auto phase = model_.timer().scope("linear solves");
+            analysis.linear_solver == Analysis::LinearSolver::direct)
         {
           PETScWrappers::SparseDirectMUMPS direct(control, model_.communicator());
           direct.solve(la.matrix, la.solution, la.rhs);

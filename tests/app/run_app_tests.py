@@ -26,7 +26,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_edit import edit_scene  # noqa: E402  (tests/scene_edit.py)
+from scene_edit import as_analysis, edit_scene  # noqa: E402  (tests/scene_edit.py)
 
 ANTICRACK = SOURCE = None  # set by main()
 CASES = {}
@@ -50,6 +50,18 @@ class Failure(AssertionError):
 def check(condition, message):
     if not condition:
         raise Failure(message)
+
+
+def check_phases(summary, phases, label, within_wall_time=False):
+    """summary.json's timing.phases names `phases` (wall times >= 0, each entered at least once);
+    `within_wall_time`: the phases, which do not overlap, add up to no more than timing.wall_s."""
+    recorded = summary["timing"]["phases"]
+    check(set(phases) <= set(recorded), f"{label}: timing.phases {sorted(recorded)} lacks {sorted(set(phases) - set(recorded))}")
+    check(all(p["wall_s"] >= 0 and p["calls"] >= 1 for p in recorded.values()), f"{label}: timing.phases {recorded}")
+    if within_wall_time:
+        total = sum(p["wall_s"] for p in recorded.values())
+        check(total <= summary["timing"]["wall_s"] * (1 + 1e-9), f"{label}: the phases add up to {total} s, "
+              f"more than the run's {summary['timing']['wall_s']} s")
 
 
 # --------------------------------------------------------------------------------------- scenes
@@ -151,6 +163,7 @@ def run_outputs(work):
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     check(summary["status"] == "completed", f"summary.json status is {summary['status']!r}")
+    check_phases(summary, ["sample and model", "time stepping", "output"], "DEM run")
     with open(scene, "rb") as f:
         scene_sha256 = hashlib.sha256(f.read()).hexdigest()
     hashes = summary["scene"]
@@ -425,10 +438,12 @@ def check_and_params(work):
     cwd = os.path.join(work, "cwd")
     os.makedirs(cwd)
     scenes_before = files_of(os.path.join(SOURCE, "scenes"))
-    for scene in scenes:
-        for extra in ((), ("--threads", "2")):
-            stdout, _ = anticrack("check", scene, *extra, cwd=cwd)
-            check("The scene is valid." in stdout, f"`check {scene}` does not say the scene is valid:\n{stdout}")
+    # `check` builds each DEM sample (it reports particles, bonds and the time step), so --threads
+    # is exercised once, on the cheapest DEM scene, not on every one.
+    threaded = os.path.join(SOURCE, "scenes", "mixed_mode_clump.prm")
+    for scene, extra in [(scene, ()) for scene in scenes] + [(threaded, ("--threads", "2"))]:
+        stdout, _ = anticrack("check", scene, *extra, cwd=cwd)
+        check("The scene is valid." in stdout, f"`check {scene}` does not say the scene is valid:\n{stdout}")
     check(os.listdir(cwd) == [], f"`check` wrote into the working directory: {os.listdir(cwd)}")
     check(files_of(os.path.join(SOURCE, "scenes")) == scenes_before, "`check` changed scenes/")
 
@@ -618,6 +633,7 @@ def campaign_envelope(work):
     anticrack("run", scene, "-o", out)
     summary = json.load(open(os.path.join(out, "summary.json")))
     check(summary["status"] == "completed", f"campaign status {summary['status']}")
+    check_phases(summary, ["samples", "tests", "output"], "campaign", within_wall_time=True)
     check([t["status"] for t in summary["tests"]] == ["completed"] * 3, f"tests: {summary['tests']}")
     fp = failure_points(out)
     sigma, tau, p, q = fp["sigma"], fp["tau"], fp["p"], fp["q"]
@@ -1043,6 +1059,7 @@ def calibrate_synthetic(work):
     check(abs(float(material["Hardening factor xi"]) / xi - 1) < 1e-4, f"xi = {material['Hardening factor xi']}, expected {xi}")
     check(material["Campaign sha256"] == hashlib.sha256(open(campaign, "rb").read()).hexdigest(), "campaign hash")
     summary = json.load(open(os.path.join(out, "summary.json")))
+    check_phases(summary, ["read campaign", "fits and intervals", "output"], "calibration", within_wall_time=True)
     m0 = summary["calibration"]["microstructures"][0]
     check(m0["sigma_tau_plane"]["best_by_aicc"] == "cohesive_cam_clay",
           f"Cam-Clay data, best model {m0['sigma_tau_plane']['best_by_aicc']}")
@@ -1222,8 +1239,11 @@ def pst_scene(changes=None, insert=None, material_file=None):
         "end",
         "subsection Analysis",
         "  set Type = explicit dynamics",
+        "  subsection Crack detection",
+        "    set Self-propagation lead [m] = 0.1",
+        "  end",
         "  subsection Explicit",
-        "    set End time [s] = 0.25", "    set Self-propagation lead [m] = 0.1",
+        "    set End time [s] = 0.25",
         "  end",
         "end",
         "subsection Output",
@@ -1235,8 +1255,9 @@ def pst_scene(changes=None, insert=None, material_file=None):
 def err_scene():
     """The energy release rate of the tiny PST's snowpack with an elastic weak layer: a 1.5 m column,
     5 cm elements, cuts of 0 to 0.3 m (7 elastic solves, G at 6 midpoints)."""
-    return pst_scene({"Snowpack/Weak layer/Model": "elastic", "Analysis/Type": "energy release rate",
-                      "PST/Cut length [m]": "0.3", "PST/Column length [m]": "1.5", "Mesh/Element length [m]": "0.05"})
+    return as_analysis(pst_scene(), "energy release rate",
+                       {"Snowpack/Weak layer/Model": "elastic", "PST/Cut length [m]": "0.3",
+                        "PST/Column length [m]": "1.5", "Mesh/Element length [m]": "0.05"})
 
 
 def mpirun(*args, ranks=2, cwd=None):
@@ -1304,6 +1325,8 @@ def fem_outputs(work):
     stdout, _ = anticrack("run", scene, "-o", out)
     check("dynamic PST" in stdout, f"the console does not name the analysis:\n{stdout}")
     summary = fem_summary(out)
+    check_phases(summary, ["mesh and dofs", "assembly", "linear solves", "output"], "dynamic PST",
+                 within_wall_time=True)
     check(summary["command"].split()[1:] == ["run", scene, "-o", out], f"summary.json command {summary['command']!r}")
     with open(scene, "rb") as f:
         check(summary["scene"]["file_sha256"] == hashlib.sha256(f.read()).hexdigest(), "summary.json scene sha256")
@@ -1431,6 +1454,10 @@ def fem_bad_input(work):
         ("cut", pst_scene({"PST/Cut length [m]": "1.0"}), ["PST/Cut length [m]", "(is 1)"]),
         ("collapse", pst_scene({"Snowpack/Weak layer/Collapse height [m]": "0.0095"}),
          ["Snowpack/Weak layer/Collapse height [m]", "(is 0.0095)"]),
+        # An energy release rate that keeps the dynamic PST's saw, explicit and output entries.
+        ("other analysis", pst_scene({"Analysis/Type": "energy release rate", "Snowpack/Weak layer/Model": "elastic"}),
+         ["Analysis/Explicit/End time [s] (line", "belongs to Analysis/Type = `explicit dynamics`, not to this "
+          "scene's `energy release rate`", "PST/Saw (line", "Analysis/Crack detection/Self-propagation lead [m]"]),
         # The reader resolves the name relative to the scene (the message gives the whole path).
         ("material", pst_scene(material_file=os.path.basename(missing)), [missing])]
     for name, text, needles in cases:
@@ -1541,11 +1568,22 @@ def fem_params(work):
     for needle in ("subsection Snowpack", "subsection Weak layer", "set Collapse height [m]", "subsection PST",
                    "set Checkpoint interval", "allowed:"):
         check(needle in stdout, f"`params --snowpack` does not list {needle!r}")
+    # The default Analysis/Type (explicit dynamics) declares only its own entries; --every-variant
+    # lists those of every analysis, and a scene's own listing those of its analysis.
+    check("Fracture energy" not in stdout, "`params --snowpack` lists the energy release rate's Fracture energy")
+    every, _ = anticrack("params", "--scene", "snowpack", "--every-variant")
+    check("set Fracture energy [J/m^2]" in every and "set Saw speed [m/s]" in every,
+          "`params --scene snowpack --every-variant` misses entries of an analysis")
     scene = write(os.path.join(work, "listing.prm"), stdout)
     before = set(os.listdir(work))
     out, _ = anticrack("check", scene, cwd=work)
     check("The scene is valid" in out, f"the listing is not a valid scene:\n{out}")
     check(set(os.listdir(work)) == before, "check wrote files")
+    static = write(os.path.join(work, "static.prm"), as_analysis(stdout, "energy release rate",
+                                                                 {"Snowpack/Weak layer/Model": "elastic"}))
+    own, _ = anticrack("params", static)
+    check("set Fracture energy [J/m^2]" in own and "subsection Explicit" not in own and "set Saw " not in own,
+          f"`params` of an energy release rate scene lists another analysis' entries:\n{own}")
 
 
 def main():
