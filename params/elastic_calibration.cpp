@@ -135,17 +135,12 @@ namespace anticrack::params
     {
       const TestHistory h = campaign.history(*t);
       const auto peak = static_cast<std::size_t>(peak_index(h.sigma));
-      const std::size_t after_peak = h.sigma.size() - 1 - peak;
-      if (after_peak < 2)
+      if (static_cast<dem::Index>(h.sigma.size() - 1 - peak) < dem::min_post_peak_samples)
       {
         excluded.push_back(t->id + ": the history ends at the peak");
         continue;
       }
-      // The residual stress: the mean over the last half of the post-peak samples (Bobillier et al.'s (2020)
-      // brittle-crushing phase at the end of the test). A load-controlled test collapses within a few
-      // samples, so a fixed share of the whole history would reach back to the peak.
-      const double R = dem::softening_ratio(h.sigma, static_cast<dem::Index>(peak),
-                                            0.5 * static_cast<double>(after_peak) / static_cast<double>(h.sigma.size()));
+      const double R = dem::softening_ratio(h.sigma, static_cast<dem::Index>(peak)); // docs/physics.md §1.5
       const double residual = R * h.sigma[peak];
       std::size_t k = peak;
       while (k < h.sigma.size() && h.sigma[k] > residual + 1e-9 * h.sigma[peak]) // round-off of R times the peak

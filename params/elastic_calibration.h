@@ -24,10 +24,8 @@
 // plastic part.
 //
 // The run's own summary (dem/scene/failure_analysis.h: summary.json secant_modulus_70_percent_Pa,
-// softening_ratio, and campaign.h5's columns of the same names) applies the same formulas
-// (dem::secant_modulus, dem::softening_ratio) to other inputs: the strain u_z/H0 of the whole
-// specimen, the peak of |σ|, the residual over the last 10 % of all samples. Its numbers are
-// therefore not the calibration's: the secant modulus differs by the factor H0/h.
+// softening_ratio, and campaign.h5's columns of the same names) uses the same definitions
+// (dem::secant_modulus on the layer strain u/h, dem::softening_ratio) on its loading measure.
 #pragma once
 
 #include "params/campaign_data.h"

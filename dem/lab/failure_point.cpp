@@ -214,32 +214,28 @@ namespace anticrack::dem
     return sig_f / eps_f;
   }
 
-  double softening_ratio(const std::vector<double> &stress_measure, Index peak_index, double residual_fraction)
+  double softening_ratio(const std::vector<double> &stress_measure, Index peak_index)
   {
     const char *where = "softening_ratio";
     const std::size_t n = stress_measure.size();
     if (n == 0)
       fail(where, "the stress series is empty");
     check_index(peak_index, n, where, "peak_index");
-    if (!(residual_fraction > 0 && residual_fraction < 1))
-      fail(where, "residual_fraction = " + std::to_string(residual_fraction) + " must lie in (0, 1)");
     const double peak = stress_measure[peak_index];
     if (!(peak != 0) || !std::isfinite(peak))
       fail(where, "the stress at peak_index is zero or not finite");
-    const std::size_t tail = tail_length(residual_fraction, n);
-    const std::size_t first = n - tail;
-    if (static_cast<Index>(first) <= peak_index)
-    {
-      std::ostringstream msg;
-      msg << "the residual tail (last " << tail << " of " << n << " samples, from index " << first
-          << ") reaches back to the peak at index " << peak_index;
-      fail(where, msg.str());
-    }
+    const auto after_peak = static_cast<Index>(n) - 1 - peak_index;
+    if (after_peak < min_post_peak_samples)
+      fail(where, "only " + std::to_string(after_peak) + " sample(s) follow the peak at index " +
+                    std::to_string(peak_index) + " (at least " + std::to_string(min_post_peak_samples) +
+                    " are needed)");
+    const auto tail = static_cast<std::size_t>((after_peak + 1) / 2); // the last half, rounded up
     double sum = 0;
-    for (std::size_t i = first; i < n; ++i)
+    for (std::size_t i = n - tail; i < n; ++i)
       sum += stress_measure[i];
     return sum / static_cast<double>(tail) / peak;
   }
+
 
   double flow_angle(const TestHistory &h, Index failure_index, Index window)
   {
@@ -281,12 +277,9 @@ namespace anticrack::dem
       const Index peak = a.peak_loading->index;
       if (!h.strain.empty())
         a.secant_modulus = secant_modulus(h.strain, s, peak, options.secant_fraction);
-      const auto n = s.size();
-      const std::size_t tail = tail_length(options.residual_fraction, n);
-      const bool valid_fraction = options.residual_fraction > 0 && options.residual_fraction < 1;
-      // An invalid fraction throws; a tail that reaches back to the peak leaves the ratio empty.
-      if (!valid_fraction || (tail < n && static_cast<Index>(n - tail) > peak))
-        a.softening_ratio = softening_ratio(s, peak, options.residual_fraction);
+      // A history that ends (almost) at its peak has no softening ratio.
+      if (static_cast<Index>(s.size()) - 1 - peak >= min_post_peak_samples)
+        a.softening_ratio = softening_ratio(s, peak);
     }
     if (options.failure_at_loading_peak)
     {

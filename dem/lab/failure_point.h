@@ -96,13 +96,18 @@ namespace anticrack::dem
   double secant_modulus(const std::vector<double> &strain, const std::vector<double> &stress_measure,
                         Index peak_index, double fraction = 0.7);
 
-  /// Softening ratio R = sigma_residual / sigma_peak (Bobillier et al. 2020, "softening ratio"), with sigma_peak =
-  /// stress[peak_index] and sigma_residual the arithmetic mean of the last ceil(residual_fraction * n)
-  /// samples (the tail of the history, standing for the brittle-crushing phase; uniform sampling is
-  /// assumed). Throws std::invalid_argument if the tail reaches back to the peak, if the peak is zero
-  /// or if residual_fraction is not in (0, 1).
-  double softening_ratio(const std::vector<double> &stress_measure, Index peak_index,
-                         double residual_fraction = 0.1);
+  /// Softening ratio R = sigma_residual / sigma_peak (Bobillier et al. 2020, "softening ratio";
+  /// docs/physics.md §1.5), with sigma_peak = stress[peak_index] and sigma_residual the arithmetic
+  /// mean of the last half of the post-peak samples (ceil(m/2) of the m samples after the peak):
+  /// the end of the test stands for the brittle-crushing phase, and a load-controlled test
+  /// collapses within a few samples of its peak, so a share of the whole history could reach back
+  /// to the peak. The one definition of the project: the run summary, campaign.h5 and the
+  /// calibration (params/elastic_calibration.cpp) all use it. Throws std::invalid_argument if fewer
+  /// than min_post_peak_samples samples follow the peak or if the peak is zero.
+  double softening_ratio(const std::vector<double> &stress_measure, Index peak_index);
+
+  /// Samples after the peak that softening_ratio() needs.
+  inline constexpr Index min_post_peak_samples = 2;
 
   /// Plastic flow angle (Ritter et al. 2020, Eq. 18 / docs/physics.md §1.5) from the clump displacement increment
   /// du = u(failure_index + window) - u(failure_index) just after failure:
@@ -118,7 +123,6 @@ namespace anticrack::dem
     double zeta = 0.3;                      ///< kinetic-energy threshold
     Measure loading_measure = Measure::base_normal; ///< curve for secant modulus and softening ratio
     double secant_fraction = 0.7;
-    double residual_fraction = 0.1;
     Index flow_window = 10;                 ///< samples after failure for the flow angle
     /// Failure at the peak of the loading measure instead of the kinetic-energy window (tests whose
     /// actuator is displacement-controlled, e.g. simple shear with base_shear: its velocity is

@@ -85,7 +85,7 @@ namespace anticrack::dem
     }
   } // namespace
 
-  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double sample_height, const bool shear_controlled)
+  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness, const bool shear_controlled)
   {
     TestFailureAnalysis result;
     result.shear_controlled = shear_controlled;
@@ -117,7 +117,7 @@ namespace anticrack::dem
           h.clump_velocity.emplace_back(vx[i], vy[i], vz[i]);
         h.clump_displacement.emplace_back(ux[i], uy[i], uz[i]);
         // Compression positive like sigma; shear strain along +x like tau.
-        h.strain.push_back(shear_controlled ? ux[i] / sample_height : -uz[i] / sample_height);
+        h.strain.push_back(shear_controlled ? ux[i] / layer_thickness : -uz[i] / layer_thickness);
       }
       if (history.find("base_normal_stress"))
       {

@@ -49,14 +49,13 @@ namespace anticrack::dem
     double max_inertial_number = std::numeric_limits<double>::quiet_NaN();
   };
 
-  /// Analysis of a clump-driven test (needs the clump and Love-Weber columns); `sample_height` [m]
-  /// turns the clump's vertical displacement into the loading strain (the run passes the whole
-  /// specimen's H0; the calibration's moduli use the deformable layer h instead, see
-  /// params/elastic_calibration.h). If the history does not
-  /// allow the analysis (no clump, no run-away yet) `error` says why.
+  /// Analysis of a clump-driven test (needs the clump and Love-Weber columns); `layer_thickness` [m]
+  /// turns the clump's displacement into the loading strain u/h of the deformable layer between
+  /// the rigid base and clump, as the calibration does (params/elastic_calibration.h). If the
+  /// history does not allow the analysis (no clump, no run-away yet) `error` says why.
   /// `shear_controlled`: a displacement-controlled simple shear test; failure is the peak of the
-  /// base shear stress, the strain is the shear strain u_x / H.
-  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double sample_height,
+  /// base shear stress, the strain is the shear strain u_x / h.
+  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness,
                                            bool shear_controlled = false);
 
   /// Was the loading quasi-static as failure approached? The largest inertial number over the

@@ -645,7 +645,9 @@ namespace anticrack::dem
       if (model_->clump >= 0)
       {
         const auto phase = timer_.scope("failure analysis");
-        failure_analysis_ = analyse_test_history(history_, initial_sample_height_,
+        // Strains of the deformable layer between the rigid base and clump (u / h), as the
+        // calibration reads them (params/campaign_data.cpp): one secant modulus for both.
+        failure_analysis_ = analyse_test_history(history_, initial_layer_thickness_,
                                                  scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
       }
       summary_ = summary(status, message);

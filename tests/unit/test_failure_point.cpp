@@ -209,10 +209,25 @@ TEST(FailureSofteningRatio, StepDownCurve)
   std::vector<double> s(100);
   for (int i = 0; i < 100; ++i)
     s[i] = i <= 30 ? i / 3.0 : (i < 50 ? 7.0 : 4.0);
-  EXPECT_NEAR(softening_ratio(s, 30), 0.4, 1e-12);       // last 10 samples
-  EXPECT_NEAR(softening_ratio(s, 30, 0.5), 0.4, 1e-12);  // last 50
-  EXPECT_NEAR(softening_ratio(s, 30, 0.6), 0.45, 1e-12); // last 60: (10*7 + 50*4)/60 / 10
-  expect_invalid([&] { softening_ratio(s, 30, 0.75); }, "reaches back to the peak");
+  // 69 samples follow the peak; the last half of them, 35 (65..99), are all at the residual 4.
+  EXPECT_NEAR(softening_ratio(s, 30), 0.4, 1e-12);
+  // Peak at 40: 59 follow, the last 30 (70..99) at 4. Peak at 70: 29 follow, the last 15 at 4.
+  s[40] = 10;
+  EXPECT_NEAR(softening_ratio(s, 40), 0.4, 1e-12);
+  s[70] = 10;
+  EXPECT_NEAR(softening_ratio(s, 70), 0.4, 1e-12);
+  // Peak at 90 of a series 7 until 94, then 4: 9 follow, the last 5 (95..99) are 4; with 4 at 94
+  // too, the last 5 still are; with 7 at 95 the mean of the last 5 is (7 + 4 * 4) / 5.
+  std::vector<double> late(100, 7.0);
+  late[90] = 10;
+  for (int i = 95; i < 100; ++i)
+    late[i] = 4;
+  EXPECT_NEAR(softening_ratio(late, 90), 0.4, 1e-12);
+  late[95] = 7;
+  EXPECT_NEAR(softening_ratio(late, 90), (7 + 4 * 4) / 5.0 / 10, 1e-12);
+  // One sample after the peak is too few; two give the last one (4 over the "peak" 4 at 97).
+  expect_invalid([&] { softening_ratio(late, 98); }, "follow the peak");
+  EXPECT_NEAR(softening_ratio(late, 97), 1.0, 1e-12);
   expect_invalid([&] { softening_ratio({}, 0); }, "empty");
 }
 
