@@ -1,7 +1,7 @@
 #include "dem/campaign/campaign.h"
 
 #include "dem/campaign/campaign_file.h"
-#include "dem/lab/force_history.h"
+#include "dem/core/force_history.h"
 #include "dem/scene/model.h"
 #include "dem/scene/parameters.h"
 #include "util/console.h"

@@ -5,7 +5,7 @@
 // tensor I = R I_body R^T, so that clumps of any shape rotate correctly.
 #pragma once
 
-#include "dem/lab/force_history.h"
+#include "dem/core/force_history.h"
 #include "dem/core/particles.h"
 
 #include <vector>

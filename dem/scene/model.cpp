@@ -1,18 +1,18 @@
 #include "dem/scene/model.h"
 
-#include "util/input_error.h"
 #include "dem/contact/contact_law.h"
-#include "dem/lab/force_history.h"
-#include "dem/sample/bedding.h"
+#include "dem/core/force_history.h"
 #include "dem/io/state_hdf5.h"
-#include "dem/sample/lattice.h"
 #include "dem/lab/box_walls.h"
-#include "dem/lab/platen_compression_test.h"
-#include "dem/lab/triaxial_test.h"
-#include "dem/sample/specimen_carving.h"
 #include "dem/lab/load_control.h"
-#include "dem/lab/simple_shear.h"
 #include "dem/lab/measurements.h"
+#include "dem/lab/platen_compression_test.h"
+#include "dem/lab/simple_shear.h"
+#include "dem/lab/triaxial_test.h"
+#include "dem/sample/bedding.h"
+#include "dem/sample/lattice.h"
+#include "dem/sample/specimen_carving.h"
+#include "util/input_error.h"
 
 #include <chrono>
 #include <omp.h>
