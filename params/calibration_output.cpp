@@ -187,8 +187,9 @@ namespace anticrack::params
         {
           const TestHistory h = calibration.campaign.history(t);
           const hdf5::Handle tg = hdf5::create_group(curves.id, t.id);
-          hdf5::write_doubles(tg.id, "normal_strain", h.normal_strain, "-", "-u_z / H0");
-          hdf5::write_doubles(tg.id, "shear_strain", h.shear_strain, "-", "u_x / H0");
+          // The campaign's strains turned into those of the layer (params/campaign_data.cpp).
+          hdf5::write_doubles(tg.id, "normal_strain", h.normal_strain, "-", "-u_z / h of the deformable layer");
+          hdf5::write_doubles(tg.id, "shear_strain", h.shear_strain, "-", "u_x / h of the deformable layer");
           hdf5::write_doubles(tg.id, "sigma", h.sigma, "Pa", "base normal stress, compression positive");
           hdf5::write_doubles(tg.id, "tau", h.tau, "Pa", "base shear stress");
           hdf5::write_number_attribute(tg.id, "loading_angle_deg", t.loading_angle_deg);

@@ -1,6 +1,7 @@
 #include "params/campaign_data.h"
 
 #include "dem/campaign/campaign_file.h"
+#include "dem/scene/history_columns.h"
 #include "params/calibration_error.h"
 #include "util/hdf5_file.h"
 #include "util/sha256.h"
@@ -135,17 +136,17 @@ namespace anticrack::params
       const std::string path = "tests/" + id + "/history";
       const hdf5::Handle g = hdf5::open_group(f.id, path);
       TestHistory h;
-      h.normal_strain = hdf5::read_doubles(g.id, "normal_strain");
-      h.shear_strain = hdf5::read_doubles(g.id, "shear_strain");
+      h.normal_strain = hdf5::read_doubles(g.id, dem::history_column::normal_strain);
+      h.shear_strain = hdf5::read_doubles(g.id, dem::history_column::shear_strain);
       const double layer_strain_per_history_strain = test.specimen_height / test.layer_thickness;
       for (auto *strain : {&h.normal_strain, &h.shear_strain})
         for (double &value : *strain)
           value *= layer_strain_per_history_strain;
-      h.sigma = hdf5::read_doubles(g.id, "base_normal_stress");
-      h.tau = hdf5::read_doubles(g.id, "base_shear_stress");
-      h.love_xx = hdf5::read_doubles(g.id, "love_stress_xx");
-      h.love_yy = hdf5::read_doubles(g.id, "love_stress_yy");
-      h.love_zz = hdf5::read_doubles(g.id, "love_stress_zz");
+      h.sigma = hdf5::read_doubles(g.id, dem::history_column::base_normal_stress);
+      h.tau = hdf5::read_doubles(g.id, dem::history_column::base_shear_stress);
+      h.love_xx = hdf5::read_doubles(g.id, dem::history_column::love_stress("xx"));
+      h.love_yy = hdf5::read_doubles(g.id, dem::history_column::love_stress("yy"));
+      h.love_zz = hdf5::read_doubles(g.id, dem::history_column::love_stress("zz"));
       const std::size_t n = h.sigma.size();
       for (const auto *c : {&h.normal_strain, &h.shear_strain, &h.tau, &h.love_xx, &h.love_yy, &h.love_zz})
         if (c->size() != n)

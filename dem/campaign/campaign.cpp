@@ -2,6 +2,7 @@
 
 #include "dem/campaign/campaign_file.h"
 #include "dem/core/force_history.h"
+#include "dem/scene/history_columns.h"
 #include "dem/scene/model.h"
 #include "dem/scene/parameters.h"
 #include "util/console.h"
@@ -273,8 +274,9 @@ namespace anticrack::dem
       {
         const fs::path history = directory / "history.h5";
         analysis->max_inertial_number = max_inertial_number_before_failure(
-          read_history_column(history, "step"), read_history_column(history, "von_mises_stress"),
-          read_history_column(history, "inertial_number"), analysis->failure.step, analysis->failure.q);
+          read_history_column(history, history_column::step),
+          read_history_column(history, history_column::von_mises_stress),
+          read_history_column(history, history_column::inertial_number), analysis->failure.step, analysis->failure.q);
       }
       return outcome_of(t, s, analysis);
     }

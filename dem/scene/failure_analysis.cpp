@@ -1,6 +1,7 @@
 #include "dem/scene/failure_analysis.h"
 
 #include "dem/lab/failure_point.h"
+#include "dem/scene/history_columns.h"
 
 #include <algorithm>
 #include <cmath>
@@ -92,12 +93,12 @@ namespace anticrack::dem
     try
     {
       dem::TestHistory h;
-      h.time = column(history, "time");
+      h.time = column(history, history_column::time);
       const std::size_t n = h.time.size();
       const char *components[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
       std::vector<const std::vector<double> *> stress;
       for (const char *c : components)
-        stress.push_back(&column(history, std::string("love_stress_") + c));
+        stress.push_back(&column(history, history_column::love_stress(c)));
       h.stress.resize(n);
       for (std::size_t i = 0; i < n; ++i)
       {
@@ -107,10 +108,11 @@ namespace anticrack::dem
         s(0, 2) = s(2, 0) = (*stress[4])[i];
         s(1, 2) = s(2, 1) = (*stress[5])[i];
       }
-      const auto &vx = column(history, "clump_velocity_x"), &vy = column(history, "clump_velocity_y"),
-                 &vz = column(history, "clump_velocity_z");
-      const auto &ux = column(history, "clump_displacement_x"), &uy = column(history, "clump_displacement_y"),
-                 &uz = column(history, "clump_displacement_z");
+      using history_column::clump_displacement, history_column::clump_velocity;
+      const auto &vx = column(history, clump_velocity('x')), &vy = column(history, clump_velocity('y')),
+                 &vz = column(history, clump_velocity('z'));
+      const auto &ux = column(history, clump_displacement('x')), &uy = column(history, clump_displacement('y')),
+                 &uz = column(history, clump_displacement('z'));
       for (std::size_t i = 0; i < n; ++i)
       {
         if (!shear_controlled)
@@ -119,10 +121,10 @@ namespace anticrack::dem
         // Compression positive like sigma; shear strain along +x like tau.
         h.strain.push_back(shear_controlled ? ux[i] / layer_thickness : -uz[i] / layer_thickness);
       }
-      if (history.find("base_normal_stress"))
+      if (history.find(history_column::base_normal_stress))
       {
-        h.base_normal_stress = column(history, "base_normal_stress");
-        h.base_shear_stress = column(history, "base_shear_stress");
+        h.base_normal_stress = column(history, history_column::base_normal_stress);
+        h.base_shear_stress = column(history, history_column::base_shear_stress);
       }
       dem::FailureAnalysisOptions options;
       if (shear_controlled)
@@ -131,7 +133,7 @@ namespace anticrack::dem
         options.failure_at_loading_peak = true;
       }
       const dem::FailureAnalysis a = dem::analyse_failure(h, options);
-      const auto &steps = column(history, "step");
+      const auto &steps = column(history, history_column::step);
       result.failure = recorded(a.failure, steps);
       result.peak_q = recorded(a.peak_q, steps);
       if (a.peak_loading)

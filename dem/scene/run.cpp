@@ -5,6 +5,7 @@
 #include "dem/lab/lab_protocol.h"
 #include "dem/lab/measurements.h"
 #include "dem/scene/failure_analysis.h"
+#include "dem/scene/history_columns.h"
 #include "dem/scene/model.h"
 #include "util/input_error.h"
 #include "util/phase_timer.h"
@@ -202,8 +203,8 @@ namespace anticrack::dem
   void DemRun::declare_history_columns()
   {
     TimeSeries &h = history_;
-    h.add_column("time", "s", "simulated time t");
-    h.add_column("step", "-", "time step number", true);
+    h.add_column(history_column::time, "s", "simulated time t");
+    h.add_column(history_column::step, "-", "time step number", true);
     h.add_column("dt", "s", "time step dt in use");
     h.add_column("kinetic_energy", "J", "E_kin = sum 1/2 m v(n-1/2).v(n+1/2) + rotation, spheres and clumps");
     h.add_column("elastic_energy_contacts", "J", "elastic energy stored in contacts (with walls)");
@@ -231,37 +232,37 @@ namespace anticrack::dem
     }
     if (!model_->fixed_particles.empty())
     {
-      h.add_column("base_normal_stress", "Pa",
+      h.add_column(history_column::base_normal_stress, "Pa",
                    "compressive stress on the fixed base, -sum f_z / A with A the x-y area of the domain");
-      h.add_column("base_shear_stress", "Pa", "shear stress on the fixed base, sum f_x / A");
+      h.add_column(history_column::base_shear_stress, "Pa", "shear stress on the fixed base, sum f_x / A");
     }
     if (model_->clump >= 0)
     {
-      for (const char *a : {"x", "y", "z"})
-        h.add_column(std::string("clump_displacement_") + a, "m",
+      for (const char a : {'x', 'y', 'z'})
+        h.add_column(history_column::clump_displacement(a), "m",
                      "displacement of the clump's centre of mass since the start (not wrapped)");
-      for (const char *a : {"x", "y", "z"})
-        h.add_column(std::string("clump_velocity_") + a, "m/s", "clump velocity (half step)");
+      for (const char a : {'x', 'y', 'z'})
+        h.add_column(history_column::clump_velocity(a), "m/s", "clump velocity (half step)");
       for (const char *a : {"x", "y", "z"})
         h.add_column(std::string("clump_applied_force_") + a, "N", "applied force F(t) on the clump");
       h.add_column("clump_normal_stress", "Pa", "-F_z(t) / A with A the x-y area of the domain");
       h.add_column("clump_shear_stress", "Pa", "F_x(t) / A with A the x-y area of the domain");
       h.add_column("clump_kinetic_energy", "J", "1/2 m |v|^2 + 1/2 w.I w of the clump (Ritter et al.'s (2020) failure window)");
-      h.add_column("normal_strain", "-", "-u_z / H0: clump displacement over the initial sample height, compression positive");
-      h.add_column("shear_strain", "-", "u_x / H0: clump displacement along x over the initial sample height");
+      h.add_column(history_column::normal_strain, "-", "-u_z / H0: clump displacement over the initial sample height, compression positive");
+      h.add_column(history_column::shear_strain, "-", "u_x / H0: clump displacement along x over the initial sample height");
     }
     // Micro-to-macro measures (docs/physics.md §1.5), over the sample volume (dem/lab/measurements.h).
     for (const char *c : {"xx", "yy", "zz", "xy", "xz", "yz"})
-      h.add_column(std::string("love_stress_") + c, "Pa",
+      h.add_column(history_column::love_stress(c), "Pa",
                    "Love-Weber stress sigma_" + std::string(c) + " (tension positive) over the sample volume");
     h.add_column("mean_pressure", "Pa", "p = -tr(sigma)/3 of the Love-Weber stress (compression positive)");
-    h.add_column("von_mises_stress", "Pa", "q = sqrt(3/2 s:s) of the Love-Weber stress");
+    h.add_column(history_column::von_mises_stress, "Pa", "q = sqrt(3/2 s:s) of the Love-Weber stress");
     h.add_column("sample_volume", "m^3", "box length along periodic axes times the spheres' extent along open ones");
     h.add_column("coordination_number", "-", "2 N_c / N over touching contacts and intact bonds (a pair once)");
     for (const char *c : {"xx", "yy", "zz"})
       h.add_column(std::string("fabric_") + c, "-", "fabric tensor C_" + std::string(c) + " = <n n> over contacts and bonds");
     h.add_column("broken_bond_fraction", "-", "broken bonds / all bonds");
-    h.add_column("inertial_number", "-",
+    h.add_column(history_column::inertial_number, "-",
                  "I = strain rate x mean diameter x sqrt(rho / s), strain rate = actuator speed / sample height, "
                  "s = sqrt(sigma:sigma / 3) the Love-Weber stress magnitude (= |p| under isotropic stress)");
   }
@@ -532,7 +533,7 @@ namespace anticrack::dem
       history_.truncate_after_step(static_cast<double>(system_.step_count));
       if (history_.rows() > 0)
       {
-        const auto *step = history_.find("step");
+        const auto *step = history_.find(history_column::step);
         last_history_step_ = static_cast<Index>(step->values.back());
       }
     }
@@ -740,8 +741,8 @@ namespace anticrack::dem
       const std::size_t row = it - c->values.begin();
       p = Json::object();
       p["value_Pa"] = *it;
-      p["time_s"] = history_.find("time")->values[row];
-      p["step"] = static_cast<Index>(history_.find("step")->values[row]);
+      p["time_s"] = history_.find(history_column::time)->values[row];
+      p["step"] = static_cast<Index>(history_.find(history_column::step)->values[row]);
       return p;
     };
 
@@ -765,12 +766,12 @@ namespace anticrack::dem
     {
       Json base;
       base["area_m2"] = model_->base_area;
-      const auto *normal = history_.find("base_normal_stress");
-      const auto *shear = history_.find("base_shear_stress");
+      const auto *normal = history_.find(history_column::base_normal_stress);
+      const auto *shear = history_.find(history_column::base_shear_stress);
       base["normal_stress_Pa"] = normal->values.empty() ? Json(nullptr) : Json(normal->values.back());
       base["shear_stress_Pa"] = shear->values.empty() ? Json(nullptr) : Json(shear->values.back());
-      base["peak_normal_stress"] = peak("base_normal_stress");
-      base["peak_shear_stress"] = peak("base_shear_stress");
+      base["peak_normal_stress"] = peak(history_column::base_normal_stress);
+      base["peak_shear_stress"] = peak(history_column::base_shear_stress);
       d["base"] = base;
     }
     if (model_->clump >= 0)
