@@ -123,7 +123,7 @@ namespace anticrack::fem
           }
           catch (const ReturnMappingError &e)
           {
-            throw NumericalFailure("dynamic PST at t = " + format(dynamics.time(), 6) + " s (step " +
+            throw NumericalFailure("dynamic PST at t = " + format_number(dynamics.time(), 6) + " s (step " +
                                    std::to_string(dynamics.steps()) + "): " + e.what());
           }
           if (dynamics.time() >= next_series_)
@@ -135,13 +135,13 @@ namespace anticrack::fem
             {
               critical_cut_ = cut_;
               critical_time_ = dynamics.time();
-              log_.line("[fem] t = ", format(dynamics.time()), " s: the crack runs by itself (tip ",
-                        format(fronts_.crack_tip), " m, cut ", format(cut_), " m)");
+              log_.line("[fem] t = ", format_number(dynamics.time(), 4), " s: the crack runs by itself (tip ",
+                        format_number(fronts_.crack_tip, 4), " m, cut ", format_number(cut_, 4), " m)");
             }
             if (fronts_.crack_tip >= scene_.pst.column_length - 0.5 * dx)
             {
               end_time_ = dynamics.time();
-              log_.line("[fem] t = ", format(dynamics.time()), " s: the crack reached the end of the column");
+              log_.line("[fem] t = ", format_number(dynamics.time(), 4), " s: the crack reached the end of the column");
             }
           }
           if (next_field_ > 0 && dynamics.time() >= next_field_)
@@ -150,9 +150,9 @@ namespace anticrack::fem
             next_field_ += scene_.output.field_interval;
           }
           if (scene_.output.progress_interval > 0 && dynamics.steps() % scene_.output.progress_interval == 0)
-            log_.line("[fem] step ", dynamics.steps(), ", t = ", format(dynamics.time()), " s, dt = ",
-                      format(dynamics.time_step(), 3), " s, cut ", format(cut_), " m, crack tip ",
-                      format(fronts_.crack_tip), " m, E_kin = ", format(dynamics.energies().kinetic, 3), " J");
+            log_.line("[fem] step ", dynamics.steps(), ", t = ", format_number(dynamics.time(), 4), " s, dt = ",
+                      format_number(dynamics.time_step(), 3), " s, cut ", format_number(cut_, 4), " m, crack tip ",
+                      format_number(fronts_.crack_tip, 4), " m, E_kin = ", format_number(dynamics.energies().kinetic, 3), " J");
           if (scene_.output.checkpoint_interval > 0 && dynamics.steps() % scene_.output.checkpoint_interval == 0)
             write_checkpoint();
         }
@@ -173,8 +173,8 @@ namespace anticrack::fem
         const ExplicitDynamics<dim> &dynamics = *dynamics_;
         if (!dynamics.finite())
           throw NumericalFailure("dynamic PST: non-finite displacement or velocity at t = " +
-                                 format(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
-                                 ", dt = " + format(dynamics.time_step(), 3) + " s)");
+                                 format_number(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
+                                 ", dt = " + format_number(dynamics.time_step(), 3) + " s)");
         const Energies e = per_width<dim>(dynamics.energies(), scene_);
         series_.append({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
                         e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});
@@ -228,7 +228,7 @@ namespace anticrack::fem
               std::filesystem::remove(entry.path());
         }
         write_series();
-        log_.line("[fem] checkpoint at step ", step, ", t = ", format(dynamics_->time()), " s");
+        log_.line("[fem] checkpoint at step ", step, ", t = ", format_number(dynamics_->time(), 4), " s");
       }
 
       void save_run_state(std::ostream &out) const
@@ -284,7 +284,7 @@ namespace anticrack::fem
         {
           throw InputError("cannot resume from " + json_file + ": " + e.what());
         }
-        log_.line("[fem] resumed at step ", step, ", t = ", format(dynamics_->time()), " s");
+        log_.line("[fem] resumed at step ", step, ", t = ", format_number(dynamics_->time(), 4), " s");
       }
 
       Json results()

@@ -35,7 +35,7 @@ namespace anticrack::fem
       u = 0;
       const NewtonResult result = solver.solve(u, 1.0);
       if (!result.converged)
-        throw NumericalFailure("energy release rate: the elastic solve at cut length " + format(k * dx) +
+        throw NumericalFailure("energy release rate: the elastic solve at cut length " + format_number(k * dx, 4) +
                                " m failed: " + result.failure);
       cuts.push_back(k * dx);
       potentials.push_back(-0.5 * (model.gravity_force() * u) / width);
@@ -77,7 +77,7 @@ namespace anticrack::fem
     results["fracture_energy_J_per_m2"] = G_c;
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
     if (!critical)
-      results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format(cuts.back()) + " m";
+      results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format_number(cuts.back(), 4) + " m";
     Json g;
     g["cut_length_m"] = midpoints;
     g["fe_J_per_m2"] = release_rates;
@@ -88,9 +88,9 @@ namespace anticrack::fem
     }
     results["energy_release_rate"] = g;
     results["newton_iterations"] = solver.total_iterations();
-    log.line("[fem] G(", format(midpoints.front()), " m) = ", format(release_rates.front()), " J/m^2 ... G(",
-             format(midpoints.back()), " m) = ", format(release_rates.back()), " J/m^2; a(G_c = ", G_c,
-             ") = ", critical ? format(*critical) + " m" : std::string("beyond the longest cut"));
+    log.line("[fem] G(", format_number(midpoints.front(), 4), " m) = ", format_number(release_rates.front(), 4), " J/m^2 ... G(",
+             format_number(midpoints.back(), 4), " m) = ", format_number(release_rates.back(), 4), " J/m^2; a(G_c = ", G_c,
+             ") = ", critical ? format_number(*critical, 4) + " m" : std::string("beyond the longest cut"));
     return results;
   }
 

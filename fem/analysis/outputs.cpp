@@ -22,13 +22,6 @@ namespace anticrack::fem
     return ConditionalStream(out, Utilities::MPI::this_mpi_process(communicator) == 0);
   }
 
-  std::string format(double value, int precision)
-  {
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    return out.str();
-  }
-
   TimeSeries series_of(const std::vector<SeriesColumn> &columns)
   {
     TimeSeries series;
@@ -145,11 +138,11 @@ namespace anticrack::fem
   {
     const auto start = std::chrono::steady_clock::now();
     solver.apply_gravity(u, model.scene().analysis.gravity_steps, [&](double load, const NewtonResult &r) {
-      log.line("[fem] gravity ", format(100 * load, 3), " %: ", r.iterations, " Newton iterations, |r|/|f| = ",
-               format(r.relative_residual, 2));
+      log.line("[fem] gravity ", format_number(100 * load, 3), " %: ", r.iterations, " Newton iterations, |r|/|f| = ",
+               format_number(r.relative_residual, 2));
     });
     log.line("[fem] gravity equilibrium in ",
-             format(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3), " s");
+             format_number(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3), " s");
   }
 
   double self_propagation_lead(const SnowpackScene &scene)

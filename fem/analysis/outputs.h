@@ -8,6 +8,7 @@
 #include "fem/closed_forms.h"
 #include "fem/model/snowpack_model.h"
 #include "util/console.h"
+#include "util/format.h"
 #include "util/time_series.h"
 
 
@@ -24,9 +25,6 @@ namespace anticrack::fem
 
   /// Progress lines on rank 0 of `communicator` (util/console.h); out == nullptr: quiet.
   ConditionalStream root_log(std::ostream *out, MPI_Comm communicator);
-
-  /// `value` with `precision` significant digits (log lines and messages).
-  std::string format(double value, int precision = 4);
 
   /// A column of doubles of a time series.
   struct SeriesColumn

@@ -67,12 +67,12 @@ namespace anticrack::fem
       const CrackFronts fronts = model.crack_fronts(scene.analysis.failure_fraction);
       const Energies e = per_width<dim>(model.energies(), scene);
       series.append({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)result.iterations});
-      log.line("[fem] cut ", format(cut), " m: crack tip ", format(fronts.crack_tip), " m, ", result.iterations,
+      log.line("[fem] cut ", format_number(cut, 4), " m: crack tip ", format_number(fronts.crack_tip, 4), " m, ", result.iterations,
                " Newton iterations");
       if (fronts.crack_tip - cut >= lead)
       {
         critical = cut;
-        reason = "the crack tip leads the saw by " + format(fronts.crack_tip - cut) + " m";
+        reason = "the crack tip leads the saw by " + format_number(fronts.crack_tip - cut, 4) + " m";
         break;
       }
       step = std::min(2 * step, nominal_step);
@@ -87,7 +87,7 @@ namespace anticrack::fem
     results["mesh"] = mesh_json(model, comm);
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
     results["critical_cut_length_reason"] =
-      critical ? reason : "equilibrium holds up to the longest cut " + format(scene.pst.cut_length) + " m";
+      critical ? reason : "equilibrium holds up to the longest cut " + format_number(scene.pst.cut_length, 4) + " m";
     Energies energies = model.energies();
     energies.external_work = external_work;
     energies = per_width<dim>(energies, scene);

@@ -1,5 +1,6 @@
 #include "fem/material/material_file.h"
 
+#include "util/format.h"
 #include "util/input_error.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -255,12 +256,7 @@ namespace anticrack::fem
     return file;
   }
 
-  std::string material_file_number(double value)
-  {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", value);
-    return text;
-  }
+  std::string material_file_number(double value) { return format_number(value, 6); }
 
   std::string material_file_text(const MaterialFile &file)
   {

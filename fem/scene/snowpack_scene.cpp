@@ -2,6 +2,7 @@
 
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
+#include "util/format.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
 #include "util/problems.h"
@@ -84,28 +85,22 @@ namespace anticrack::fem
       return layer;
     }
 
-    std::string number(double value)
-    {
-      std::ostringstream out;
-      out << value;
-      return out.str();
-    }
 
     void check_layer(const Layer &layer, const std::string &section, bool thickness_may_be_zero,
                      double band_height, Problems &problems)
     {
       if (!thickness_may_be_zero && !(layer.thickness > 0))
-        problems.add(section + "/Thickness [m]", "must be > 0 (is " + number(layer.thickness) + ")");
+        problems.add(section + "/Thickness [m]", "must be > 0 (is " + format_number(layer.thickness) + ")");
       if (!(layer.material.youngs_modulus > 0))
-        problems.add(section + "/Young's modulus [Pa]", "must be > 0 (is " + number(layer.material.youngs_modulus) + ")");
+        problems.add(section + "/Young's modulus [Pa]", "must be > 0 (is " + format_number(layer.material.youngs_modulus) + ")");
       if (layer.collapse_height > 0 && !(layer.densification_modulus > 0))
         problems.add(section + "/Densification modulus [Pa]",
-                     "must be > 0 when a collapse height is given (is " + number(layer.densification_modulus) + ")");
+                     "must be > 0 when a collapse height is given (is " + format_number(layer.densification_modulus) + ")");
       if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
         problems.add(section + "/Collapse height [m]",
                      "the crack band (one element row) must be able to close by the collapse height: it must be "
-                     "< 0.9 element heights, " + number(0.9 * band_height) + " m (is " +
-                       number(layer.collapse_height) + "); use fewer elements through the layer");
+                     "< 0.9 element heights, " + format_number(0.9 * band_height) + " m (is " +
+                       format_number(layer.collapse_height) + "); use fewer elements through the layer");
       if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height < 0.9 * band_height)
       {
         try
@@ -494,19 +489,19 @@ namespace anticrack::fem
     if (s.substratum.thickness > 0)
       check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, layer_substratum), problems);
     if (!(pst.column_length > 0))
-      problems.add("PST/Column length [m]", "must be > 0 (is " + number(pst.column_length) + ")");
+      problems.add("PST/Column length [m]", "must be > 0 (is " + format_number(pst.column_length) + ")");
     if (mesh.dimension == 3 && !(pst.column_width > 0))
-      problems.add("PST/Column width [m]", "must be > 0 in 3D (is " + number(pst.column_width) + ")");
+      problems.add("PST/Column width [m]", "must be > 0 in 3D (is " + format_number(pst.column_width) + ")");
     if (!(pst.cut_length < pst.column_length))
-      problems.add("PST/Cut length [m]", "must be shorter than the column, " + number(pst.column_length) +
-                                           " m (is " + number(pst.cut_length) + ")");
+      problems.add("PST/Cut length [m]", "must be shorter than the column, " + format_number(pst.column_length) +
+                                           " m (is " + format_number(pst.cut_length) + ")");
     if (pst.saw == SawTest::Saw::advancing && analysis.type == Analysis::Type::explicit_dynamics &&
         !(pst.saw_speed > 0))
-      problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + number(pst.saw_speed) + ")");
+      problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + format_number(pst.saw_speed) + ")");
     if (!(mesh.element_length > 0) || !(mesh.element_length <= pst.column_length / 4))
       problems.add("Mesh/Element length [m]", "must lie in (0, column length / 4 = " +
-                                                number(pst.column_length / 4) + "] (is " +
-                                                number(mesh.element_length) + ")");
+                                                format_number(pst.column_length / 4) + "] (is " +
+                                                format_number(mesh.element_length) + ")");
     if (!(mesh.slab_element_height > 0))
       problems.add("Mesh/Slab element height [m]", "must be > 0");
     if (!(mesh.substratum_element_height > 0))
@@ -523,8 +518,8 @@ namespace anticrack::fem
       elastic(s.substratum, "Snowpack/Substratum");
       if (!(pst.cut_length >= 2 * mesh.element_length))
         problems.add("PST/Cut length [m]", "must cover at least two element lengths, " +
-                                             number(2 * mesh.element_length) + " m, for G(a) (is " +
-                                             number(pst.cut_length) + ")");
+                                             format_number(2 * mesh.element_length) + " m, for G(a) (is " +
+                                             format_number(pst.cut_length) + ")");
     }
     else if (s.weak_layer.model != Layer::Model::cohesive_cam_clay)
       problems.add("Snowpack/Weak layer/Model", "must be `cohesive cam-clay` for a quasi-static or dynamic PST (only "
