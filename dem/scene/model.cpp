@@ -2,29 +2,17 @@
 
 #include "dem/contact/contact_law.h"
 #include "dem/core/force_history.h"
-#include "dem/io/state_hdf5.h"
-#include "dem/lab/box_walls.h"
-#include "dem/lab/load_control.h"
-#include "dem/lab/measurements.h"
-#include "dem/lab/platen_compression_test.h"
-#include "dem/lab/simple_shear.h"
-#include "dem/lab/triaxial_test.h"
 #include "dem/sample/bedding.h"
-#include "dem/sample/lattice.h"
-#include "dem/sample/specimen_carving.h"
 #include "util/input_error.h"
 
 #include <chrono>
 #include <omp.h>
 
 #include <algorithm>
-#include <cmath>
 #include <iomanip>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <ostream>
-#include <random>
 #include <sstream>
 
 namespace anticrack::dem
@@ -42,161 +30,6 @@ namespace anticrack::dem
   namespace
   {
     using parameters::Walls;
-
-    /// Initial velocity amplitude for the generated samples (the generators leave them at rest).
-    void add_random_velocities(const parameters::Dem &d, dem::DemSystem &system, const Index first)
-    {
-      if (!(d.sample.velocity_amplitude > 0))
-        return;
-      std::mt19937_64 rng(d.seed ^ 0x9e3779b97f4a7c15ULL);
-      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-      for (Index p = first; p < system.particles.size(); ++p)
-        for (int a = 0; a < 3; ++a)
-          system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
-    }
-
-    /// The generators sample in a periodic box; the specimen is periodic only along the axes the
-    /// scene lists. Opening an axis before the bonding pass means that no bond crosses its faces
-    /// (the spheres keep their wrapped positions inside the box).
-    void open_axes_the_scene_does_not_wrap(const parameters::Dem &d, dem::DemSystem &system)
-    {
-      for (int a = 0; a < 3; ++a)
-        system.domain.periodic[a] = system.domain.periodic[a] && d.domain.periodic[a];
-    }
-
-    void add_sample(const SceneParameters &scene, DemModel &model)
-    {
-      dem::DemSystem &system = model.system;
-      const auto &d = scene.dem;
-      if (d.sample.type == parameters::Sample::Type::sticky_hard_spheres)
-      {
-        // The sampler replaces the domain by its periodic cube.
-        dem::shs::SamplerSpec spec;
-        spec.particle_count = d.sample.particle_count;
-        spec.volume_fraction = d.sample.volume_fraction;
-        spec.stickiness = d.sample.stickiness;
-        spec.target_coordination = d.sample.target_coordination;
-        spec.radius = d.sample.box_edge > 0 ?
-                        std::cbrt(d.sample.volume_fraction * std::pow(d.sample.box_edge, 3) /
-                                  (d.sample.particle_count * dem::sphere_volume(1.0))) :
-                        d.sample.radius;
-        spec.well_width = d.sample.well_width;
-        spec.sweeps = d.sample.sweeps;
-        spec.cluster_move_fraction = d.sample.cluster_move_fraction;
-        spec.material = 0;
-        spec.seed = d.seed;
-        model.sticky_hard_spheres = dem::shs::sample_sticky_hard_spheres(system, spec);
-        open_axes_the_scene_does_not_wrap(d, system);
-        add_random_velocities(d, system, 0);
-        return;
-      }
-      if (d.sample.type == parameters::Sample::Type::ballistic_deposition)
-      {
-        dem::BallisticDepositionSpec spec;
-        spec.rule = d.sample.rolling ? dem::DepositionRule::rolling : dem::DepositionRule::sticky;
-        spec.box_lower = d.domain.lower;
-        spec.box_upper = d.domain.upper;
-        spec.particle_count = d.sample.particle_count;
-        spec.radius.mean = d.sample.radius;
-        spec.radius.half_width = d.sample.radius_half_width;
-        spec.material = 0;
-        spec.seed = d.seed;
-        const Index first = system.particles.size();
-        model.ballistic_deposition = dem::add_ballistic_deposit(system, spec);
-        if (d.sample.actuator_count > 0)
-        {
-          // Bobillier et al.'s (2020) actuator: a cohesionless (rolling) deposit of larger spheres on the layer.
-          dem::BallisticDepositionSpec actuator = spec;
-          actuator.rule = dem::DepositionRule::rolling;
-          actuator.particle_count = d.sample.actuator_count;
-          actuator.radius.mean = d.sample.actuator_radius;
-          actuator.radius.half_width = 0;
-          actuator.seed = d.seed + 0x5eed;
-          model.actuator_layer_first = system.particles.size();
-          dem::add_ballistic_deposit(system, actuator);
-        }
-        open_axes_the_scene_does_not_wrap(d, system);
-        add_random_velocities(d, system, first);
-        return;
-      }
-      if (d.sample.type == parameters::Sample::Type::dense_random_packing)
-      {
-        dem::DensePackingSpec spec;
-        spec.particle_count = d.sample.particle_count;
-        spec.radius.mean = d.sample.radius;
-        spec.radius.half_width = d.sample.radius_half_width;
-        spec.box_lower = d.domain.lower;
-        spec.box_upper = d.domain.upper;
-        spec.periodic = d.domain.periodic;
-        spec.formation_friction = d.sample.formation_friction;
-        spec.target_pressure = d.sample.packing_pressure;
-        spec.material = 0;
-        spec.seed = d.seed;
-        model.dense_packing = dem::add_dense_packing(system, spec);
-        if (d.sample.disc_diameter > 0)
-        {
-          // The Brazilian disc: axis along y, centred in the x-z section.
-          const Vec3 centre = 0.5 * (system.domain.lower + system.domain.upper);
-          dem::carve_cylinder(system, 1, centre, 0.5 * d.sample.disc_diameter);
-        }
-        add_random_velocities(d, system, 0);
-        return;
-      }
-      if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
-      {
-        dem::LatticeSpec spec;
-        spec.cells = d.sample.lattice_size;
-        spec.radius = d.sample.radius;
-        spec.spacing = d.sample.spacing;
-        spec.origin = d.sample.origin;
-        spec.material = 0;
-        spec.velocity_amplitude = d.sample.velocity_amplitude;
-        spec.seed = d.seed;
-        dem::add_simple_cubic_lattice(system, spec);
-        return;
-      }
-
-      // An external sample (dem/io/state_hdf5.h read_sample): spheres, optional clumps and bonds.
-      dem::io::ExternalSample sample;
-      try
-      {
-        sample = dem::io::read_sample(d.sample.snapshot_file);
-      }
-      catch (const std::exception &e)
-      {
-        throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": " + e.what());
-      }
-      const std::vector<Vec3> &position = sample.position;
-      std::mt19937_64 rng(d.seed);
-      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-      const Index first = system.particles.size();
-      for (std::size_t k = 0; k < position.size(); ++k)
-      {
-        for (int a = 0; a < 3; ++a)
-          if (!d.domain.periodic[a] &&
-              !(position[k][a] >= d.domain.lower[a] && position[k][a] <= d.domain.upper[a]))
-            throw InputError("DEM/Sample/Snapshot file = " + d.sample.snapshot_file + ": sphere " +
-                             std::to_string(k) + " at (" + format_vector(position[k]) +
-                             ") m lies outside DEM/Domain");
-        const Index p = system.particles.add_sphere(system.domain.wrap(position[k]), sample.radius[k],
-                                                    d.material.density, 0);
-        if (d.sample.velocity_amplitude > 0)
-          for (int a = 0; a < 3; ++a)
-            system.particles.velocity[p][a] = d.sample.velocity_amplitude * uniform(rng);
-      }
-      // Rigid grains: spheres sharing a clump id.
-      std::map<int, std::vector<Index>> grains;
-      for (std::size_t k = 0; k < sample.clump_id.size(); ++k)
-        if (sample.clump_id[k] >= 0)
-          grains[sample.clump_id[k]].push_back(first + static_cast<Index>(k));
-      for (const auto &[id, members] : grains)
-        system.add_clump(members);
-      // Bonds given by the file replace the bonding of touching pairs.
-      model.imported_bonds = !sample.bond_i.empty();
-      for (std::size_t b = 0; b < sample.bond_i.size(); ++b)
-        system.add_bond(first + sample.bond_i[b], first + sample.bond_j[b],
-                        sample.bond_radius.empty() ? 0.0 : sample.bond_radius[b]);
-    }
 
     /// Fixed base and loaded clump (docs/physics.md §1.5). Both start at rest.
     void add_boundary_particles(const SceneParameters &scene, DemModel &model)
@@ -320,7 +153,7 @@ namespace anticrack::dem
       material.bond = d.bond.bond;
       system.materials.add(material);
 
-      add_sample(scene, *model);
+      d.sample.type->build(scene, *model);
       if (system.particles.size() == 0)
         throw InputError("DEM/Sample: the sample has no spheres.");
       // After the sample: the sticky-hard-sphere sampler sets its own domain.
@@ -346,12 +179,8 @@ namespace anticrack::dem
           model->bedding_bonds = dem::apply_bedding(system, d.bedding.spec);
       }
       add_walls(scene, *model);
-      if (d.loading.test == parameters::Loading::Test::triaxial)
-      {
-        model->box_walls = dem::add_box_walls(system, d.material.contact);
-        for (int f = 0; f < 6; ++f)
-          model->wall_face.push_back(f);
-      }
+      if (d.loading.test->add_to_model)
+        d.loading.test->add_to_model(scene, *model);
       system.settings = d.integration.settings;
       system.initialise();
       model->critical_time_step = system.critical_time_step();
@@ -377,67 +206,7 @@ namespace anticrack::dem
 
   std::unique_ptr<dem::LabProtocol> make_lab_protocol(const SceneParameters &scene, DemModel &model)
   {
-    const auto &d = scene.dem;
-    using Test = parameters::Loading::Test;
-    if (d.loading.test == Test::triaxial)
-    {
-      dem::TriaxialSettings s;
-      s.confining_pressure = d.loading.confining_pressure;
-      s.axial_strain_rate = d.loading.axial_strain_rate;
-      s.final_axial_strain = d.loading.final_axial_strain;
-      const Vec3 box = model.system.domain.length();
-      s.max_servo_speed =
-        d.loading.max_servo_speed > 0 ? d.loading.max_servo_speed : 10 * s.axial_strain_rate * box.maxCoeff();
-      auto triaxial = std::make_unique<dem::TriaxialTest>(model.system, model.box_walls, s);
-      triaxial->start(model.system);
-      return triaxial;
-    }
-    if (d.loading.test == Test::platen_compression)
-    {
-      dem::PlatenSettings s;
-      s.platen_speed = d.loading.platen_speed;
-      s.post_peak_fraction = d.loading.post_peak_fraction;
-      s.max_strain = d.loading.final_axial_strain;
-      // The platens are the walls on the z- and z+ faces (face indices 4 and 5).
-      Index lower = -1, upper = -1;
-      for (std::size_t w = 0; w < model.wall_face.size(); ++w)
-      {
-        if (model.wall_face[w] == 4)
-          lower = static_cast<Index>(w);
-        if (model.wall_face[w] == 5)
-          upper = static_cast<Index>(w);
-      }
-      auto platens = std::make_unique<dem::PlatenCompression>(model.system, lower, upper, s);
-      platens->start(model.system);
-      return platens;
-    }
-    if (model.clump < 0)
-      return nullptr;
-    // Strains are relative to the specimen's initial height (the z extent of its spheres).
-    const auto [low, high] = dem::sphere_extent(model.system.particles, 2);
-    if (d.loading.test == Test::simple_shear)
-    {
-      dem::SimpleShearSettings s;
-      s.normal_stress = d.loading.normal_stress;
-      s.area = model.base_area;
-      s.height = high - low;
-      s.shear_velocity = d.loading.shear_velocity;
-      s.consolidation_time = d.loading.consolidation_time;
-      s.acceleration_time = 0.1 * d.loading.consolidation_time;
-      s.final_shear_strain = d.loading.final_shear_strain;
-      s.interval = d.loading.ramp.interval;
-      auto shear = std::make_unique<dem::SimpleShear>(model.clump, model.fixed_particles, s);
-      shear->start(model.system);
-      return shear;
-    }
-    const bool tilted = d.loading.test == Test::tilted_gravity;
-    if (!(tilted || d.loading.adaptive || d.loading.stop_strain > 0))
-      return nullptr;
-    auto ramp = std::make_unique<dem::ClumpForceRamp>(
-      model.clump, model.fixed_particles, d.boundary.clump_force_direction, d.loading.ramp, d.loading.adaptive,
-      d.loading.stop_strain * (high - low), tilted ? d.integration.settings.gravity.norm() : 0.0);
-    ramp->start(model.system);
-    return ramp;
+    return scene.dem.loading.test->make_protocol(scene, model);
   }
 
   void describe_dem_model(std::ostream &out, const SceneParameters &scene, const DemModel &model)
@@ -466,51 +235,7 @@ namespace anticrack::dem
     if (!any_periodic)
       s << " none";
     s << "\n  sample              ";
-    if (d.sample.type == parameters::Sample::Type::simple_cubic_lattice)
-      s << "simple cubic lattice " << d.sample.lattice_size[0] << " x " << d.sample.lattice_size[1] << " x "
-        << d.sample.lattice_size[2] << ", R = " << d.sample.radius << " m, spacing " << d.sample.spacing << " m";
-    else if (model.sticky_hard_spheres)
-    {
-      const auto &r = *model.sticky_hard_spheres;
-      s << "sticky hard spheres, N = " << d.sample.particle_count << ", R = " << system.particles.radius.front()
-        << (d.sample.box_edge > 0 ? " (from Box edge [m])" : "")
-        << " m, well width delta/sigma = " << d.sample.well_width << ", " << d.sample.sweeps << " sweeps\n"
-        << "                      (DEM/Domain is replaced by the sampler's periodic cube, edge " << r.box_length
-        << " m)\n"
-        << "  generator report    phi = " << r.volume_fraction << ", tau = " << r.stickiness
-        << (d.sample.target_coordination > 0 ? " (from the target z)" : "") << ", z = " << r.coordination
-        << " (Percus-Yevick " << r.percus_yevick_coordination << "), contacts " << r.contacts
-        << ",\n                      largest cluster " << r.largest_cluster_fraction << " of the spheres, "
-        << (r.percolating ? "percolating" : "not percolating") << ", acceptance " << r.acceptance
-        << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
-    }
-    else if (model.ballistic_deposition)
-    {
-      const auto &r = *model.ballistic_deposition;
-      s << "ballistic deposition (" << (d.sample.rolling ? "rolling" : "sticky") << "), N = "
-        << d.sample.particle_count << ", R = " << d.sample.radius << " +- " << d.sample.radius_half_width
-        << " m\n"
-        << "  generator report    bulk solid fraction " << r.solid_fraction_bulk << " (z in [" << r.bulk_lower
-        << ", " << r.bulk_upper << "] m), mean contacts " << r.mean_contacts << " (bulk), "
-        << r.mean_contacts_all << " (all),\n                      height " << r.height << " m, "
-        << r.on_base << " on the base, " << r.fallbacks << " sticky fallbacks"
-        << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
-    }
-    else if (model.dense_packing)
-    {
-      const auto &r = *model.dense_packing;
-      s << "dense random packing, N = " << d.sample.particle_count << ", R = " << d.sample.radius << " +- "
-        << d.sample.radius_half_width << " m, formation friction " << d.sample.formation_friction << "\n"
-        << "  generator report    solid fraction " << r.solid_fraction << ", coordination " << r.coordination
-        << " (mechanical " << r.mechanical_coordination << ", " << r.rattlers << " rattlers), p = " << r.pressure
-        << " Pa after " << r.steps << " steps, mean radius " << r.mean_radius << " m";
-      if (d.sample.disc_diameter > 0)
-        s << "\n                      disc of diameter " << d.sample.disc_diameter << " m carved (axis y): "
-          << system.particles.size() << " spheres kept";
-      s << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
-    }
-    else
-      s << "snapshot " << d.sample.snapshot_file;
+    d.sample.type->describe(s, scene, model);
     s << "\n  particles           " << system.particles.size() << " (" << model.fixed_particles.size()
       << " fixed";
     if (model.clump >= 0)

@@ -34,8 +34,9 @@ namespace anticrack::dem
     bool imported_bonds = false;          ///< the sample file brought its own bonds
     double base_area = 0;                 ///< x-y cross-section of the domain [m^2]
     double critical_time_step = 0;        ///< dt_crit at initialise() [s]
-    /// Statistics of the sample generator (DEM/Sample/Type = sticky hard spheres or ballistic
-    /// deposition); summary.json records them under dem.sample, `anticrack check` prints them.
+    /// Statistics of the sample generator (DEM/Sample/Type = sticky hard spheres, ballistic
+    /// deposition, dense random packing); summary.json records them under dem.sample, `anticrack
+    /// check` prints them (SampleType::summarize, describe).
     std::optional<dem::shs::SamplerReport> sticky_hard_spheres;
     std::optional<dem::DepositionReport> ballistic_deposition;
     std::optional<dem::DensePackingReport> dense_packing;

@@ -6,7 +6,7 @@
 #include "util/input_error.h"
 #include "util/parameter_files.h"
 #include "util/problems.h"
-#include "dem/sample/sticky_hard_spheres.h"
+#include "dem/scene/scene_entries.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
@@ -17,45 +17,17 @@
 #include <algorithm>
 #include <filesystem>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <iterator>
-#include <map>
 #include <sstream>
-#include <type_traits>
 #include <utility>
 
 namespace anticrack::dem
 {
   using dealii::ParameterHandler;
-  namespace Patterns = dealii::Patterns;
 
   namespace
   {
-    /// A vector entry: three comma-separated numbers x, y, z (read with get_triple<Vec3>).
-    void declare_vector(ParameterHandler &prm, const std::string &name, const std::string &default_value,
-                        const std::string &documentation)
-    {
-      prm.declare_entry(name, default_value, Patterns::List(Patterns::Double(), 3, 3),
-                        documentation + " Three comma-separated numbers x, y, z.");
-    }
-
-    /// The three comma-separated components of a vector (Vec3) or lattice-size (integer) entry.
-    template <class Triple>
-    Triple get_triple(const ParameterHandler &prm, const std::string &name)
-    {
-      const auto parts = dealii::Utilities::split_string_list(prm.get(name), ',');
-      Triple t;
-      for (int a = 0; a < 3; ++a)
-      {
-        if constexpr (std::is_integral_v<std::decay_t<decltype(t[a])>>)
-          t[a] = dealii::Utilities::string_to_int(parts.at(a));
-        else
-          t[a] = dealii::Utilities::string_to_double(parts.at(a));
-      }
-      return t;
-    }
-
     /// An entry that may be left empty: Patterns::List of zero or one double, empty by default.
     void declare_optional_double(ParameterHandler &prm, const std::string &name, const std::string &documentation)
     {
@@ -69,8 +41,6 @@ namespace anticrack::dem
         return std::nullopt;
       return dealii::Utilities::string_to_double(value);
     }
-
-    const char *const axis_name[3] = {"x", "y", "z"};
   } // namespace
 
   std::string format_number(const double x)
@@ -89,37 +59,8 @@ namespace anticrack::dem
     return s.str();
   }
 
-  namespace
-  {
-    /// A vector value in a message: "(x, y, z)".
-    std::string vec(const Vec3 &v) { return "(" + format_vector(v) + ")"; }
-  } // namespace
-
   namespace parameters
   {
-    /// Whether the variant `value` of a selection declares `entry`: `variants_of_entry` lists, for
-    /// each entry that belongs to some variants only, which ones; an entry it does not list belongs
-    /// to every variant. (DEM/Sample/Type and DEM/Loading/Test.)
-    template <typename Variant>
-    bool variant_has_entry(const std::map<std::string, std::vector<Variant>> &variants_of_entry, const Variant value,
-                           const std::string &entry)
-    {
-      const auto variants = variants_of_entry.find(entry);
-      return variants == variants_of_entry.end() ||
-             std::find(variants->second.begin(), variants->second.end(), value) != variants->second.end();
-    }
-
-    /// Declares an entry only when the chosen variant has it (every variant: `variant` empty).
-    template <typename Variant, typename HasEntry>
-    auto declarer(ParameterHandler &prm, const std::optional<Variant> variant, HasEntry has_entry)
-    {
-      return [&prm, variant, has_entry](const std::string &name, const std::string &default_value,
-                                        const Patterns::PatternBase &pattern, const std::string &documentation) {
-        if (!variant || has_entry(*variant, name))
-          prm.declare_entry(name, default_value, pattern, documentation);
-      };
-    }
-
     // ------------------------------------------------------------------------------- Output
     void Output::declare_parameters(ParameterHandler &prm)
     {
@@ -337,397 +278,23 @@ namespace anticrack::dem
     }
 
     // ------------------------------------------------------------------------------- Sample
-    const EnumTable<Sample::Type> &Sample::type_names()
+    void Sample::declare_parameters(ParameterHandler &prm, const SampleType *type)
     {
-      static const EnumTable<Type> names{{"simple cubic lattice", Type::simple_cubic_lattice},
-                                         {"snapshot", Type::snapshot},
-                                         {"sticky hard spheres", Type::sticky_hard_spheres},
-                                         {"ballistic deposition", Type::ballistic_deposition},
-                                         {"dense random packing", Type::dense_random_packing}};
-      return names;
-    }
-
-    bool Sample::has_entry(const Type type, const std::string &entry)
-    {
-      // Which sample types read each entry (dem/scene/model.cpp builds the sample); an entry not
-      // listed here belongs to every type.
-      using T = Type;
-      static const std::map<std::string, std::vector<Type>> types_of_entry{
-        {"Lattice size", {T::simple_cubic_lattice}},
-        {"Radius [m]", {T::simple_cubic_lattice, T::sticky_hard_spheres, T::ballistic_deposition, T::dense_random_packing}},
-        {"Spacing [m]", {T::simple_cubic_lattice}},
-        {"Origin [m]", {T::simple_cubic_lattice}},
-        {"Snapshot file", {T::snapshot}},
-        {"Particle count", {T::sticky_hard_spheres, T::ballistic_deposition, T::dense_random_packing}},
-        {"Volume fraction", {T::sticky_hard_spheres}},
-        {"Stickiness", {T::sticky_hard_spheres}},
-        {"Target coordination number", {T::sticky_hard_spheres}},
-        {"Well width", {T::sticky_hard_spheres}},
-        {"Box edge [m]", {T::sticky_hard_spheres}},
-        {"Sweeps", {T::sticky_hard_spheres}},
-        {"Cluster move fraction", {T::sticky_hard_spheres}},
-        {"Deposition rule", {T::ballistic_deposition}},
-        {"Radius half width [m]", {T::ballistic_deposition, T::dense_random_packing}},
-        {"Actuator layer count", {T::ballistic_deposition}},
-        {"Actuator layer radius [m]", {T::ballistic_deposition}},
-        {"Formation friction", {T::dense_random_packing}},
-        {"Packing pressure [Pa]", {T::dense_random_packing}},
-        {"Disc diameter [m]", {T::dense_random_packing}},
-      };
-      return variant_has_entry(types_of_entry, type, entry);
-    }
-
-    void Sample::declare_parameters(ParameterHandler &prm, const std::optional<Type> type)
-    {
-      const auto declare = declarer(prm, type, has_entry);
       prm.enter_subsection("Sample");
-      prm.declare_entry("Type", "simple cubic lattice", Patterns::Selection(type_names().pattern()),
-                        "`simple cubic lattice`: n_x x n_y x n_z spheres with centres at "
-                        "origin + (k + 1/2) spacing. `snapshot`: the positions and radii of an "
-                        "anticrack HDF5 snapshot (velocities start at zero; materials, bonds, walls "
-                        "and the rest come from this scene). `sticky hard spheres`: N spheres of "
-                        "radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at "
-                        "volume fraction phi and stickiness tau (docs/physics.md §1.4) in a periodic cube "
-                        "of edge L = (N 4/3 pi R^3 / phi)^(1/3) (or of edge Box edge [m], which then "
-                        "sets R) with its lower corner at the origin: DEM/Domain's corners are "
-                        "ignored and replaced by this cube, sampled periodic in x, y and z; axes "
-                        "missing from DEM/Domain/Periodic axes are opened after sampling (no bond "
-                        "crosses them: Ritter et al.'s (2020) specimen is periodic in x and y only), and every "
-                        "pair inside the well (gap <= 2 delta R) is bonded, whatever DEM/Bond/Gap "
-                        "tolerance says. `ballistic deposition`: N spheres dropped one by one along "
-                        "-z onto the base z = DEM/Domain lower z inside the DEM/Domain box, "
-                        "laterally periodic while depositing; the domain's upper z is raised to the "
-                        "deposit's top if needed; with DEM/Domain/Periodic axes = x, y the specimen "
-                        "stays laterally periodic (Ritter et al. 2020), with none its sides are opened after "
-                        "deposition, like a box whose side walls are removed (Bobillier et al. 2020); bonds use "
-                        "DEM/Bond/Gap tolerance. `dense random packing`: N spheres (radius R +- w) grown "
-                        "in the DEM/Domain box with friction Formation friction until the mean stress is "
-                        "Packing pressure [Pa] (Elyashiv et al. 2020: the formation friction sets the density; "
-                        "frictionless ~0.64, rough ~0.56); open axes are walled while it forms; "
-                        "touching pairs are bonded (Gap tolerance); Disc diameter [m] > 0 then carves a "
-                        "disc with its axis along y for the Brazilian test. The generators are seeded by "
-                        "DEM/Random seed and run again by `anticrack check`, which prints their "
-                        "statistics.");
-      declare("Lattice size", "10, 10, 10", Patterns::List(Patterns::Integer(1), 3, 3),
-                        "n_x, n_y, n_z: number of spheres along x, y and z (lattice only).");
-      declare("Radius [m]", "1e-3", Patterns::Double(0),
-                        "R: sphere radius, at most half the spacing (lattice); the radius of every "
-                        "sphere (sticky hard spheres); the mean radius (ballistic deposition). "
-                        "Units: m.");
-      declare("Spacing [m]", "2e-3", Patterns::Double(0),
-                        "s: distance between neighbouring centres; s = 2R makes touching spheres "
-                        "(lattice only). Units: m.");
-      if (!type || has_entry(*type, "Origin [m]"))
-        declare_vector(prm, "Origin [m]", "0, 0, 0",
-                     "Lower corner of the lattice's bounding box; the lattice occupies "
-                     "[origin, origin + n s] and must lie inside the domain. Units: m.");
-      declare("Initial velocity amplitude [m/s]", "0", Patterns::Double(0),
-                        "a: every velocity component starts uniformly random in [-a, a] (seeded "
-                        "by DEM/Random seed; fixed and clumped spheres start at rest). Units: m/s.");
-      declare("Snapshot file", "", Patterns::Anything(),
-                        "HDF5 snapshot (snapshots/snapshot_NNNNNN.h5 of an earlier run) to take "
-                        "the spheres from when Type = snapshot. A relative path is relative to "
-                        "the working directory.");
-      declare("Particle count", "512", Patterns::Integer(1),
-                        "N: number of spheres (sticky hard spheres: at least 8; ballistic "
-                        "deposition).");
-      declare("Volume fraction", "0.3", Patterns::Double(0, 0.55),
-                        "phi: solid volume fraction of the sticky-hard-sphere sample, in (0, 0.55] "
-                        "(sticky hard spheres only). Dimensionless.");
-      declare("Stickiness", "0.2", Patterns::Double(0),
-                        "tau: Baxter stickiness parameter (smaller = stickier), at least "
-                        "tau_min(phi) = (14 phi^2 - 4 phi - 1) / (12 (2 phi^2 - phi - 1)); 0 = take "
-                        "tau from the target coordination number (sticky hard spheres only). "
-                        "Dimensionless.");
-      declare("Target coordination number", "0", Patterns::Double(0),
-                        "z: mean number of bonded neighbours wanted; > 0 selects tau from the "
-                        "Percus-Yevick relation z = 2 phi lambda(phi, tau) and requires Stickiness = 0; "
-                        "0 = use Stickiness (sticky hard spheres only). Dimensionless.");
-      declare("Well width", "0.03", Patterns::Double(0, 0.1),
-                        "delta / sigma: width of the square well that represents Baxter's adhesion, "
-                        "relative to the diameter sigma = 2 R, in (0, 0.1]; pairs in the well "
-                        "(gap <= delta sigma) become bonds (sticky hard spheres only). "
-                        "Dimensionless.");
-      declare("Box edge [m]", "0", Patterns::Double(0),
-                        "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
-                        "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (Ritter et al. (2020) keep "
-                        "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
-                        "Units: m.");
-      declare("Sweeps", "5000", Patterns::Integer(1),
-                        "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
-      declare("Cluster move fraction", "0", Patterns::Double(0, 1),
-                        "fraction of Monte Carlo trial moves that translate a whole cluster of "
-                        "spheres in each other's well (pairs in the well linked with the contact "
-                        "probability 1 - exp(-eps/kT), Swendsen-Wang; detailed balance kept because "
-                        "the move is refused only on hard-core overlap, for clusters of more than 16 "
-                        "spheres and for clusters that wrap around the box); helps dense, sticky "
-                        "states with finite clusters equilibrate, not a network that already spans the "
-                        "box (sticky hard spheres only). Must be below 1. Dimensionless.");
-      declare("Deposition rule", "sticky", Patterns::Selection("sticky|rolling"),
-                        "`sticky`: a falling sphere stops at its first contact (bulk solid fraction "
-                        "~0.15); `rolling`: it rolls to a three-point rest (~0.58) (ballistic "
-                        "deposition only).");
-      declare("Radius half width [m]", "0", Patterns::Double(0),
-                        "w: radii uniform in [R - w, R + w] with R = Radius [m]; 0 <= w < R "
-                        "(ballistic deposition, dense random packing). Units: m.");
-      declare("Actuator layer count", "0", Patterns::Integer(0),
-                        "N_a > 0: after the deposit, N_a spheres of radius Actuator layer radius [m] are "
-                        "dropped on top by the rolling rule (Bobillier et al.'s (2020) cohesionless actuator layer) and "
-                        "become the loading clump (DEM/Boundary particles/Clump above [m] and Actuator "
-                        "thickness [mean radii] must then be empty); they are bonded to the layer where "
-                        "they touch it (ballistic deposition only).");
-      declare("Actuator layer radius [m]", "0.01", Patterns::Double(0),
-                        "Radius of the actuator layer's spheres (Bobillier et al. 2020: 10 mm). Units: m.");
-      declare("Formation friction", "0", Patterns::Double(0),
-                        "mu while the dense random packing forms (0: dense, ~1: loose); the run uses "
-                        "DEM/Material/Friction coefficient (dense random packing only). Dimensionless.");
-      declare("Packing pressure [Pa]", "1e5", Patterns::Double(0),
-                        "Mean stress at which the dense random packing is complete, in (0, 1e-2 x "
-                        "contact modulus) (dense random packing only). Units: Pa.");
-      declare("Disc diameter [m]", "0", Patterns::Double(0),
-                        "D > 0: keep only the spheres within the disc of diameter D, axis along y, "
-                        "centred in the domain's x-z section (Brazilian test; dense random packing "
-                        "only). 0 = no carving. Units: m.");
+      declare_variants(prm, "Type", sample_types(), type, shared_sample_entries(), sample_type_documentation());
       prm.leave_subsection();
     }
 
     void Sample::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Sample");
-      type = type_names().value(prm.get("Type"));
-      // Entries of other sample types are not declared for this scene: they keep their defaults.
-      const auto uses = [&](const std::string &entry) { return has_entry(type, entry); };
-      if (uses("Lattice size"))
-        lattice_size = get_triple<std::array<Index, 3>>(prm, "Lattice size");
-      if (uses("Radius [m]"))
-        radius = prm.get_double("Radius [m]");
-      if (uses("Spacing [m]"))
-        spacing = prm.get_double("Spacing [m]");
-      if (uses("Origin [m]"))
-        origin = get_triple<Vec3>(prm, "Origin [m]");
-      if (uses("Initial velocity amplitude [m/s]"))
-        velocity_amplitude = prm.get_double("Initial velocity amplitude [m/s]");
-      if (uses("Snapshot file"))
-        snapshot_file = dealii::Utilities::trim(prm.get("Snapshot file"));
-      if (uses("Particle count"))
-        particle_count = prm.get_integer("Particle count");
-      if (uses("Volume fraction"))
-        volume_fraction = prm.get_double("Volume fraction");
-      if (uses("Stickiness"))
-        stickiness = prm.get_double("Stickiness");
-      if (uses("Target coordination number"))
-        target_coordination = prm.get_double("Target coordination number");
-      if (uses("Well width"))
-        well_width = prm.get_double("Well width");
-      if (uses("Sweeps"))
-        sweeps = prm.get_integer("Sweeps");
-      if (uses("Cluster move fraction"))
-        cluster_move_fraction = prm.get_double("Cluster move fraction");
-      if (uses("Box edge [m]"))
-        box_edge = prm.get_double("Box edge [m]");
-      if (uses("Deposition rule"))
-        rolling = prm.get("Deposition rule") == "rolling";
-      if (uses("Radius half width [m]"))
-        radius_half_width = prm.get_double("Radius half width [m]");
-      if (uses("Actuator layer count"))
-        actuator_count = prm.get_integer("Actuator layer count");
-      if (uses("Actuator layer radius [m]"))
-        actuator_radius = prm.get_double("Actuator layer radius [m]");
-      if (uses("Formation friction"))
-        formation_friction = prm.get_double("Formation friction");
-      if (uses("Packing pressure [Pa]"))
-        packing_pressure = prm.get_double("Packing pressure [Pa]");
-      if (uses("Disc diameter [m]"))
-        disc_diameter = prm.get_double("Disc diameter [m]");
+      type = &variant_named(sample_types(), prm.get("Type"));
+      parse_shared_sample_entries(prm, *this);
+      type->parse_parameters(prm, *this);
       prm.leave_subsection();
     }
 
-    namespace
-    {
-      /// " for DEM/Sample/Type = <type>": the end of a message that holds for this type only.
-      std::string for_sample_type(const Sample::Type type)
-      {
-        return " for DEM/Sample/Type = " + Sample::type_names().name(type);
-      }
-
-      /// The Verlet skin the run will use (DemSystem::choose_skin): the scene's, or 0.1 x the mean radius.
-      double verlet_skin(const Integration &integration, const double mean_radius)
-      {
-        return integration.settings.verlet_skin > 0 ? integration.settings.verlet_skin : 0.1 * mean_radius;
-      }
-
-      /// Reports a radius that is not positive; whether it is.
-      bool check_radius(const Sample &s, Problems &problems)
-      {
-        if (s.radius > 0)
-          return true;
-        problems.add("DEM/Sample/Radius [m]", s.radius, "must be positive");
-        return false;
-      }
-
-      /// Mean radius R and half width w of the generators' uniform radius distribution: 0 <= w < R.
-      void check_radius_distribution(const Sample &s, Problems &problems)
-      {
-        if (check_radius(s, problems) && !(s.radius_half_width < s.radius))
-          problems.add("DEM/Sample/Radius half width [m]", s.radius_half_width,
-                       "must be below DEM/Sample/Radius [m] = " + format_number(s.radius) +
-                         " (allowed: 0 <= w < R)");
-      }
-
-      void check_lattice(const Sample &s, const Dem &d, Problems &problems)
-      {
-        check_radius(s, problems);
-        if (!(s.spacing > 0))
-          problems.add("DEM/Sample/Spacing [m]", s.spacing, "must be positive");
-        else if (s.radius > 0.5 * s.spacing * (1 + 1e-12))
-          problems.add("DEM/Sample/Radius [m]", s.radius,
-                       "must be at most half of DEM/Sample/Spacing [m] = " + format_number(s.spacing) +
-                         ", or neighbouring spheres start overlapping");
-        const Bond &b = d.bond;
-        if (b.bond.enabled && s.radius > 0 && s.spacing - 2 * s.radius > b.gap_tolerance * s.radius * (1 + 1e-12))
-          problems.add("DEM/Bond/Gap tolerance", b.gap_tolerance,
-                       "no lattice neighbours would be bonded: their gap spacing - 2 R = " +
-                         format_number(s.spacing - 2 * s.radius) +
-                         " m exceeds tolerance x R; raise the tolerance or set DEM/Bond/Enabled = "
-                         "false");
-        const Vec3 length = d.domain.length();
-        const double tol = 1e-9 * length.cwiseAbs().maxCoeff();
-        for (int a = 0; a < 3; ++a)
-        {
-          const double extent = s.lattice_size[a] * s.spacing;
-          const double top = s.origin[a] + extent;
-          if (s.origin[a] < d.domain.lower[a] - tol || top > d.domain.upper[a] + tol)
-          {
-            std::ostringstream why;
-            why << "the lattice spans [" << s.origin[a] << ", " << top << "] m along " << axis_name[a]
-                << " (origin + " << s.lattice_size[a] << " x spacing " << s.spacing
-                << " m), outside the domain [" << d.domain.lower[a] << ", " << d.domain.upper[a] << "] m";
-            problems.add("DEM/Sample/Origin [m]", vec(s.origin), why.str());
-          }
-          if (d.domain.periodic[a] && length[a] > 0)
-          {
-            // Minimum-image search: a contact partner must be nearer than half the period.
-            const double needed = 2 * (2 * s.radius + verlet_skin(d.integration, s.radius));
-            if (!(length[a] > needed))
-              problems.add(std::string("DEM/Domain/Periodic axes"), axis_name[a],
-                           "the period along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
-                             " m) must exceed 2 (2 R + skin) = " + format_number(needed) +
-                             " m for unique minimum images");
-          }
-        }
-      }
-
-      void check_sticky_hard_spheres(const Sample &s, Problems &problems)
-      {
-        const std::string why_type = for_sample_type(s.type);
-        if (s.particle_count < 8)
-          problems.add("DEM/Sample/Particle count", s.particle_count, "must be at least 8" + why_type);
-        if (!(s.volume_fraction > 0))
-          problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
-        check_radius(s, problems);
-        if (!(s.well_width > 0))
-          problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
-        if (!(s.cluster_move_fraction < 1))
-          problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
-                       "must be in [0, 1): single-sphere moves are needed to make and break clusters");
-        const bool use_z = s.target_coordination > 0;
-        if (use_z && s.stickiness > 0)
-          problems.add("DEM/Sample/Stickiness", s.stickiness,
-                       "must be 0 when DEM/Sample/Target coordination number = " +
-                         format_number(s.target_coordination) + " > 0 selects tau; set one of the two to 0");
-        else if (!use_z && !(s.stickiness > 0))
-          problems.add("DEM/Sample/Stickiness", s.stickiness,
-                       "must be positive (at least tau_min(phi)) unless DEM/Sample/Target "
-                       "coordination number > 0 selects it");
-        else if (s.volume_fraction > 0 && s.volume_fraction < 1)
-        {
-          const double tau_min = dem::shs::minimum_stickiness(s.volume_fraction);
-          if (!use_z && s.stickiness < tau_min)
-            problems.add("DEM/Sample/Stickiness", s.stickiness,
-                         "is below the admissible minimum tau_min(phi) = " + format_number(tau_min) +
-                           " at DEM/Sample/Volume fraction phi = " + format_number(s.volume_fraction) +
-                           " (allowed: tau >= tau_min(phi), docs/physics.md §1.4); raise tau or lower phi");
-          if (use_z)
-            try
-            {
-              dem::shs::stickiness_for_coordination(s.volume_fraction, s.target_coordination);
-            }
-            catch (const dem::SetupError &e)
-            {
-              problems.add("DEM/Sample/Target coordination number", s.target_coordination, e.what());
-            }
-        }
-      }
-
-      void check_ballistic_deposition(const Sample &s, const Dem &d, Problems &problems)
-      {
-        const std::string why_type = for_sample_type(s.type);
-        if (d.domain.periodic[0] != d.domain.periodic[1] || d.domain.periodic[2])
-        {
-          std::string axes;
-          for (int a = 0; a < 3; ++a)
-            if (d.domain.periodic[a])
-              axes += std::string(axes.empty() ? "" : ", ") + axis_name[a];
-          problems.add("DEM/Domain/Periodic axes", axes.empty() ? "(none)" : axes,
-                       "must be x, y (laterally periodic specimen) or empty (sides opened after "
-                       "deposition)" + why_type + "; z is never periodic: spheres are dropped onto "
-                       "the base z = lower z");
-        }
-        check_radius_distribution(s, problems);
-        const Vec3 length = d.domain.length();
-        const double r_max = s.radius + s.radius_half_width;
-        const double needed = std::max(8 * s.radius, 2 * (2 * r_max + verlet_skin(d.integration, s.radius)));
-        for (int a = 0; a < 2; ++a)
-          if (s.radius > 0 && length[a] > 0 && !(length[a] >= needed))
-            problems.add("DEM/Domain/Upper corner [m]", vec(d.domain.upper),
-                         "the box along " + std::string(axis_name[a]) + " (" + format_number(length[a]) +
-                           " m) must be at least " + format_number(needed) +
-                           " m (4 mean diameters and 2 (2 R_max + skin))" + why_type);
-      }
-
-      void check_dense_random_packing(const Sample &s, const Dem &d, Problems &problems)
-      {
-        const std::string why_type = for_sample_type(s.type);
-        check_radius_distribution(s, problems);
-        const double modulus = dem::contact_law_modulus(d.material.contact);
-        if (!(s.packing_pressure > 0 && s.packing_pressure < 1e-2 * modulus))
-          problems.add("DEM/Sample/Packing pressure [Pa]", s.packing_pressure,
-                       "must be in (0, 1e-2 x the contact modulus = " + format_number(1e-2 * modulus) + ")" +
-                         why_type);
-        const Vec3 length = d.domain.length();
-        if (s.disc_diameter > 0 &&
-            (s.disc_diameter > length[0] * (1 + 1e-12) || s.disc_diameter > length[2] * (1 + 1e-12)))
-          problems.add("DEM/Sample/Disc diameter [m]", s.disc_diameter,
-                       "must fit in the domain's x-z section (" + format_number(length[0]) + " x " +
-                         format_number(length[2]) + " m)");
-      }
-
-      void check_snapshot(const Sample &s, Problems &problems)
-      {
-        if (s.snapshot_file.empty())
-          problems.add("DEM/Sample/Snapshot file", "(empty)",
-                       "name the HDF5 snapshot to read when DEM/Sample/Type = snapshot");
-        else if (!std::ifstream(s.snapshot_file))
-          problems.add("DEM/Sample/Snapshot file", s.snapshot_file, "cannot be opened");
-      }
-    } // namespace
-
-    void Sample::check(Problems &problems, const Dem &dem) const
-    {
-      switch (type)
-      {
-        case Type::simple_cubic_lattice:
-          return check_lattice(*this, dem, problems);
-        case Type::snapshot:
-          return check_snapshot(*this, problems);
-        case Type::sticky_hard_spheres:
-          return check_sticky_hard_spheres(*this, problems);
-        case Type::ballistic_deposition:
-          return check_ballistic_deposition(*this, dem, problems);
-        case Type::dense_random_packing:
-          return check_dense_random_packing(*this, dem, problems);
-      }
-    }
+    void Sample::check(Problems &problems, const Dem &dem) const { type->check(*this, dem, problems); }
 
     // -------------------------------------------------------------------------- Integration
     void Integration::declare_parameters(ParameterHandler &prm)
@@ -945,239 +512,23 @@ namespace anticrack::dem
     }
 
     // ------------------------------------------------------------------------------ Loading
-    const EnumTable<Loading::Test> &Loading::test_names()
+    void Loading::declare_parameters(ParameterHandler &prm, const LabTest *test)
     {
-      static const EnumTable<Test> names{{"clump force", Test::clump_force},
-                                         {"tilted gravity", Test::tilted_gravity},
-                                         {"simple shear", Test::simple_shear},
-                                         {"triaxial", Test::triaxial},
-                                         {"platen compression", Test::platen_compression}};
-      return names;
-    }
-
-    bool Loading::has_entry(const Test test, const std::string &entry)
-    {
-      // Which tests read each entry (dem/scene/model.cpp makes the loading protocol); an entry not
-      // listed here belongs to every test.
-      using T = Test;
-      static const std::map<std::string, std::vector<Test>> tests_of_entry{
-        {"Adaptive rate", {T::clump_force, T::tilted_gravity}},
-        {"Slow rate fraction", {T::clump_force, T::tilted_gravity}},
-        {"Control interval [steps]", {T::clump_force, T::tilted_gravity, T::simple_shear}},
-        {"Rate recovery factor", {T::clump_force, T::tilted_gravity}},
-        {"Lag tolerance", {T::clump_force, T::tilted_gravity}},
-        {"Stop strain", {T::clump_force, T::tilted_gravity}},
-        {"Normal stress [Pa]", {T::simple_shear}},
-        {"Shear velocity [m/s]", {T::simple_shear}},
-        {"Consolidation time [s]", {T::simple_shear}},
-        {"Final shear strain", {T::simple_shear}},
-        {"Confining pressure [Pa]", {T::triaxial}},
-        {"Axial strain rate [1/s]", {T::triaxial}},
-        {"Final axial strain", {T::triaxial, T::platen_compression}},
-        {"Max servo speed [m/s]", {T::triaxial}},
-        {"Platen speed [m/s]", {T::platen_compression}},
-        {"Post-peak fraction", {T::platen_compression}},
-      };
-      return variant_has_entry(tests_of_entry, test, entry);
-    }
-
-    void Loading::declare_parameters(ParameterHandler &prm, const std::optional<Test> test)
-    {
-      const auto declare = declarer(prm, test, has_entry);
       prm.enter_subsection("Loading");
-      prm.declare_entry("Test", "clump force", Patterns::Selection(test_names().pattern()),
-                        "How the clump (DEM/Boundary particles) loads the specimen. `clump force`: the force "
-                        "F(t) = Fdot t d at its centre of mass (Ritter et al.'s (2020) mixed-mode test). `tilted "
-                        "gravity`: Bobillier et al.'s (2020) actuator, whose density grows linearly under gravity of "
-                        "magnitude |DEM/Integration/Gravity| along d = Clump force direction (tilted by psi), "
-                        "acting on every sphere; Clump force rate [N/s] is the growth rate of the "
-                        "actuator's weight. `simple shear`: Mede et al.'s (2018) test at constant normal stress: the "
-                        "clump (a platen) is pressed with Normal stress [Pa], then driven along +x at "
-                        "Shear velocity [m/s], free along z, to Final shear strain. `triaxial`: Elyashiv et al.'s (2020) "
-                        "test in a box of six servo walls (added on the domain's faces; DEM/Walls must be "
-                        "inactive and no axis periodic): isotropic consolidation to Confining pressure "
-                        "[Pa], then the z walls close at Axial strain rate [1/s] to Final axial strain "
-                        "while the lateral walls hold the confinement. `platen compression`: Zhao & Feng's (2022) "
-                        "uniaxial compression or Brazilian disc test: DEM/Walls/z- and z+ (must be "
-                        "active) move towards each other at Platen speed [m/s] each, until the force has "
-                        "fallen below Post-peak fraction of its peak (or Final axial strain).");
-      declare("Adaptive rate", "false", Patterns::Bool(),
-                        "Adapt the clump force rate (dem/lab/load_control.h): DEM/Boundary particles/Clump "
-                        "force rate [N/s] is the fast rate of the elastic range; while bonds break or "
-                        "the base reaction lags the applied force, the rate drops to Slow rate "
-                        "fraction x fast, and recovers by Rate recovery factor per quiet interval. "
-                        "false = constant rate.");
-      declare("Slow rate fraction", "0.1", Patterns::Double(0, 1),
-                        "f_s: slow rate / fast rate, in (0, 1]. Dimensionless.");
-      declare("Control interval [steps]", "100", Patterns::Integer(1),
-                        "Steps between two rate decisions.");
-      declare("Rate recovery factor", "1.25", Patterns::Double(1),
-                        "Growth of the rate per quiet control interval, > 1. Dimensionless.");
-      declare("Lag tolerance", "0.02", Patterns::Double(0),
-                        "Relative lag |F_applied - R_base| / |F_applied| of the base reaction (projected "
-                        "on the force direction) above which the ramp slows. Dimensionless.");
-      declare("Stop strain", "0", Patterns::Double(0),
-                        "End the run once the clump has moved by this fraction of the specimen's "
-                        "initial height (|u_clump| / H0; Ritter et al. (2020) follow the collapse to ~8 %); "
-                        "DEM/Steps remains the upper limit. 0 = run DEM/Steps. Dimensionless.");
-      declare("Normal stress [Pa]", "1e4", Patterns::Double(0),
-                        "sigma_n: compressive normal stress on the platen (simple shear). Units: Pa.");
-      declare("Shear velocity [m/s]", "1e-3", Patterns::Double(0),
-                        "v: platen velocity along +x while shearing (simple shear). Units: m/s.");
-      declare("Consolidation time [s]", "1e-3", Patterns::Double(0),
-                        "Duration of the normal-force ramp before shearing (simple shear). Units: s.");
-      declare("Final shear strain", "0.1", Patterns::Double(0),
-                        "gamma = u_x / H at which the simple shear test ends. Dimensionless.");
-      declare("Confining pressure [Pa]", "1e5", Patterns::Double(0),
-                        "sigma_c of the triaxial test (Elyashiv et al. 2020: 100, 250, 500 kPa). Units: Pa.");
-      declare("Axial strain rate [1/s]", "1", Patterns::Double(0),
-                        "Axial strain rate of the triaxial test's loading stage. Units: 1/s.");
-      declare("Final axial strain", "0.2", Patterns::Double(0, 1),
-                        "Axial strain at which the triaxial test ends (Elyashiv et al. 2020: 0.2); the platen test's "
-                        "strain limit. Dimensionless.");
-      declare("Max servo speed [m/s]", "0", Patterns::Double(0),
-                        "Cap on the triaxial servo walls' speed; 0 = 10 x strain rate x the largest box "
-                        "length. Units: m/s.");
-      declare("Platen speed [m/s]", "0.01", Patterns::Double(0),
-                        "Speed of each platen towards the other (platen compression). Units: m/s.");
-      declare("Post-peak fraction", "0.5", Patterns::Double(0, 1),
-                        "The platen test ends once the force has fallen below this fraction of its peak. "
-                        "Dimensionless.");
+      declare_variants(prm, "Test", lab_tests(), test, shared_loading_entries(), lab_test_documentation());
       prm.leave_subsection();
     }
 
     void Loading::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
-      test = test_names().value(prm.get("Test"));
-      // Entries of other tests are not declared for this scene: they keep their defaults.
-      const auto uses = [&](const std::string &entry) { return has_entry(test, entry); };
-      if (uses("Adaptive rate"))
-        adaptive = prm.get_bool("Adaptive rate");
-      if (uses("Slow rate fraction"))
-        ramp.slow_fraction = prm.get_double("Slow rate fraction");
-      if (uses("Control interval [steps]"))
-        ramp.interval = prm.get_integer("Control interval [steps]");
-      if (uses("Rate recovery factor"))
-        ramp.recovery_factor = prm.get_double("Rate recovery factor");
-      if (uses("Lag tolerance"))
-        ramp.lag_tolerance = prm.get_double("Lag tolerance");
-      if (uses("Stop strain"))
-        stop_strain = prm.get_double("Stop strain");
-      if (uses("Normal stress [Pa]"))
-        normal_stress = prm.get_double("Normal stress [Pa]");
-      if (uses("Shear velocity [m/s]"))
-        shear_velocity = prm.get_double("Shear velocity [m/s]");
-      if (uses("Consolidation time [s]"))
-        consolidation_time = prm.get_double("Consolidation time [s]");
-      if (uses("Final shear strain"))
-        final_shear_strain = prm.get_double("Final shear strain");
-      if (uses("Confining pressure [Pa]"))
-        confining_pressure = prm.get_double("Confining pressure [Pa]");
-      if (uses("Axial strain rate [1/s]"))
-        axial_strain_rate = prm.get_double("Axial strain rate [1/s]");
-      if (uses("Final axial strain"))
-        final_axial_strain = prm.get_double("Final axial strain");
-      if (uses("Max servo speed [m/s]"))
-        max_servo_speed = prm.get_double("Max servo speed [m/s]");
-      if (uses("Platen speed [m/s]"))
-        platen_speed = prm.get_double("Platen speed [m/s]");
-      if (uses("Post-peak fraction"))
-        post_peak_fraction = prm.get_double("Post-peak fraction");
+      test = &variant_named(lab_tests(), prm.get("Test"));
+      parse_shared_loading_entries(prm, *this);
+      test->parse_parameters(prm, *this);
       prm.leave_subsection();
     }
 
-    namespace
-    {
-      /// Entries of DEM/Loading that a test needs positive, though their patterns allow zero.
-      void require_positive(Problems &problems, std::initializer_list<std::pair<const char *, double>> entries,
-                            const std::string &why)
-      {
-        for (const auto &[name, value] : entries)
-          if (!(value > 0))
-            problems.add(std::string("DEM/Loading/") + name, value, why);
-      }
-
-      void check_triaxial(const Loading &l, const Dem &d, Problems &problems)
-      {
-        for (int a = 0; a < 3; ++a)
-          if (d.domain.periodic[a])
-            problems.add("DEM/Domain/Periodic axes", axis_name[a],
-                         "the triaxial test walls every face of the domain: no axis may be periodic");
-        for (int f = 0; f < 6; ++f)
-          if (d.walls.face[f].active)
-            problems.add(Walls::path(f) + "/Active", "true",
-                         "the triaxial test adds its own six servo walls; leave DEM/Walls inactive");
-        require_positive(problems,
-                         {{"Confining pressure [Pa]", l.confining_pressure},
-                          {"Axial strain rate [1/s]", l.axial_strain_rate},
-                          {"Final axial strain", l.final_axial_strain}},
-                         "must be positive for the triaxial test");
-      }
-
-      void check_platen_compression(const Loading &l, const Dem &d, Problems &problems)
-      {
-        if (!d.walls.face[4].active || !d.walls.face[5].active)
-          problems.add("DEM/Walls/z- and z+/Active", "false",
-                       "platen compression drives the walls z- and z+: activate both");
-        if (!(l.platen_speed > 0))
-          problems.add("DEM/Loading/Platen speed [m/s]", l.platen_speed, "must be positive");
-        if (!(l.post_peak_fraction > 0))
-          problems.add("DEM/Loading/Post-peak fraction", l.post_peak_fraction, "must be in (0, 1)");
-      }
-
-      /// Tilted gravity and simple shear load the clump against the fixed base.
-      void check_fixed_base_and_clump(const Loading &l, const Dem &d, Problems &problems)
-      {
-        if (!(d.has_clump() && d.boundary.has_fixed_base()))
-          problems.add("DEM/Loading/Test", Loading::test_names().name(l.test),
-                       "needs a fixed base and a clump (DEM/Boundary particles: Fix below [m] or Base thickness "
-                       "[mean radii], Clump above [m] or Actuator thickness [mean radii])");
-      }
-
-      void check_tilted_gravity(const Loading &l, const Dem &d, Problems &problems)
-      {
-        check_fixed_base_and_clump(l, d, problems);
-        if (!(d.integration.settings.gravity.norm() > 0))
-          problems.add("DEM/Integration/Gravity [m/s^2]", vec(d.integration.settings.gravity),
-                       "must be nonzero for DEM/Loading/Test = tilted gravity (its magnitude is g; the direction "
-                       "is DEM/Boundary particles/Clump force direction)");
-      }
-
-      void check_simple_shear(const Loading &l, const Dem &d, Problems &problems)
-      {
-        check_fixed_base_and_clump(l, d, problems);
-        require_positive(problems,
-                         {{"Normal stress [Pa]", l.normal_stress},
-                          {"Shear velocity [m/s]", l.shear_velocity},
-                          {"Consolidation time [s]", l.consolidation_time},
-                          {"Final shear strain", l.final_shear_strain}},
-                         "must be positive for simple shear");
-        if (!d.domain.periodic[0])
-          problems.add("DEM/Domain/Periodic axes", "(x not periodic)",
-                       "simple shear drives the platen along x: the specimen must be periodic along x");
-        if (l.adaptive)
-          problems.add("DEM/Loading/Adaptive rate", "true",
-                       "adapts a force ramp; simple shear is displacement-controlled (set false)");
-      }
-    } // namespace
-
-    void Loading::check(Problems &problems, const Dem &dem) const
-    {
-      switch (test)
-      {
-        case Test::clump_force:
-          return; // what it needs is the clump's (check_clump_sources_and_users)
-        case Test::tilted_gravity:
-          return check_tilted_gravity(*this, dem, problems);
-        case Test::simple_shear:
-          return check_simple_shear(*this, dem, problems);
-        case Test::triaxial:
-          return check_triaxial(*this, dem, problems);
-        case Test::platen_compression:
-          return check_platen_compression(*this, dem, problems);
-      }
-    }
+    void Loading::check(Problems &problems, const Dem &dem) const { test->check(*this, dem, problems); }
 
     // ------------------------------------------------------------------------------ Bedding
     void Bedding::declare_parameters(ParameterHandler &prm)
@@ -1246,14 +597,15 @@ namespace anticrack::dem
       Domain::declare_parameters(prm);
       Material::declare_parameters(prm);
       Bond::declare_parameters(prm);
-      const auto variant = [](const std::optional<int> value, auto type) {
-        return value ? std::optional<decltype(type)>(static_cast<decltype(type)>(*value)) : std::nullopt;
+      // One variant (its index in the table), or every one (null).
+      const auto variant = [](const std::optional<int> index, const auto &variants) {
+        return index ? &variants.at(*index) : nullptr;
       };
-      Sample::declare_parameters(prm, variant(declaration.sample_type, Sample::Type{}));
+      Sample::declare_parameters(prm, variant(declaration.sample_type, sample_types()));
       Integration::declare_parameters(prm);
       Walls::declare_parameters(prm);
       BoundaryParticles::declare_parameters(prm);
-      Loading::declare_parameters(prm, variant(declaration.loading_test, Loading::Test{}));
+      Loading::declare_parameters(prm, variant(declaration.loading_test, lab_tests()));
       Bedding::declare_parameters(prm);
       prm.leave_subsection();
     }
@@ -1360,14 +712,8 @@ namespace anticrack::dem
                        "least one (or make it one run: set Scene = dem, without subsection Campaign)");
         return;
       }
-      using Test = Loading::Test;
-      const Test test = dem.loading.test;
-      if (test != Test::clump_force && test != Test::tilted_gravity && test != Test::simple_shear)
-        problems.add("Campaign/Loading angles [deg]", "(set)",
-                     "campaigns run the clump tests at loading angles; the triaxial and platen tests have none");
-      if (test == Test::simple_shear)
-        problems.add("Campaign/Loading angles [deg]", "(set)",
-                     "campaigns run load-controlled tests at loading angles; simple shear has none");
+      if (const char *why_not = dem.loading.test->why_no_campaign)
+        problems.add("Campaign/Loading angles [deg]", "(set)", why_not);
       const std::string why = "Campaign/Loading angles [deg] runs mixed-mode tests, which need ";
       if (!dem.has_clump() || !dem.boundary.has_fixed_base() || !(dem.boundary.clump_force_rate > 0))
         problems.add("Campaign/Loading angles [deg]", "(" + std::to_string(loading_angles_deg.size()) + " angles)",
@@ -1434,7 +780,7 @@ namespace anticrack::dem
       const auto &s = d.sample;
       if (s.actuator_count > 0)
       {
-        if (s.type != parameters::Sample::Type::ballistic_deposition)
+        if (!s.type->has_entry("Actuator layer count"))
           problems.add("DEM/Sample/Actuator layer count", s.actuator_count,
                        "an actuator layer is deposited on a ballistic deposit only (DEM/Sample/Type)");
         if (bp.clump_above || bp.actuator_thickness)
@@ -1534,15 +880,13 @@ namespace anticrack::dem
     Declaration declaration_of(const std::string &bytes, const std::string &file, const SceneKind kind,
                                const Overrides &overrides)
     {
-      using parameters::Loading;
-      using parameters::Sample;
       ParameterHandler prm;
       prm.enter_subsection("DEM");
       prm.enter_subsection("Sample");
-      prm.declare_entry("Type", "simple cubic lattice", Patterns::Selection(Sample::type_names().pattern()));
+      prm.declare_entry("Type", sample_types().front().name, Patterns::Selection(variant_pattern(sample_types())));
       prm.leave_subsection();
       prm.enter_subsection("Loading");
-      prm.declare_entry("Test", "clump force", Patterns::Selection(Loading::test_names().pattern()));
+      prm.declare_entry("Test", lab_tests().front().name, Patterns::Selection(variant_pattern(lab_tests())));
       prm.leave_subsection();
       prm.leave_subsection();
       std::istringstream input(bytes);
@@ -1561,10 +905,10 @@ namespace anticrack::dem
       declaration.kind = kind;
       prm.enter_subsection("DEM");
       prm.enter_subsection("Sample");
-      declaration.sample_type = static_cast<int>(Sample::type_names().value(prm.get("Type")));
+      declaration.sample_type = static_cast<int>(&variant_named(sample_types(), prm.get("Type")) - sample_types().data());
       prm.leave_subsection();
       prm.enter_subsection("Loading");
-      declaration.loading_test = static_cast<int>(Loading::test_names().value(prm.get("Test")));
+      declaration.loading_test = static_cast<int>(&variant_named(lab_tests(), prm.get("Test")) - lab_tests().data());
       prm.leave_subsection();
       prm.leave_subsection();
       return declaration;
@@ -1573,27 +917,16 @@ namespace anticrack::dem
     /// Why an entry that some DEM scene may set does not belong to this one.
     std::string foreign_entry_reason(const std::vector<std::string> &path, const Declaration &declaration)
     {
-      using parameters::Loading;
-      using parameters::Sample;
       const std::string kind = scene_kind_names().name(*declaration.kind);
       if (path.front() == "Campaign")
         return "subsection Campaign belongs to scenes of kind campaign or calibration (set Scene = campaign); "
                "this is a `" + kind + "` scene";
-      const auto alternatives = [](const auto &names, auto has_entry, const std::string &entry) {
-        std::string list;
-        for (const auto &[name, value] : names.rows())
-          if (has_entry(value, entry))
-            list += (list.empty() ? "`" : ", `") + std::string(name) + "`";
-        return list;
-      };
       if (path.size() == 3 && path[0] == "DEM" && path[1] == "Sample")
-        return "belongs to DEM/Sample/Type = " + alternatives(Sample::type_names(), Sample::has_entry, path[2]) +
-               ", not to this scene's `" +
-               Sample::type_names().name(static_cast<Sample::Type>(*declaration.sample_type)) + "`";
+        return "belongs to DEM/Sample/Type = " + variants_with_entry(sample_types(), path[2]) + ", not to this scene's `" +
+               sample_types().at(*declaration.sample_type).name + "`";
       if (path.size() == 3 && path[0] == "DEM" && path[1] == "Loading")
-        return "belongs to DEM/Loading/Test = " + alternatives(Loading::test_names(), Loading::has_entry, path[2]) +
-               ", not to this scene's `" +
-               Loading::test_names().name(static_cast<Loading::Test>(*declaration.loading_test)) + "`";
+        return "belongs to DEM/Loading/Test = " + variants_with_entry(lab_tests(), path[2]) + ", not to this scene's `" +
+               lab_tests().at(*declaration.loading_test).name + "`";
       return "does not belong to a `" + kind + "` scene";
     }
 

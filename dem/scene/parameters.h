@@ -8,7 +8,8 @@
 // periodic axis, ...) and reports every problem at once, naming the file, the entry with its
 // subsection path, the value and why it is refused. Nothing is written before this has passed.
 //
-// Only dem/scene/parameters.cpp includes deal.II: the rest of the application sees plain structs.
+// Only dem/scene/parameters.cpp and the variants' files (dem/scene/scene_entries.h) include deal.II:
+// the rest of the application sees plain structs.
 #pragma once
 
 #include "dem/sample/bedding.h"
@@ -17,10 +18,13 @@
 #include "dem/core/system.h"
 #include "dem/core/types.h"
 #include "dem/core/walls.h"
+#include "dem/scene/lab_tests.h"
+#include "dem/scene/sample_types.h"
 #include "util/enum_table.h"
 
 #include <nlohmann/json.hpp>
 
+#include <any>
 #include <array>
 #include <iosfwd>
 #include <optional>
@@ -62,8 +66,8 @@ namespace anticrack::dem
   struct Declaration
   {
     std::optional<SceneKind> kind;
-    std::optional<int> sample_type; ///< a parameters::Sample::Type
-    std::optional<int> loading_test; ///< a parameters::Loading::Test
+    std::optional<int> sample_type; ///< an index into sample_types()
+    std::optional<int> loading_test; ///< an index into lab_tests()
     /// Entries another module adds to scenes of this kind (subsection Calibration of a calibration
     /// scene, coupling/calibration_scene.h): declared beside the DEM's, parsed by that module.
     void (*declare_more)(dealii::ParameterHandler &prm) = nullptr;
@@ -128,18 +132,12 @@ namespace anticrack::dem
       void check(Problems &problems) const;
     };
 
-    /// subsection DEM/Sample: where the spheres come from.
+    /// subsection DEM/Sample: where the spheres come from. The types and what each reads are in
+    /// dem/scene/sample_types.h; the values of every type are kept here, for the model, the
+    /// summary and the campaigns.
     struct Sample
     {
-      enum class Type
-      {
-        simple_cubic_lattice,
-        snapshot,
-        sticky_hard_spheres,  ///< dem/sample/sticky_hard_spheres.h; the domain becomes the sampler's cube
-        ballistic_deposition, ///< dem/sample/ballistic_deposition.h into the DEM/Domain box
-        dense_random_packing  ///< dem/sample/dense_packing.h filling the DEM/Domain box
-      };
-      Type type = Type::simple_cubic_lattice;
+      const SampleType *type = &sample_types().front();
       std::array<Index, 3> lattice_size = {10, 10, 10};
       double radius = 1e-3;
       double spacing = 2e-3;
@@ -165,13 +163,13 @@ namespace anticrack::dem
       double formation_friction = 0;    ///< mu while the packing forms
       double packing_pressure = 1e5;    ///< [Pa]
       double disc_diameter = 0;         ///< [m], > 0 carves a disc (axis y) for the Brazilian test
+      /// The values of a type that no other module reads, in a struct of the type's own file
+      /// (SampleType::parse_parameters sets it, build reads it with std::any_cast); the fields
+      /// above are those the summary, the campaigns or the clump's rules read too.
+      std::any settings;
 
-      static const EnumTable<Type> &type_names();
-      /// Whether `entry` of DEM/Sample belongs to samples of `type` (Type is declared for all).
-      static bool has_entry(Type type, const std::string &entry);
-
-      /// Declares Type and the entries of `type` (every entry of every type if empty).
-      static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Type> type);
+      /// Declares Type and the entries of `type` (every entry of every type if null).
+      static void declare_parameters(dealii::ParameterHandler &prm, const SampleType *type);
       void parse_parameters(dealii::ParameterHandler &prm);
       /// The entries of this type, and what the type needs of the rest of `dem` (the DEM/ this sample
       /// belongs to): a lattice inside the domain and bonded by the gap tolerance, periods and boxes
@@ -245,17 +243,11 @@ namespace anticrack::dem
     };
 
     /// subsection DEM/Loading: adaptive quasi-static ramp of the clump force and the end of a test.
+    /// The tests and what each reads are in dem/scene/lab_tests.h; the values of every test are
+    /// kept here, for the model, the summary and the campaigns.
     struct Loading
     {
-      enum class Test
-      {
-        clump_force,    ///< force ramp on the clump (Ritter et al. 2020)
-        tilted_gravity, ///< growing actuator weight under gravity tilted by psi (Bobillier et al. 2020)
-        simple_shear,   ///< platen driven along x at constant normal stress (Mede et al. 2018)
-        triaxial,       ///< six servo walls: consolidation, then axial strain (Elyashiv et al. 2020)
-        platen_compression ///< z walls approach each other: uniaxial compression, Brazilian disc (Zhao & Feng 2022)
-      };
-      Test test = Test::clump_force;
+      const LabTest *test = &lab_tests().front();
       bool adaptive = false;
       dem::RampControlSettings ramp;  ///< fast_rate = Boundary particles/Clump force rate [N/s]
       double stop_strain = 0;         ///< |u_clump| / H0 at which the run ends, 0 = never
@@ -271,13 +263,11 @@ namespace anticrack::dem
       double max_servo_speed = 0;        ///< [m/s], 0 = 10 x strain rate x box length
       double platen_speed = 1e-2;        ///< [m/s]
       double post_peak_fraction = 0.5;
+      /// The values of a test that no other module reads (see Sample::settings).
+      std::any settings;
 
-      static const EnumTable<Test> &test_names();
-      /// Whether `entry` of DEM/Loading belongs to the test `test` (Test is declared for all).
-      static bool has_entry(Test test, const std::string &entry);
-
-      /// Declares Test and the entries of `test` (every entry of every test if empty).
-      static void declare_parameters(dealii::ParameterHandler &prm, std::optional<Test> test);
+      /// Declares Test and the entries of `test` (every entry of every test if null).
+      static void declare_parameters(dealii::ParameterHandler &prm, const LabTest *test);
       void parse_parameters(dealii::ParameterHandler &prm);
       /// The entries of this test, and what the test needs of the rest of `dem` (the DEM/ this
       /// loading belongs to): its walls and periodic axes, a fixed base and a clump, gravity.

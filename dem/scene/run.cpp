@@ -649,7 +649,7 @@ namespace anticrack::dem
         // Strains of the deformable layer between the rigid base and clump (u / h), as the
         // calibration reads them (params/campaign_data.cpp): one secant modulus for both.
         failure_analysis_ = analyse_test_history(history_, initial_layer_thickness_,
-                                                 scene_.dem.loading.test == parameters::Loading::Test::simple_shear);
+                                                 scene_.dem.loading.test->shear_controlled);
       }
       summary_ = summary(status, message);
       write_json_atomically(files_.summary().string(), summary_);
@@ -822,59 +822,12 @@ namespace anticrack::dem
       lab["results"] = results;
       d["lab_test"] = lab;
     }
-    // The sample generator's report (DEM/Sample/Type = sticky hard spheres or ballistic deposition).
+    // The sample generator's report.
     Json sample;
-    if (model_->sticky_hard_spheres)
-    {
-      const auto &r = *model_->sticky_hard_spheres;
-      sample["type"] = "sticky hard spheres";
-      sample["volume_fraction"] = r.volume_fraction;
-      sample["stickiness"] = r.stickiness;
-      sample["coordination"] = r.coordination;
-      sample["percus_yevick_coordination"] = r.percus_yevick_coordination;
-      sample["contacts"] = r.contacts;
-      sample["acceptance"] = r.acceptance;
-      sample["cluster_move_fraction"] = scene_.dem.sample.cluster_move_fraction;
-      sample["cluster_acceptance"] = r.cluster_acceptance;
-      sample["largest_cluster_fraction"] = r.largest_cluster_fraction;
-      sample["percolating"] = r.percolating;
-      sample["box_length_m"] = r.box_length;
-      sample["coordination_history"] = r.coordination_history;
-    }
-    else if (model_->ballistic_deposition)
-    {
-      const auto &r = *model_->ballistic_deposition;
-      sample["type"] = "ballistic deposition";
-      sample["rule"] = scene_.dem.sample.rolling ? "rolling" : "sticky";
-      sample["particles"] = r.particles;
-      sample["fallbacks"] = r.fallbacks;
-      sample["on_base"] = r.on_base;
-      sample["solid_fraction_bulk"] = r.solid_fraction_bulk;
-      sample["mean_contacts"] = r.mean_contacts;
-      sample["mean_contacts_all"] = r.mean_contacts_all;
-      sample["height_m"] = r.height;
-      sample["bulk_lower_m"] = r.bulk_lower;
-      sample["bulk_upper_m"] = r.bulk_upper;
-    }
-    else if (model_->dense_packing)
-    {
-      const auto &r = *model_->dense_packing;
-      sample["type"] = "dense random packing";
-      sample["formation_friction"] = scene_.dem.sample.formation_friction;
-      sample["volume_fraction"] = r.solid_fraction;
-      sample["coordination"] = r.coordination;
-      sample["mechanical_coordination"] = r.mechanical_coordination;
-      sample["rattlers"] = r.rattlers;
-      sample["pressure_Pa"] = r.pressure;
-      sample["formation_steps"] = r.steps;
-      sample["mean_radius_m"] = r.mean_radius;
-      sample["max_overlap_ratio"] = r.max_overlap_ratio;
-      sample["particles_after_carving"] = system_.particles.size();
-      sample["disc_diameter_m"] = scene_.dem.sample.disc_diameter;
-    }
-    else
-      sample["type"] = scene_.dem.sample.type == parameters::Sample::Type::snapshot ? "snapshot" :
-                                                                                     "simple cubic lattice";
+    const SampleType &type = *scene_.dem.sample.type;
+    sample["type"] = type.name;
+    if (type.summarize)
+      type.summarize(sample, scene_, *model_);
     sample["initial_bonds"] = model_->initial_bonds;
     if (scene_.dem.bedding.enabled)
       sample["bedding_bonds"] = model_->bedding_bonds;

@@ -99,7 +99,7 @@ TEST(DemSceneReader, ReadsTheEntriesOfItsVariant)
 {
   const dem::SceneParameters scene = dem::read_scene(scene_file("lattice", lattice_scene), SceneKind::dem);
   EXPECT_EQ(scene.kind, SceneKind::dem);
-  EXPECT_EQ(scene.dem.sample.type, Sample::Type::simple_cubic_lattice);
+  EXPECT_STREQ(scene.dem.sample.type->name, "simple cubic lattice");
   EXPECT_EQ(scene.dem.sample.lattice_size, (std::array<dem::Index, 3>{2, 2, 2}));
   EXPECT_FALSE(scene.campaign.enabled());
 }
@@ -146,15 +146,16 @@ TEST(DemSceneReader, UndeclaredEntriesKeepTheDocumentedDefaults)
   dealii::ParameterHandler every_variant;
   dem::declare_dem_scene(every_variant, dem::Declaration{});
   every_variant.enter_subsection("DEM");
-  for (const auto &[name, type] : Sample::type_names().rows())
+  for (const dem::SampleType &type : dem::sample_types())
   {
+    const std::string name = type.name;
     every_variant.enter_subsection("Sample");
     every_variant.set("Type", std::string(name));
     every_variant.leave_subsection();
     Sample from_defaults;
     from_defaults.parse_parameters(every_variant); // reads only the entries of `type`, at their defaults
     Sample built_in;
-    built_in.type = type;
+    built_in.type = &type;
     EXPECT_EQ(from_defaults.lattice_size, built_in.lattice_size) << name;
     EXPECT_EQ(from_defaults.radius, built_in.radius) << name;
     EXPECT_EQ(from_defaults.spacing, built_in.spacing) << name;
@@ -173,15 +174,16 @@ TEST(DemSceneReader, UndeclaredEntriesKeepTheDocumentedDefaults)
     EXPECT_EQ(from_defaults.packing_pressure, built_in.packing_pressure) << name;
     EXPECT_EQ(from_defaults.disc_diameter, built_in.disc_diameter) << name;
   }
-  for (const auto &[name, test] : Loading::test_names().rows())
+  for (const dem::LabTest &test : dem::lab_tests())
   {
+    const std::string name = test.name;
     every_variant.enter_subsection("Loading");
     every_variant.set("Test", std::string(name));
     every_variant.leave_subsection();
     Loading from_defaults;
     from_defaults.parse_parameters(every_variant);
     Loading built_in;
-    built_in.test = test;
+    built_in.test = &test;
     EXPECT_EQ(from_defaults.adaptive, built_in.adaptive) << name;
     EXPECT_EQ(from_defaults.ramp.interval, built_in.ramp.interval) << name;
     EXPECT_EQ(from_defaults.ramp.recovery_factor, built_in.ramp.recovery_factor) << name;
