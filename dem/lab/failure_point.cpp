@@ -55,13 +55,6 @@ namespace anticrack::dem
         fail(where, msg.str());
       }
     }
-
-    /// ceil(fraction * n) samples, at least 1; the small offset keeps 0.6 * 100 from rounding to 61.
-    std::size_t tail_length(double fraction, std::size_t n)
-    {
-      const double x = std::ceil(fraction * static_cast<double>(n) - 1e-9);
-      return std::max<std::size_t>(1, static_cast<std::size_t>(std::max(0.0, x)));
-    }
   } // namespace
 
   void validate(const TestHistory &h)

@@ -43,20 +43,9 @@ namespace anticrack::dem
     }
   } // namespace
 
-  std::string format_number(const double x)
-  {
-    std::ostringstream s;
-    s.precision(6);
-    s << x;
-    return s.str();
-  }
-
   std::string format_vector(const Vec3 &v)
   {
-    std::ostringstream s;
-    s.precision(6);
-    s << v[0] << ", " << v[1] << ", " << v[2];
-    return s.str();
+    return format_number(v[0]) + ", " + format_number(v[1]) + ", " + format_number(v[2]);
   }
 
   namespace parameters

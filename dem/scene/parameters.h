@@ -21,6 +21,7 @@
 #include "dem/scene/lab_tests.h"
 #include "dem/scene/sample_types.h"
 #include "util/enum_table.h"
+#include "util/format.h"
 
 #include <nlohmann/json.hpp>
 
@@ -256,7 +257,7 @@ namespace anticrack::dem
       double shear_velocity = 1e-3;      ///< [m/s]
       double consolidation_time = 1e-3;  ///< [s]
       double final_shear_strain = 0.1;
-      // triaxial and platen compression (dem/lab/lab_tests.h)
+      // triaxial and platen compression (dem/lab/triaxial_test.h, dem/lab/platen_compression_test.h)
       double confining_pressure = 1e5;   ///< [Pa]
       double axial_strain_rate = 1;      ///< [1/s]
       double final_axial_strain = 0.2;   ///< also the platen test's strain limit
@@ -405,7 +406,6 @@ namespace anticrack::dem
   /// the canonical parameters and of the resume key.
   nlohmann::ordered_json scene_info(const SceneParameters &scene);
 
-  /// Numbers and vectors for messages: 6 significant digits, "a, b, c".
-  std::string format_number(double x);
+  /// A vector for messages: "a, b, c", each as util/format.h's format_number() writes it.
   std::string format_vector(const Vec3 &v);
 } // namespace anticrack::dem
