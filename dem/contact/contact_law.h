@@ -2,8 +2,10 @@
 // (linear_contact.h, hertz_mindlin_contact.h) on ContactParameters and the pair geometry. The scene
 // picks a law by name once at set-up (contact_law_by_name); the engine reaches a pair's kernels through
 // visit_contact_law, one switch per pair that selects an inlined instantiation of the law (no
-// indirect call in the force loop). Adding a law: its header, an id in contact_parameters.h, and one
-// line in registered_contact_laws and in visit_contact_law below.
+// indirect call in the force loop). A law's header also names the scene entries it reads
+// (visit_entries: DEM/Material declares, parses and checks them from that list). Adding a law: its
+// header, an id (and any new fields) in contact_parameters.h, and one line in
+// registered_contact_laws and in visit_contact_law below.
 #pragma once
 
 #include "dem/contact/contact_parameters.h"
@@ -48,6 +50,34 @@ namespace anticrack::dem
     for (const ContactLaw law : registered_contact_laws)
       names += (names.empty() ? "" : "|") + contact_law_name(law);
     return names;
+  }
+
+  /// "`linear` has ...; `hertz-mindlin` has ...": each law's documentation, for the help text.
+  inline std::string contact_law_documentation()
+  {
+    std::string text;
+    for (const ContactLaw law : registered_contact_laws)
+      text += (text.empty() ? "`" : "; `") +
+              visit_contact_law(law, [](auto kernel) {
+                using Kernel = decltype(kernel);
+                return std::string(Kernel::name) + "` has " + Kernel::documentation;
+              });
+    return text;
+  }
+
+  /// Calls entry(ContactEntry) for every entry of every registered law, law by law.
+  template <class Visitor>
+  inline void visit_contact_entries(Visitor &&entry)
+  {
+    for (const ContactLaw law : registered_contact_laws)
+      visit_contact_law(law, [&](auto kernel) { decltype(kernel)::visit_entries(entry); });
+  }
+
+  /// Calls entry(ContactEntry) for the entries of `law`.
+  template <class Visitor>
+  inline void visit_contact_entries(const ContactLaw law, Visitor &&entry)
+  {
+    visit_contact_law(law, [&](auto kernel) { decltype(kernel)::visit_entries(entry); });
   }
 
   /// The law called `name`; throws SetupError naming the known laws otherwise.

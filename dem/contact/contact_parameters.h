@@ -1,7 +1,10 @@
 // Parameters of the contact laws (docs/physics.md §1.1): one flat struct shared by every law of the
-// registry in dem/contact/contact_law.h; each law reads the fields it names. Plain data, kept apart
-// from the state the contacts carry (MercuryDPM "species" style).
+// registry in dem/contact/contact_law.h; each law reads the fields it names, and names them as
+// scene entries (ContactEntry). Plain data, kept apart from the state the contacts carry
+// (MercuryDPM "species" style).
 #pragma once
+
+#include <limits>
 
 namespace anticrack::dem
 {
@@ -23,4 +26,21 @@ namespace anticrack::dem
     double young_modulus = 1e9;    ///< E [Pa] of the grain material (Hertz-Mindlin)
     double poisson_ratio = 0.3;    ///< nu [-] (Hertz-Mindlin)
   };
+
+  /// One entry of subsection DEM/Material that a law reads (its kernel's visit_entries()): the
+  /// scene declares it with a Double(lower, upper) pattern, parses it into `field` and refuses a
+  /// value for which `acceptable` is false with `requirement` (dem/scene/parameters.cpp). Plain data:
+  /// the engine stays free of the scene's parameter handler.
+  struct ContactEntry
+  {
+    const char *name;
+    const char *default_value;
+    double lower, upper;
+    const char *documentation;
+    double ContactParameters::*field;
+    bool (*acceptable)(double value);
+    const char *requirement;
+  };
+
+  inline constexpr double unbounded = std::numeric_limits<double>::max();
 } // namespace anticrack::dem

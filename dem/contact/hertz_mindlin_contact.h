@@ -15,6 +15,21 @@ namespace anticrack::dem
   struct HertzMindlinContact
   {
     static constexpr const char *name = "hertz-mindlin";
+    static constexpr const char *documentation = "F_n = 4/3 E* sqrt(R*) delta^(3/2) and k_t = 8 G* sqrt(R* delta)";
+
+    /// Its entries of DEM/Material (ContactEntry), in the order `anticrack params` lists them.
+    template <class Visitor>
+    static void visit_entries(Visitor &&entry)
+    {
+      entry(ContactEntry{"Young modulus [Pa]", "1e9", 0, unbounded,
+                         "E: Young's modulus of the grain material (Hertz-Mindlin law only). Units: Pa.",
+                         &ContactParameters::young_modulus, [](double v) { return v > 0; },
+                         "must be positive for the Hertz-Mindlin law"});
+      entry(ContactEntry{"Poisson ratio", "0.3", 0, 0.5,
+                         "nu: Poisson's ratio of the grain material (Hertz-Mindlin law only). Units: none.",
+                         &ContactParameters::poisson_ratio, [](double v) { return v < 0.5; },
+                         "must be below 0.5 for the Hertz-Mindlin law"});
+    }
     /// Apart pairs have no stiffness: the critical time step counts touching pairs only.
     static constexpr bool stiffness_depends_on_overlap = true;
 

@@ -14,6 +14,20 @@ namespace anticrack::dem
   struct LinearContact
   {
     static constexpr const char *name = "linear";
+    static constexpr const char *documentation = "k_n = E_c A / L with A = pi min(R)^2, L = R_i + R_j, k_s = k_n / kappa";
+
+    /// Its entries of DEM/Material (ContactEntry), in the order `anticrack params` lists them.
+    template <class Visitor>
+    static void visit_entries(Visitor &&entry)
+    {
+      entry(ContactEntry{"Contact modulus [Pa]", "1e9", 0, unbounded,
+                         "E_c: contact modulus of the linear law (PFC 'deformability'). Units: Pa.",
+                         &ContactParameters::contact_modulus, [](double v) { return v > 0; },
+                         "must be positive for the linear contact law"});
+      entry(ContactEntry{"Stiffness ratio", "3", 0, unbounded,
+                         "kappa = k_n / k_s: normal-to-shear stiffness ratio of the linear law. Units: none.",
+                         &ContactParameters::stiffness_ratio, [](double v) { return v > 0; }, "must be positive"});
+    }
     /// The stiffness does not depend on the overlap: the critical time step counts every candidate
     /// pair, so that contacts forming before the next evaluation are covered.
     static constexpr bool stiffness_depends_on_overlap = false;

@@ -138,28 +138,20 @@ namespace anticrack::dem
                         "rho: density of the spheres (Ritter et al. (2020) use 10 000 kg/m^3 without "
                         "gravity to speed up quasi-static tests). Units: kg/m^3.");
       prm.declare_entry("Contact law", "linear", Patterns::Selection(dem::contact_law_names()),
-                        "Force-overlap law of sphere-sphere and sphere-wall contacts "
-                        "(docs/physics.md §1.1): `linear` has k_n = E_c A / L with A = pi min(R)^2, "
-                        "L = R_i + R_j, k_s = k_n / kappa; `hertz-mindlin` has "
-                        "F_n = 4/3 E* sqrt(R*) delta^(3/2) and k_t = 8 G* sqrt(R* delta). Both "
-                        "cap the tangential force by Coulomb's law |F_s| <= mu F_n.");
-      prm.declare_entry("Contact modulus [Pa]", "1e9", Patterns::Double(0),
-                        "E_c: contact modulus of the linear law (PFC 'deformability'). Units: Pa.");
-      prm.declare_entry("Stiffness ratio", "3", Patterns::Double(0),
-                        "kappa = k_n / k_s: normal-to-shear stiffness ratio of the linear law. "
-                        "Units: none.");
+                        "Force-overlap law of sphere-sphere and sphere-wall contacts (docs/physics.md "
+                        "§1.1): " + dem::contact_law_documentation() +
+                          ". Every law caps the tangential force by Coulomb's law |F_s| <= mu F_n.");
+      // Each law's own entries (dem/contact/NAME_contact.h), then those of friction and dashpots,
+      // which every law shares (dem/contact/frictional_contact.h).
+      dem::visit_contact_entries([&](const dem::ContactEntry &e) {
+        prm.declare_entry(e.name, e.default_value, Patterns::Double(e.lower, e.upper), e.documentation);
+      });
       prm.declare_entry("Friction coefficient", "0.5", Patterns::Double(0),
                         "mu = tan(phi_contact): Coulomb friction coefficient of contacts. Units: "
                         "none.");
       prm.declare_entry("Damping ratio", "0", Patterns::Double(0, 1),
                         "beta_d: ratio of the contact dashpots to critical damping, "
                         "c = 2 beta_d sqrt(m_eff k). 0 switches the dashpots off. Units: none.");
-      prm.declare_entry("Young modulus [Pa]", "1e9", Patterns::Double(0),
-                        "E: Young's modulus of the grain material (Hertz-Mindlin law only). Units: "
-                        "Pa.");
-      prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(0, 0.5),
-                        "nu: Poisson's ratio of the grain material (Hertz-Mindlin law only). "
-                        "Units: none.");
       prm.leave_subsection();
     }
 
@@ -168,12 +160,9 @@ namespace anticrack::dem
       prm.enter_subsection("Material");
       density = prm.get_double("Density [kg/m^3]");
       contact.law = dem::contact_law_by_name(prm.get("Contact law"));
-      contact.contact_modulus = prm.get_double("Contact modulus [Pa]");
-      contact.stiffness_ratio = prm.get_double("Stiffness ratio");
+      dem::visit_contact_entries([&](const dem::ContactEntry &e) { contact.*e.field = prm.get_double(e.name); });
       contact.friction = prm.get_double("Friction coefficient");
       contact.damping_ratio = prm.get_double("Damping ratio");
-      contact.young_modulus = prm.get_double("Young modulus [Pa]");
-      contact.poisson_ratio = prm.get_double("Poisson ratio");
       prm.leave_subsection();
     }
 
@@ -182,23 +171,11 @@ namespace anticrack::dem
       // Moduli that patterns only bound from below by zero.
       if (!(density > 0))
         problems.add("DEM/Material/Density [kg/m^3]", density, "must be positive");
-      if (contact.law == dem::ContactLaw::linear)
-      {
-        if (!(contact.contact_modulus > 0))
-          problems.add("DEM/Material/Contact modulus [Pa]", contact.contact_modulus,
-                       "must be positive for the linear contact law");
-        if (!(contact.stiffness_ratio > 0))
-          problems.add("DEM/Material/Stiffness ratio", contact.stiffness_ratio, "must be positive");
-      }
-      else
-      {
-        if (!(contact.young_modulus > 0))
-          problems.add("DEM/Material/Young modulus [Pa]", contact.young_modulus,
-                       "must be positive for the Hertz-Mindlin law");
-        if (!(contact.poisson_ratio < 0.5))
-          problems.add("DEM/Material/Poisson ratio", contact.poisson_ratio,
-                       "must be below 0.5 for the Hertz-Mindlin law");
-      }
+      // The chosen law's own requirements (dem/contact/NAME_contact.h).
+      dem::visit_contact_entries(contact.law, [&](const dem::ContactEntry &e) {
+        if (!e.acceptable(contact.*e.field))
+          problems.add(std::string("DEM/Material/") + e.name, contact.*e.field, e.requirement);
+      });
     }
 
     // --------------------------------------------------------------------------------- Bond
