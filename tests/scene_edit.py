@@ -5,7 +5,11 @@ entries by their subsection path and adds lines right after a subsection opens. 
 subsection that the text does not have is an error: a test must not silently run the unedited
 scene after the example scenes change.
 """
+import json
+import os
 import re
+import subprocess
+import tempfile
 
 
 class SceneEditError(AssertionError):
@@ -53,34 +57,52 @@ def edit_scene(text, changes, insert=None, remove=()):
 
 
 def paths_in(text):
-    """Every subsection and entry path of a .prm text ("Analysis/Explicit", "PST/Saw", ...)."""
+    """Every subsection and entry path of a .prm text, as tuples (("Analysis", "Explicit"),
+    ("PST", "Saw speed [m/s]"), ...): entry names may hold a "/" (units)."""
     found, path = set(), []
     for line in text.splitlines():
         stripped = line.strip()
         opening = re.match(r"subsection\s+(.*\S)\s*$", stripped)
         if opening:
             path.append(opening.group(1))
-            found.add("/".join(path))
+            found.add(tuple(path))
         elif stripped == "end":
             path.pop()
         else:
             entry = re.match(r"set\s+(.*?)\s*=", stripped)
             if entry:
-                found.add("/".join(path + [entry.group(1)]))
+                found.add(tuple(path + [entry.group(1)]))
     return found
 
 
-# What a dynamic PST scene sets that the other analyses do not declare (the snowpack reader refuses
-# them there, naming the analysis they belong to): deleted by hand when a user turns a dynamic PST
-# into a quasi-static one or an energy release rate.
-ONLY_DYNAMIC = ["PST/Saw", "PST/Saw speed [m/s]", "Analysis/Explicit", "Output"]
-ONLY_PST = ["Analysis/Crack detection", "Analysis/Crack band regularisation", "Analysis/Newton/Gravity steps"]
+def declared_paths(anticrack, text):
+    """Every subsection and entry path (tuples, as paths_in) that `anticrack params` declares for the
+    scene `text` (its kind and variants): the program's own declaration, not a copy of it."""
+    with tempfile.TemporaryDirectory() as directory:
+        scene = os.path.join(directory, "scene.prm")
+        with open(scene, "w") as f:
+            f.write(text)
+        listing = subprocess.run([anticrack, "params", scene, "--format", "json"], capture_output=True,
+                                 text=True, check=True).stdout
+    paths = set()
+
+    def visit(node, path):
+        for key, value in node.items():
+            paths.add(tuple(path + [key]))
+            if isinstance(value, dict) and "value" not in value:  # a subsection
+                visit(value, path + [key])
+    visit(json.loads(listing), [])
+    return paths
 
 
-def as_analysis(text, analysis_type, changes=None):
-    """A dynamic PST scene as one of Analysis/Type `analysis_type` with `changes`: the entries the
-    new analysis does not declare (ONLY_DYNAMIC, and ONLY_PST for the energy release rate) dropped."""
-    drop = {"quasi-static": ONLY_DYNAMIC, "energy release rate": ONLY_DYNAMIC + ONLY_PST}[analysis_type]
+def as_analysis(text, analysis_type, anticrack, changes=None):
+    """A snowpack scene as one of Analysis/Type `analysis_type` with `changes`, without the entries
+    and subsections that the new analysis does not declare (as a user would delete them by hand);
+    `anticrack` says which those are."""
+    text = edit_scene(text, {**(changes or {}), "Analysis/Type": analysis_type})
+    minimal = f"set Scene = snowpack\nsubsection Analysis\n  set Type = {analysis_type}\nend\n"
+    declared = declared_paths(anticrack, minimal)
     present = paths_in(text)
-    return edit_scene(text, {**(changes or {}), "Analysis/Type": analysis_type},
-                      remove=[p for p in drop if p in present])
+    # The outermost undeclared paths: what is inside a dropped subsection goes with it.
+    drop = ["/".join(p) for p in present if p not in declared and (len(p) == 1 or p[:-1] in declared)]
+    return edit_scene(text, {}, remove=drop)

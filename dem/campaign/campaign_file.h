@@ -75,9 +75,12 @@ namespace anticrack::dem
       number("flow_angle_deg", "deg",
              "plastic flow angle atan2(du_z, du_x) of the clump just after failure (Ritter et al. 2020)",
              &R::flow_angle_deg),
-      number("secant_modulus", "Pa", "secant modulus to 70 % of the peak base normal stress (Bobillier et al. 2020)",
+      number("secant_modulus", "Pa",
+             "secant modulus to 70 % of the peak base normal stress on the layer strain u/h (Bobillier et al. 2020)",
              &R::secant_modulus),
-      number("softening_ratio", "-", "residual / peak base normal stress (Bobillier et al. 2020)", &R::softening_ratio),
+      number("softening_ratio", "-",
+             "residual (mean of the last half of the post-peak samples) / peak base normal stress (Bobillier et al. "
+             "2020)", &R::softening_ratio),
       number("peak_q", "Pa", "largest von Mises stress of the whole test", &R::peak_q),
       number("max_inertial_number", "-",
              "largest inertial number between half the failure q and failure (quasi-static: < 1e-4, Ritter et al. "

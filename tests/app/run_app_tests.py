@@ -1255,7 +1255,7 @@ def pst_scene(changes=None, insert=None, material_file=None):
 def err_scene():
     """The energy release rate of the tiny PST's snowpack with an elastic weak layer: a 1.5 m column,
     5 cm elements, cuts of 0 to 0.3 m (7 elastic solves, G at 6 midpoints)."""
-    return as_analysis(pst_scene(), "energy release rate",
+    return as_analysis(pst_scene(), "energy release rate", ANTICRACK,
                        {"Snowpack/Weak layer/Model": "elastic", "PST/Cut length [m]": "0.3",
                         "PST/Column length [m]": "1.5", "Mesh/Element length [m]": "0.05"})
 
@@ -1579,7 +1579,7 @@ def fem_params(work):
     out, _ = anticrack("check", scene, cwd=work)
     check("The scene is valid" in out, f"the listing is not a valid scene:\n{out}")
     check(set(os.listdir(work)) == before, "check wrote files")
-    static = write(os.path.join(work, "static.prm"), as_analysis(stdout, "energy release rate",
+    static = write(os.path.join(work, "static.prm"), as_analysis(stdout, "energy release rate", ANTICRACK,
                                                                  {"Snowpack/Weak layer/Model": "elastic"}))
     own, _ = anticrack("params", static)
     check("set Fracture energy [J/m^2]" in own and "subsection Explicit" not in own and "set Saw " not in own,

@@ -173,7 +173,7 @@ def record(args, name, spec):
         text += "\n" + "\n".join(insert[""]) + "\n"
         insert = {k: v for k, v in insert.items() if k}
     if spec.get("analysis"):  # a dynamic PST made into another analysis (its own entries only)
-        text = as_analysis(text, spec["analysis"], spec.get("changes"))
+        text = as_analysis(text, spec["analysis"], args.anticrack, spec.get("changes"))
     elif spec.get("changes") or insert:
         text = edit_scene(text, spec.get("changes", {}), insert or None)
     scene = os.path.join(work, spec["scene"])
