@@ -79,10 +79,9 @@ namespace anticrack::app
       {"snowpack", "a layered snowpack and its saw test with the FE solver (subsection Snowpack)",
        [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
        {
-         using Type = fem::Analysis::Type;
-         const std::optional<Type> type = !file.empty() ? fem::analysis_type_in(read_scene_file(file), file)
-                                          : every       ? std::optional<Type>()
-                                                        : Type::explicit_dynamics; // the default type
+         const fem::AnalysisType *type = !file.empty() ? &fem::analysis_type_in(read_scene_file(file), file)
+                                         : every       ? nullptr
+                                                       : &fem::default_analysis_type();
          fem::declare_snowpack_scene(prm, type);
        },
        [](const std::string &file, int) { fem::check_snowpack_scene(file); },

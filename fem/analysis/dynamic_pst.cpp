@@ -1,13 +1,16 @@
-#include "fem/analysis/dynamic_pst.h"
-
+// The dynamic PST: gravity equilibrium, then the saw, the crack and its arrest in time by explicit
+// central differences; series.h5, the fields, and checkpoints from which a run resumes bit for bit.
 #include "fem/analysis/outputs.h"
+#include "fem/analysis/snowpack_run.h"
 #include "fem/model/checkpoint.h"
 #include "util/atomic_file.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
 #include "util/input_error.h"
+#include "util/problems.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
 #include <chrono>
@@ -334,7 +337,7 @@ namespace anticrack::fem
         }
         auto optional = [](const std::optional<double> &v) { return v ? Json(*v) : Json(nullptr); };
         Json r;
-        r["analysis"] = analysis_type_names().name(scene_.analysis.type);
+        r["analysis"] = scene_.analysis.type->name;
         r["mesh"] = mesh_json(model_, comm_);
         r["critical_cut_length_m"] = optional(critical_cut);
         r["self_propagation_lead_m"] = lead;
@@ -378,6 +381,42 @@ namespace anticrack::fem
     return pst.run();
   }
 
-  template Json run_dynamic_pst<2>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
-  template Json run_dynamic_pst<3>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+  AnalysisType dynamic_pst_analysis()
+  {
+    return {
+      "explicit dynamics", "dynamic PST (explicit central differences)",
+      "gravity equilibrium, then the saw and crack propagation in time (explicit central differences).",
+      /* saw_test = */ true, /* time_integration = */ true,
+      [](ParameterHandler &prm) {
+        prm.enter_subsection("Explicit");
+        prm.declare_entry("End time [s]", "1", Patterns::Double(0),
+                          "t_end: simulated time after the saw starts. Units: s.");
+        prm.declare_entry("CFL safety factor", "0.5", Patterns::Double(0.01, 1),
+                          "C: safety factor of the explicit time step dt = C min(h / c_p). Dimensionless.");
+        prm.declare_entry("Linear bulk viscosity", "0.06", Patterns::Double(0, 10),
+                          "c_1: linear coefficient of the bulk viscosity pressure p_v = rho h (c_2^2 h e_v'^2 - c_1 "
+                          "c e_v'). Dimensionless.");
+        prm.declare_entry("Quadratic bulk viscosity", "1.2", Patterns::Double(0, 10),
+                          "c_2: quadratic coefficient of the bulk viscosity pressure (acts in compression only). "
+                          "Dimensionless.");
+        prm.declare_entry("Mass damping [1/s]", "0", Patterns::Double(0),
+                          "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
+        prm.leave_subsection();
+      },
+      [](ParameterHandler &prm, SnowpackScene &scene) {
+        Analysis &analysis = scene.analysis;
+        prm.enter_subsection("Explicit");
+        analysis.end_time = prm.get_double("End time [s]");
+        analysis.cfl_safety = prm.get_double("CFL safety factor");
+        analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
+        analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
+        analysis.mass_damping = prm.get_double("Mass damping [1/s]");
+        prm.leave_subsection();
+      },
+      [](const SnowpackScene &scene, Problems &problems) {
+        if (!(scene.analysis.end_time > 0))
+          problems.add("Analysis/Explicit/End time [s]", "must be > 0");
+      },
+      &run_dynamic_pst<2>, &run_dynamic_pst<3>};
+  }
 } // namespace anticrack::fem

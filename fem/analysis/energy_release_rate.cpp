@@ -1,9 +1,13 @@
-#include "fem/analysis/energy_release_rate.h"
-
+// The energy release rate analysis: G(a) of a saw cut in an elastic snowpack, the cut length at
+// which G reaches G_c, energy_release_rate.h5 and the fields of the longest cut.
 #include "fem/analysis/outputs.h"
+#include "fem/analysis/snowpack_run.h"
 #include "fem/solver/quasi_static.h"
+#include "util/format.h"
+#include "util/problems.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
 #include <limits>
@@ -72,7 +76,7 @@ namespace anticrack::fem
     fields.write(model, u, cuts.back());
 
     Json results;
-    results["analysis"] = analysis_type_names().name(scene.analysis.type);
+    results["analysis"] = scene.analysis.type->name;
     results["mesh"] = mesh_json(model, comm);
     results["fracture_energy_J_per_m2"] = G_c;
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
@@ -94,6 +98,37 @@ namespace anticrack::fem
     return results;
   }
 
-  template Json run_energy_release_rate<2>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
-  template Json run_energy_release_rate<3>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+  AnalysisType energy_release_rate_analysis()
+  {
+    return {
+      "energy release rate", "energy release rate (elastic)",
+      "elastic snowpack, G(a) = -dPi/da over every cut length up to `PST/Cut length`, and the cut length at "
+      "which G reaches the weak layer's fracture energy.",
+      /* saw_test = */ false, /* time_integration = */ false,
+      [](ParameterHandler &prm) {
+        prm.declare_entry("Fracture energy [J/m^2]", "0.5", Patterns::Double(0),
+                          "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
+                          "reaches it (energy release rate analysis). Units: J/m^2.");
+      },
+      [](ParameterHandler &prm, SnowpackScene &scene) {
+        scene.analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
+      },
+      [](const SnowpackScene &scene, Problems &problems) {
+        // Π(a) = −½ f·u holds for a linear snowpack only, and G needs two cuts for a difference.
+        const Snowpack &s = scene.snowpack;
+        auto elastic = [&](const Layer &layer, const std::string &section) {
+          if (layer.model != Layer::Model::elastic)
+            problems.add(section + "/Model", "must be `elastic` for the energy release rate analysis");
+        };
+        for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
+          elastic(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
+        elastic(s.weak_layer, "Snowpack/Weak layer");
+        elastic(s.substratum, "Snowpack/Substratum");
+        const double dx = scene.mesh.element_length, a = scene.pst.cut_length;
+        if (!(a >= 2 * dx))
+          problems.add("PST/Cut length [m]", "must cover at least two element lengths, " + format_number(2 * dx) +
+                                               " m, for G(a) (is " + format_number(a) + ")");
+      },
+      &run_energy_release_rate<2>, &run_energy_release_rate<3>};
+  }
 } // namespace anticrack::fem

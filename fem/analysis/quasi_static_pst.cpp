@@ -1,9 +1,11 @@
-#include "fem/analysis/quasi_static_pst.h"
-
+// The quasi-static PST: gravity equilibrium, then saw steps with Newton until equilibrium is lost or
+// the crack leads the saw; series.h5 (one row per converged saw step) and the fields.
 #include "fem/analysis/outputs.h"
+#include "fem/analysis/snowpack_run.h"
 #include "fem/solver/quasi_static.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <optional>
 #include <string>
@@ -83,7 +85,7 @@ namespace anticrack::fem
                 comm);
 
     Json results;
-    results["analysis"] = analysis_type_names().name(scene.analysis.type);
+    results["analysis"] = scene.analysis.type->name;
     results["mesh"] = mesh_json(model, comm);
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
     results["critical_cut_length_reason"] =
@@ -103,6 +105,23 @@ namespace anticrack::fem
     return results;
   }
 
-  template Json run_quasi_static_pst<2>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
-  template Json run_quasi_static_pst<3>(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
+  AnalysisType quasi_static_pst_analysis()
+  {
+    return {"quasi-static", "quasi-static PST (Newton)",
+            "gravity, then saw steps with Newton until equilibrium is lost or the crack leads the saw.",
+            /* saw_test = */ true, /* time_integration = */ false,
+            [](ParameterHandler &prm) {
+              prm.enter_subsection("Newton");
+              prm.declare_entry("Saw step [m]", "0", Patterns::Double(0),
+                                "da: cut increment of the quasi-static saw steps; 0: one element length. Units: m.");
+              prm.leave_subsection();
+            },
+            [](ParameterHandler &prm, SnowpackScene &scene) {
+              prm.enter_subsection("Newton");
+              scene.analysis.saw_step = prm.get_double("Saw step [m]");
+              prm.leave_subsection();
+            },
+            [](const SnowpackScene &, Problems &) {}, // its one entry's pattern says it all
+            &run_quasi_static_pst<2>, &run_quasi_static_pst<3>};
+  }
 } // namespace anticrack::fem

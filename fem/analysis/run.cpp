@@ -21,18 +21,14 @@ namespace anticrack::fem
 
   namespace
   {
-    const char *analysis_name(fem::Analysis::Type type)
+    /// "`explicit dynamics`": the analyses whose checkpoints --resume continues.
+    std::string resumable_analyses()
     {
-      switch (type)
-      {
-        case fem::Analysis::Type::energy_release_rate:
-          return "energy release rate (elastic)";
-        case fem::Analysis::Type::quasi_static:
-          return "quasi-static PST (Newton)";
-        case fem::Analysis::Type::explicit_dynamics:
-          return "dynamic PST (explicit central differences)";
-      }
-      return "";
+      std::string names;
+      for (const AnalysisType &type : analysis_types())
+        if (type.time_integration)
+          names += (names.empty() ? "`" : ", `") + std::string(type.name) + "`";
+      return names;
     }
 
     /// Output files of a snowpack run (an earlier run's are refused without --overwrite).
@@ -43,7 +39,7 @@ namespace anticrack::fem
   void check_snowpack_scene(const std::string &scene_file)
   {
     const fem::SnowpackScene scene = fem::read_snowpack_scene(scene_file);
-    std::cout << "snowpack scene " << scene_file << ": " << analysis_name(scene.analysis.type) << ", "
+    std::cout << "snowpack scene " << scene_file << ": " << scene.analysis.type->title << ", "
               << scene.mesh.dimension << "D, column " << scene.pst.column_length << " m, slab "
               << scene.snowpack.slab_thickness() << " m in " << scene.snowpack.slab_layers.size()
               << " layer(s), weak layer " << scene.snowpack.weak_layer.thickness << " m ("
@@ -69,8 +65,9 @@ namespace anticrack::fem
       throw InputError("The output path <" + dir.string() + "> exists and is not a directory.");
     if (options.resume)
     {
-      if (scene.analysis.type != fem::Analysis::Type::explicit_dynamics)
-        throw InputError("--resume: only dynamic PSTs (Analysis/Type = explicit dynamics) write checkpoints");
+      if (!scene.analysis.type->time_integration)
+        throw InputError("--resume: Analysis/Type = `" + std::string(scene.analysis.type->name) +
+                         "` writes no checkpoints (only analyses that march in time do: " + resumable_analyses() + ")");
       if (!fs::exists(dir / "checkpoint.json", error))
         throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json (set Output/Checkpoint "
                          "interval, or run without --resume).");

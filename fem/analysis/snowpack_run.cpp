@@ -1,42 +1,36 @@
-// run_snowpack(): the analysis of the scene's Analysis/Type in the scene's dimension, from one table.
+// run_snowpack(): the analysis of the scene's Analysis/Type in the scene's dimension, and the table
+// of analyses (fem/scene/analysis_type.h) that the scene reader declares, parses and checks from.
 #include "fem/analysis/snowpack_run.h"
 
-#include "fem/analysis/dynamic_pst.h"
-#include "fem/analysis/energy_release_rate.h"
-#include "fem/analysis/quasi_static_pst.h"
-
-#include <algorithm>
 #include <chrono>
-#include <iterator>
 #include <stdexcept>
 
 namespace anticrack::fem
 {
-  namespace
+  // Each in its own file of fem/analysis/.
+  AnalysisType energy_release_rate_analysis();
+  AnalysisType quasi_static_pst_analysis();
+  AnalysisType dynamic_pst_analysis();
+
+  const std::vector<AnalysisType> &analysis_types()
   {
-    using AnalysisFunction = Json (*)(const SnowpackScene &, const SnowpackRunOptions &, MPI_Comm);
-
-    struct AnalysisEntry
-    {
-      Analysis::Type type;
-      AnalysisFunction in_2d, in_3d;
+    static const std::vector<AnalysisType> types{
+      energy_release_rate_analysis(),
+      quasi_static_pst_analysis(),
+      dynamic_pst_analysis(),
     };
+    return types;
+  }
 
-    const AnalysisEntry analyses[] = {
-      {Analysis::Type::energy_release_rate, &run_energy_release_rate<2>, &run_energy_release_rate<3>},
-      {Analysis::Type::quasi_static, &run_quasi_static_pst<2>, &run_quasi_static_pst<3>},
-      {Analysis::Type::explicit_dynamics, &run_dynamic_pst<2>, &run_dynamic_pst<3>},
-    };
-  } // namespace
+  const AnalysisType &default_analysis_type() { return analysis_type_named("explicit dynamics"); }
 
   Json run_snowpack(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm communicator)
   {
-    const auto entry = std::find_if(std::begin(analyses), std::end(analyses),
-                                    [&](const AnalysisEntry &e) { return e.type == scene.analysis.type; });
-    if (entry == std::end(analyses))
-      throw std::logic_error("run_snowpack: no analysis for this Analysis/Type");
+    const AnalysisType *type = scene.analysis.type;
+    if (!type)
+      throw std::logic_error("run_snowpack: the scene has no Analysis/Type (it was not read by read_snowpack_scene)");
     const auto start = std::chrono::steady_clock::now();
-    Json results = (scene.mesh.dimension == 2 ? entry->in_2d : entry->in_3d)(scene, options, communicator);
+    Json results = (scene.mesh.dimension == 2 ? type->run_2d : type->run_3d)(scene, options, communicator);
     results["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return results;
   }

@@ -1,5 +1,6 @@
-// Runs a snowpack scene (fem/scene/snowpack_scene.h) into an output directory: the energy release rate
-// analysis of an elastic snowpack, the quasi-static PST, or the explicit dynamic PST. Writes the
+// Runs a snowpack scene (fem/scene/snowpack_scene.h) into an output directory with the analysis its
+// Analysis/Type names (fem/scene/analysis_type.h; one file of fem/analysis/ each: the energy release
+// rate of an elastic snowpack, the quasi-static PST, the explicit dynamic PST). Writes the
 // time series (series.h5 or energy_release_rate.h5) and the fields (fields/*.pvtu with a .pvd
 // record) and returns the results that summary.json reports; the caller adds provenance and
 // writes it. Collective over the communicator; files are written by rank 0 (fields by all ranks).
@@ -16,8 +17,6 @@
 
 namespace anticrack::fem
 {
-  using Json = nlohmann::ordered_json;
-
   struct SnowpackRunOptions
   {
     std::string output_directory; ///< exists; outputs go directly into it

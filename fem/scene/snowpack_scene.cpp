@@ -33,8 +33,6 @@ namespace anticrack::fem
     constexpr unsigned int max_slab_layers = 8;
     constexpr double pi = 3.14159265358979323846;
 
-    std::string slab_layer_section(unsigned int k) { return "Slab layer " + std::to_string(k + 1); }
-
     void declare_layer(ParameterHandler &prm, const std::string &default_model, const std::string &default_thickness)
     {
       prm.declare_entry("Thickness [m]", default_thickness, Double(0),
@@ -147,12 +145,22 @@ namespace anticrack::fem
     return names;
   }
 
-  const EnumTable<Analysis::Type> &analysis_type_names()
+  std::string slab_layer_section(const unsigned int k) { return "Slab layer " + std::to_string(k + 1); }
+
+  const AnalysisType &analysis_type_named(const std::string &name)
   {
-    static const EnumTable<Analysis::Type> names{{"energy release rate", Analysis::Type::energy_release_rate},
-                                                 {"quasi-static", Analysis::Type::quasi_static},
-                                                 {"explicit dynamics", Analysis::Type::explicit_dynamics}};
-    return names;
+    for (const AnalysisType &type : analysis_types())
+      if (name == type.name)
+        return type;
+    throw std::invalid_argument("`" + name + "` is none of " + analysis_type_pattern());
+  }
+
+  std::string analysis_type_pattern()
+  {
+    std::string pattern;
+    for (const AnalysisType &type : analysis_types())
+      pattern += (pattern.empty() ? "" : "|") + std::string(type.name);
+    return pattern;
   }
 
   const EnumTable<Analysis::LinearSolver> &linear_solver_names()
@@ -162,15 +170,18 @@ namespace anticrack::fem
     return names;
   }
 
-  void declare_snowpack_scene(ParameterHandler &prm, const std::optional<Analysis::Type> type)
+  void declare_snowpack_scene(ParameterHandler &prm, const AnalysisType *const type)
   {
-    // Whether the scene's analysis is one of `types` (every entry is declared without a type).
-    const auto for_analyses = [&](std::initializer_list<Analysis::Type> types) {
-      return !type || std::find(types.begin(), types.end(), *type) != types.end();
+    // The analyses whose entries are declared: the scene's, or every one.
+    std::vector<const AnalysisType *> analyses;
+    for (const AnalysisType &t : analysis_types())
+      if (!type || &t == type)
+        analyses.push_back(&t);
+    const auto any_analysis = [&](bool AnalysisType::*property) {
+      return std::any_of(analyses.begin(), analyses.end(), [&](const AnalysisType *t) { return t->*property; });
     };
-    using T = Analysis::Type;
-    const bool pst = for_analyses({T::quasi_static, T::explicit_dynamics});
-    const bool dynamic = for_analyses({T::explicit_dynamics});
+    const bool pst = any_analysis(&AnalysisType::saw_test);
+    const bool dynamic = any_analysis(&AnalysisType::time_integration);
 
     // The kind is read by app/scenes.cpp before this declaration; declaring it lets the file say it.
     prm.declare_entry("Scene", "snowpack", Selection("snowpack"),
@@ -234,15 +245,13 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("Analysis");
-    prm.declare_entry("Type", analysis_type_names().name(type.value_or(Analysis::Type::explicit_dynamics)),
-                      Selection(type ? analysis_type_names().name(*type) : analysis_type_names().pattern()),
-                      "energy release rate: elastic snowpack, G(a) = -dPi/da over every cut length up to `PST/Cut "
-                      "length`; quasi-static: gravity, then saw steps with Newton until equilibrium is lost; "
-                      "explicit dynamics: gravity equilibrium, then saw and crack propagation in time.");
-    if (for_analyses({T::energy_release_rate}))
-      prm.declare_entry("Fracture energy [J/m^2]", "0.5", Double(0),
-                        "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
-                        "reaches it (energy release rate analysis). Units: J/m^2.");
+    {
+      std::string documentation;
+      for (const AnalysisType &t : analysis_types())
+        documentation += (documentation.empty() ? "`" : " `") + std::string(t.name) + "`: " + t.documentation;
+      prm.declare_entry("Type", (type ? *type : default_analysis_type()).name,
+                        Selection(type ? std::string(type->name) : analysis_type_pattern()), documentation);
+    }
     if (pst)
       prm.declare_entry("Crack band regularisation", "true", Bool(),
                         "true: softening layers soften and collapse in one element row with the energy and the "
@@ -259,9 +268,6 @@ namespace anticrack::fem
       prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
                         "Initial number of load steps of the gravity ramp (a step that fails is halved). "
                         "Dimensionless.");
-    if (for_analyses({T::quasi_static}))
-      prm.declare_entry("Saw step [m]", "0", Double(0),
-                        "da: cut increment of the quasi-static saw steps; 0: one element length. Units: m.");
     prm.leave_subsection();
     if (pst)
     {
@@ -274,24 +280,8 @@ namespace anticrack::fem
                         "thickness. Units: m.");
       prm.leave_subsection();
     }
-    if (!dynamic)
-    {
-      prm.leave_subsection();
-      return;
-    }
-    prm.enter_subsection("Explicit");
-    prm.declare_entry("End time [s]", "1", Double(0), "t_end: simulated time after the saw starts. Units: s.");
-    prm.declare_entry("CFL safety factor", "0.5", Double(0.01, 1),
-                      "C: safety factor of the explicit time step dt = C min(h / c_p). Dimensionless.");
-    prm.declare_entry("Linear bulk viscosity", "0.06", Double(0, 10),
-                      "c_1: linear coefficient of the bulk viscosity pressure p_v = rho h (c_2^2 h e_v'^2 - c_1 c "
-                      "e_v'). Dimensionless.");
-    prm.declare_entry("Quadratic bulk viscosity", "1.2", Double(0, 10),
-                      "c_2: quadratic coefficient of the bulk viscosity pressure (acts in compression only). "
-                      "Dimensionless.");
-    prm.declare_entry("Mass damping [1/s]", "0", Double(0),
-                      "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
-    prm.leave_subsection();
+    for (const AnalysisType *t : analyses)
+      t->declare_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -312,48 +302,47 @@ namespace anticrack::fem
     return read_snowpack_scene_text(read_scene_file(file), file);
   }
 
-  Analysis::Type analysis_type_in(const std::string &text, const std::string &file)
+  const AnalysisType &analysis_type_in(const std::string &text, const std::string &file)
   {
-    Analysis::Type type = Analysis::Type::explicit_dynamics;
+    const AnalysisType *type = &default_analysis_type();
     for (const ParameterSetting &setting : scan_parameter_settings(text)) // the last one counts, as in deal.II
       if (setting.path == std::vector<std::string>{"Analysis", "Type"})
       {
         try
         {
-          type = analysis_type_names().value(setting.value);
+          type = &analysis_type_named(setting.value);
         }
         catch (const std::invalid_argument &)
         {
           throw InputError("Invalid scene file <" + file + ">, line " + std::to_string(setting.line) +
                            ": Analysis/Type = `" + setting.value + "` is none of " +
-                           analysis_type_names().pattern());
+                           analysis_type_pattern());
         }
       }
-    return type;
+    return *type;
   }
 
   namespace
   {
     /// Every entry the text sets that its analysis does not declare though another one does, with
     /// the analyses it belongs to; entries no snowpack scene knows are left to deal.II's message.
-    void collect_entries_of_other_analyses(const std::string &text, const Analysis::Type type, Problems &problems)
+    void collect_entries_of_other_analyses(const std::string &text, const AnalysisType &type, Problems &problems)
     {
-      const auto entries_of = [](const std::optional<Analysis::Type> t) {
+      const auto entries_of = [](const AnalysisType *t) {
         ParameterHandler prm;
         declare_snowpack_scene(prm, t);
         return declared_entries(prm);
       };
-      const auto declared = entries_of(type), known = entries_of(std::nullopt);
+      const auto declared = entries_of(&type), known = entries_of(nullptr);
       for (const ParameterSetting &setting : scan_parameter_settings(text))
         if (!declared.count(setting.path) && known.count(setting.path))
         {
           std::string owners;
-          for (const auto &[name, other] : analysis_type_names().rows())
-            if (entries_of(other).count(setting.path))
-              owners += (owners.empty() ? "`" : ", `") + std::string(name) + "`";
+          for (const AnalysisType &other : analysis_types())
+            if (entries_of(&other).count(setting.path))
+              owners += (owners.empty() ? "`" : ", `") + std::string(other.name) + "`";
           problems.add(setting.path_text() + " (line " + std::to_string(setting.line) + ")",
-                       "belongs to Analysis/Type = " + owners + ", not to this scene's `" +
-                         analysis_type_names().name(type) + "`");
+                       "belongs to Analysis/Type = " + owners + ", not to this scene's `" + type.name + "`");
         }
     }
   } // namespace
@@ -368,7 +357,7 @@ namespace anticrack::fem
     // Parsed against every entry: those that the analysis does not declare (refused above when set)
     // keep their documented defaults, which are the struct's.
     ParameterHandler prm;
-    declare_snowpack_scene(prm, std::nullopt);
+    declare_snowpack_scene(prm, nullptr);
     try
     {
       std::istringstream input(text);
@@ -430,27 +419,20 @@ namespace anticrack::fem
 
     Analysis &analysis = scene.analysis;
     prm.enter_subsection("Analysis");
-    analysis.type = analysis_type_names().value(prm.get("Type"));
-    analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
+    analysis.type = &analysis_type_named(prm.get("Type"));
     analysis.crack_band = prm.get_bool("Crack band regularisation");
     prm.enter_subsection("Newton");
     analysis.newton_tolerance = prm.get_double("Tolerance");
     analysis.newton_max_iterations = prm.get_integer("Maximum iterations");
     analysis.linear_solver = linear_solver_names().value(prm.get("Linear solver"));
     analysis.gravity_steps = prm.get_integer("Gravity steps");
-    analysis.saw_step = prm.get_double("Saw step [m]");
-    prm.leave_subsection();
-    prm.enter_subsection("Explicit");
-    analysis.end_time = prm.get_double("End time [s]");
-    analysis.cfl_safety = prm.get_double("CFL safety factor");
-    analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
-    analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
-    analysis.mass_damping = prm.get_double("Mass damping [1/s]");
     prm.leave_subsection();
     prm.enter_subsection("Crack detection");
     analysis.failure_fraction = prm.get_double("Failure fraction");
     analysis.self_propagation_lead = prm.get_double("Self-propagation lead [m]");
     prm.leave_subsection();
+    // Entries of the other analyses are declared too (with their defaults); each reads only its own.
+    analysis.type->parse_parameters(prm, scene);
     prm.leave_subsection();
 
     OutputParameters &output = scene.output;
@@ -495,8 +477,7 @@ namespace anticrack::fem
     if (!(pst.cut_length < pst.column_length))
       problems.add("PST/Cut length [m]", "must be shorter than the column, " + format_number(pst.column_length) +
                                            " m (is " + format_number(pst.cut_length) + ")");
-    if (pst.saw == SawTest::Saw::advancing && analysis.type == Analysis::Type::explicit_dynamics &&
-        !(pst.saw_speed > 0))
+    if (pst.saw == SawTest::Saw::advancing && analysis.type->time_integration && !(pst.saw_speed > 0))
       problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + format_number(pst.saw_speed) + ")");
     if (!(mesh.element_length > 0) || !(mesh.element_length <= pst.column_length / 4))
       problems.add("Mesh/Element length [m]", "must lie in (0, column length / 4 = " +
@@ -506,26 +487,10 @@ namespace anticrack::fem
       problems.add("Mesh/Slab element height [m]", "must be > 0");
     if (!(mesh.substratum_element_height > 0))
       problems.add("Mesh/Substratum element height [m]", "must be > 0");
-    if (analysis.type == Analysis::Type::energy_release_rate)
-    {
-      auto elastic = [&](const Layer &layer, const std::string &section) {
-        if (layer.model != Layer::Model::elastic)
-          problems.add(section + "/Model", "must be `elastic` for the energy release rate analysis");
-      };
-      for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
-        elastic(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
-      elastic(s.weak_layer, "Snowpack/Weak layer");
-      elastic(s.substratum, "Snowpack/Substratum");
-      if (!(pst.cut_length >= 2 * mesh.element_length))
-        problems.add("PST/Cut length [m]", "must cover at least two element lengths, " +
-                                             format_number(2 * mesh.element_length) + " m, for G(a) (is " +
-                                             format_number(pst.cut_length) + ")");
-    }
-    else if (s.weak_layer.model != Layer::Model::cohesive_cam_clay)
+    if (analysis.type->saw_test && s.weak_layer.model != Layer::Model::cohesive_cam_clay)
       problems.add("Snowpack/Weak layer/Model", "must be `cohesive cam-clay` for a quasi-static or dynamic PST (only "
                                                "a yielding weak layer can fail)");
-    if (analysis.type == Analysis::Type::explicit_dynamics && !(analysis.end_time > 0))
-      problems.add("Analysis/Explicit/End time [s]", "must be > 0");
+    analysis.type->check(scene, problems);
     problems.throw_if_any();
     return scene;
   }

@@ -17,9 +17,10 @@
 #pragma once
 
 #include "fem/material/material_file.h"
+#include "fem/scene/analysis_type.h"
 #include "util/enum_table.h"
 
-#include <optional>
+#include <any>
 #include <string>
 #include <vector>
 
@@ -100,13 +101,11 @@ namespace anticrack::fem
   /// What the run computes.
   struct Analysis
   {
-    enum class Type
-    {
-      energy_release_rate, ///< elastic snowpack: G(a) = −ΔΠ/Δa over cut lengths, a for G = G_c
-      quasi_static,        ///< gravity, then saw steps with Newton until equilibrium is lost
-      explicit_dynamics    ///< gravity equilibrium, then the saw and crack propagation in time
-    };
-    Type type = Type::explicit_dynamics;
+    /// The analysis (fem/scene/analysis_type.h): a row of analysis_types(), set by the reader.
+    const AnalysisType *type = nullptr;
+    /// Values of an analysis that no solver reads, as its parse_parameters stores them (the
+    /// analyses of fem/analysis/ keep theirs in the fields below, which the solvers read).
+    std::any settings;
     /// Crack band regularisation of softening layers (fem/model/crack_band.h); false: the local
     /// model, softening and collapse spread over the layer thickness in every element (for showing
     /// the mesh dependence the regularisation removes).
@@ -168,16 +167,18 @@ namespace anticrack::fem
   const EnumTable<Layer::Model> &layer_model_names();
   const EnumTable<SawTest::CutSide> &cut_side_names();
   const EnumTable<SawTest::Saw> &saw_names();
-  const EnumTable<Analysis::Type> &analysis_type_names();
   const EnumTable<Analysis::LinearSolver> &linear_solver_names();
 
-  /// Declares the entries of a snowpack scene whose Analysis/Type is `type` (std::nullopt: the
-  /// entries of every type, as `anticrack params --every-variant` lists them).
-  void declare_snowpack_scene(dealii::ParameterHandler &prm, std::optional<Analysis::Type> type);
+  /// "Slab layer k+1": the subsection of Snowpack that holds slab layer k (top first, from 0).
+  std::string slab_layer_section(unsigned int k);
 
-  /// The Analysis/Type that the scene text sets (its default, explicit dynamics, when it sets none);
+  /// Declares the entries of a snowpack scene whose Analysis/Type is `type` (nullptr: the entries
+  /// of every type, as `anticrack params --every-variant` lists them).
+  void declare_snowpack_scene(dealii::ParameterHandler &prm, const AnalysisType *type);
+
+  /// The Analysis/Type that the scene text sets (default_analysis_type() when it sets none);
   /// throws anticrack::InputError naming the file and line of a value that is no type.
-  Analysis::Type analysis_type_in(const std::string &text, const std::string &file);
+  const AnalysisType &analysis_type_in(const std::string &text, const std::string &file);
 
   /// Reads and checks a snowpack scene; throws anticrack::InputError (file, entry, value, range).
   /// Material files are looked up relative to the scene's directory.
