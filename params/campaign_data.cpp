@@ -40,11 +40,14 @@ namespace anticrack::params
         throw CalibrationError(file + ": not an anticrack campaign file (root attribute format = \"" + format +
                                "\", expected \"anticrack-campaign\")");
       const double version = hdf5::read_number_attribute(f.id, "format_version");
-      if (version < 2)
-        throw CalibrationError(file + ": campaign format version " + std::to_string(int(version)) +
-                               " has no /microstructures table (materials of the samples); rewrite it with "
-                               "this anticrack by `anticrack run SCENE -o DIR --resume` (completed tests are "
-                               "not run again)");
+      if (version < 3)
+        throw CalibrationError(
+          file + ": campaign format version " + std::to_string(int(version)) +
+          (version < 2 ? " has no /microstructures table (materials of the samples)"
+                       : " records the Love-Weber stress over every sphere, diluted by the platens "
+                         "(docs/physics.md §1.5)") +
+          "; rewrite it with this anticrack by `anticrack run SCENE -o DIR --resume` (tests whose results are "
+          "still valid are not run again)");
       data.scene_file = hdf5::read_string_attribute(f.id, "scene_file");
       data.scene_file_sha256 = hdf5::read_string_attribute(f.id, "scene_file_sha256");
       data.parameters_sha256 = hdf5::read_string_attribute(f.id, "parameters_sha256");

@@ -113,7 +113,13 @@ namespace anticrack::dem
       try
       {
         const Json s = read_json(directory / "summary.json");
-        return s.value("status", "") == "completed" && s.contains("labels") && s["labels"] == labels;
+        // A test of a clump-driven specimen completed before the Love-Weber stress was that of the
+        // specimen between its platens (docs/physics.md §1.5) is run again, not mixed with new ones.
+        const Json::json_pointer specimen("/dem/specimen");
+        const bool current_stress =
+          !s.contains(specimen) || s[specimen].contains("love_weber_volume");
+        return s.value("status", "") == "completed" && s.contains("labels") && s["labels"] == labels &&
+               current_stress;
       }
       catch (const std::exception &)
       {
@@ -487,7 +493,8 @@ namespace anticrack::dem
     const fs::path campaign_file = directory / "campaign.h5";
     hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
-      hdf5::write_string_attribute(f.id, "format_version", "2");
+      // 3: love_stress, p and q are the specimen's between its platens (docs/physics.md §1.5).
+      hdf5::write_string_attribute(f.id, "format_version", "3");
       hdf5::write_string_attribute(f.id, "scene_file", scene.file);
       hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
       hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
+#include <string>
 
 namespace anticrack::dem
 {
@@ -27,36 +29,92 @@ namespace anticrack::dem
     }
   } // namespace
 
-  Mat3 love_weber_stress(const DemSystem &system, double volume, bool include_kinetic)
+  namespace
+  {
+    /// sum over every loaded pair (listed contacts with their bonds, then the unlisted bonds) of
+    /// add(i, j, branch x_j + shift - x_i, force on j, s), independent of the thread count.
+    template <std::size_t K, class Add>
+    std::array<double, K> sum_over_pairs(const DemSystem &system, const Add &add)
+    {
+      const auto &x = system.particles.position;
+      const auto &contacts = system.contacts;
+      std::array<double, K> sum = thread_independent_sum<K>(contacts.size(), [&](Index c, std::array<double, K> &s) {
+        const Index i = contacts.i[c], j = contacts.j[c];
+        add(i, j, x[j] + contacts.shift[c] - x[i], contacts.load[c].force_on_j, s);
+      });
+      const auto &unlisted_bonds = system.unlisted_bonds();
+      const std::array<double, K> unlisted = thread_independent_sum<K>(
+        static_cast<Index>(unlisted_bonds.size()), [&](Index u, std::array<double, K> &s) {
+          const Index b = unlisted_bonds[u];
+          const Index i = system.bonds.i[b], j = system.bonds.j[b];
+          add(i, j, x[j] + system.bonds.shift[b] - x[i], system.unlisted_bond_load(b).force_on_j, s);
+        });
+      for (std::size_t k = 0; k < K; ++k)
+        sum[k] += unlisted[k];
+      return sum;
+    }
+
+    void check_mask(const DemSystem &system, const PlatenSpheres &platens, const char *what)
+    {
+      if (!platens.empty() && platens.size() != static_cast<std::size_t>(system.particles.size()))
+        throw SetupError(std::string(what) + ": the platen mask has " + std::to_string(platens.size()) +
+                         " entries for " + std::to_string(system.particles.size()) + " spheres");
+    }
+  } // namespace
+
+  Mat3 love_weber_stress(const DemSystem &system, double volume, bool include_kinetic, const PlatenSpheres &platens)
   {
     if (!(volume > 0))
       throw SetupError("Love-Weber stress: the volume must be positive");
-    const auto &x = system.particles.position;
-    const auto &contacts = system.contacts;
-    // Listed pairs carry contact and bond loads together; unlisted bonds are summed separately.
-    std::array<double, 9> sum = thread_independent_sum<9>(contacts.size(), [&](Index c, std::array<double, 9> &s) {
-      const Vec3 branch = x[contacts.j[c]] + contacts.shift[c] - x[contacts.i[c]];
-      add_outer(s, contacts.load[c].force_on_j, branch, -1.0);
-    });
-    const auto &unlisted_bonds = system.unlisted_bonds();
-    const std::array<double, 9> unlisted = thread_independent_sum<9>(
-      static_cast<Index>(unlisted_bonds.size()), [&](Index u, std::array<double, 9> &s) {
-        const Index b = unlisted_bonds[u];
-        const Vec3 branch = x[system.bonds.j[b]] + system.bonds.shift[b] - x[system.bonds.i[b]];
-        add_outer(s, system.unlisted_bond_load(b).force_on_j, branch, -1.0);
+    check_mask(system, platens, "Love-Weber stress");
+    const auto material = [&](Index p) { return platens.empty() || platens[p] == Platen::none; };
+    std::array<double, 9> sum = sum_over_pairs<9>(
+      system, [&](Index i, Index j, const Vec3 &branch, const Vec3 &force_on_j, std::array<double, 9> &s) {
+        if (material(i) || material(j))
+          add_outer(s, force_on_j, branch, -1.0);
       });
-    for (int k = 0; k < 9; ++k)
-      sum[k] += unlisted[k];
     if (include_kinetic)
     {
       const auto kinetic = thread_independent_sum<9>(system.particles.size(), [&](Index p, std::array<double, 9> &s) {
-        add_outer(s, system.particles.velocity[p], system.particles.velocity[p], -system.particles.mass[p]);
+        if (material(p))
+          add_outer(s, system.particles.velocity[p], system.particles.velocity[p], -system.particles.mass[p]);
       });
       for (int k = 0; k < 9; ++k)
         sum[k] += kinetic[k];
     }
     const Mat3 stress = to_matrix(sum) / volume;
     return 0.5 * (stress + stress.transpose());
+  }
+
+  double platen_separation(const DemSystem &system, const PlatenSpheres &platens)
+  {
+    check_mask(system, platens, "platen separation");
+    if (platens.empty())
+      throw SetupError("platen separation: needs spheres of both platens");
+    const auto &x = system.particles.position;
+    // Per platen (0 base, 1 top): sum |f_z| z and sum |f_z| over its spheres' pairs with material.
+    const std::array<double, 4> sums = sum_over_pairs<4>(
+      system, [&](Index i, Index j, const Vec3 &, const Vec3 &force_on_j, std::array<double, 4> &s) {
+        const Platen pi = platens[i], pj = platens[j];
+        if ((pi == Platen::none) == (pj == Platen::none))
+          return; // material-material or platen-platen
+        const Index platen_sphere = pi == Platen::none ? j : i;
+        const int k = platens[platen_sphere] == Platen::base ? 0 : 2;
+        const double weight = std::abs(force_on_j.z());
+        s[k] += weight * x[platen_sphere].z();
+        s[k + 1] += weight;
+      });
+    double base_top = -std::numeric_limits<double>::infinity(), top_bottom = std::numeric_limits<double>::infinity();
+    for (Index p = 0; p < system.particles.size(); ++p)
+      if (platens[p] == Platen::base)
+        base_top = std::max(base_top, x[p].z());
+      else if (platens[p] == Platen::top)
+        top_bottom = std::min(top_bottom, x[p].z());
+    if (!std::isfinite(base_top) || !std::isfinite(top_bottom))
+      throw SetupError("platen separation: needs spheres of both platens");
+    if (!(sums[1] > 0) || !(sums[3] > 0))
+      return top_bottom - base_top;
+    return sums[2] / sums[3] - sums[0] / sums[1];
   }
 
   Fabric contact_and_bond_fabric(const DemSystem &system)

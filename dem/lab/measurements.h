@@ -7,16 +7,43 @@
 #include "dem/core/system.h"
 
 #include <utility>
+#include <vector>
 
 namespace anticrack::dem
 {
-  /// Love-Weber stress over the volume V (tension positive, docs/physics.md §0):
+  /// What a sphere is to a specimen between two rigid platens along z: material, or a sphere of the
+  /// fixed base or of the loading platen (the clump).
+  enum class Platen : unsigned char
+  {
+    none,
+    base,
+    top
+  };
+  /// One role per sphere; empty: every sphere is material.
+  using PlatenSpheres = std::vector<Platen>;
+
+  /// Love-Weber stress over the volume V (tension positive, docs/physics.md §0 and §1.5):
   ///   sigma = -(1/V) sum_pairs F_j (x) l  -  (1/V) sum_p m v (x) v
   /// with F_j the force a pair exerts on its particle j (contact and bond together) and l the branch
-  /// vector x_j + shift - x_i, so that pushing spheres give compression. Sphere-wall contacts are
-  /// boundary tractions and do not enter; the kinetic part uses the half-step velocities.
-  /// Bond couples make the contact part slightly asymmetric; the symmetric part is returned.
-  Mat3 love_weber_stress(const DemSystem &system, double volume, bool include_kinetic = true);
+  /// vector x_j + shift - x_i, so that pushing spheres give compression. With `platens`, the pairs
+  /// of two platen spheres and the platens' kinetic part do not count: the stress of the material
+  /// between the platens, whose volume V is then the platen area times platen_separation() (the
+  /// branches of the material-platen pairs end at the platens' centres). In static equilibrium
+  /// without body forces this is exactly the platen traction (sigma_zz = -F_base / A), for rough
+  /// platens too. Sphere-wall contacts are boundary tractions and do not enter; the
+  /// kinetic part uses the half-step velocities. Bond couples make the contact part slightly
+  /// asymmetric; the symmetric part is returned.
+  Mat3 love_weber_stress(const DemSystem &system, double volume, bool include_kinetic = true,
+                         const PlatenSpheres &platens = {});
+
+  /// Distance along z between the platens' lines of action [m]: for each platen, the height of its
+  /// spheres' centres weighted by the |z-force| each gets from the material, top minus base. For
+  /// flat platens the distance between their centre planes; for rough ones (an actuator of large
+  /// spheres resting in the valleys of a deposit) the height at which the load actually enters, so
+  /// that the Love-Weber stress over (area x this) has the platen traction as its zz-component.
+  /// Without load on either platen, the distance between the highest base and the lowest top
+  /// centre. Throws SetupError without spheres of both platens.
+  double platen_separation(const DemSystem &system, const PlatenSpheres &platens);
 
   struct Fabric
   {

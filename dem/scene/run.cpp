@@ -131,6 +131,12 @@ namespace anticrack::dem
     /// Thickness of the deformable layer between the fixed base and the clump, at the start [m].
     [[nodiscard]] double layer_thickness() const;
     double initial_layer_thickness_ = 0;
+    /// The fixed base and the clump when the scene has both: rigid platens, not part of the specimen
+    /// whose Love-Weber stress the history records (dem/lab/measurements.h); empty otherwise.
+    dem::PlatenSpheres platens_;
+    /// The volume of that stress: the base area times the platens' current separation
+    /// (dem::platen_separation), or without platens the volume the spheres occupy.
+    [[nodiscard]] double stress_volume() const;
     void write_history();
     void write_snapshot();
     void write_checkpoint();
@@ -182,7 +188,20 @@ namespace anticrack::dem
     const auto [low, high] = dem::sphere_extent(system_.particles, 2);
     initial_sample_height_ = high - low;
     initial_layer_thickness_ = layer_thickness();
+    if (!model_->fixed_particles.empty() && model_->clump >= 0)
+    {
+      platens_.assign(system_.particles.size(), dem::Platen::none);
+      for (const Index p : model_->fixed_particles)
+        platens_[p] = dem::Platen::base;
+      for (const Index p : system_.clumps[model_->clump].members)
+        platens_[p] = dem::Platen::top;
+    }
     protocol_ = make_lab_protocol(scene_, *model_);
+  }
+
+  double DemRun::stress_volume() const
+  {
+    return platens_.empty() ? dem::sample_volume(system_) : model_->base_area * dem::platen_separation(system_, platens_);
   }
 
   double DemRun::layer_thickness() const
@@ -251,13 +270,19 @@ namespace anticrack::dem
       h.add_column(history_column::normal_strain, "-", "-u_z / H0: clump displacement over the initial sample height, compression positive");
       h.add_column(history_column::shear_strain, "-", "u_x / H0: clump displacement along x over the initial sample height");
     }
-    // Micro-to-macro measures (docs/physics.md §1.5), over the sample volume (dem/lab/measurements.h).
+    // Micro-to-macro measures (docs/physics.md §1.5) of the specimen: between the fixed base and the
+    // clump when the scene has both, else of every sphere (dem/lab/measurements.h).
+    const bool platens = !model_->fixed_particles.empty() && model_->clump >= 0;
     for (const char *c : {"xx", "yy", "zz", "xy", "xz", "yz"})
       h.add_column(history_column::love_stress(c), "Pa",
-                   "Love-Weber stress sigma_" + std::string(c) + " (tension positive) over the sample volume");
+                   "Love-Weber stress sigma_" + std::string(c) + " (tension positive) over sample_volume" +
+                     (platens ? ", of the spheres between the base and the clump (pairs within a platen left out)" : ""));
     h.add_column("mean_pressure", "Pa", "p = -tr(sigma)/3 of the Love-Weber stress (compression positive)");
     h.add_column(history_column::von_mises_stress, "Pa", "q = sqrt(3/2 s:s) of the Love-Weber stress");
-    h.add_column("sample_volume", "m^3", "box length along periodic axes times the spheres' extent along open ones");
+    h.add_column("sample_volume", "m^3",
+                 platens ? "base area times the separation of the platens' lines of action (the heights of the base's "
+                           "and the clump's sphere centres weighted by the z-forces they get from the specimen)"
+                         : "box length along periodic axes times the spheres' extent along open ones");
     h.add_column("coordination_number", "-", "2 N_c / N over touching contacts and intact bonds (a pair once)");
     for (const char *c : {"xx", "yy", "zz"})
       h.add_column(std::string("fabric_") + c, "-", "fabric tensor C_" + std::string(c) + " = <n n> over contacts and bonds");
@@ -345,8 +370,8 @@ namespace anticrack::dem
       row.push_back(-clump.displacement[2] / initial_sample_height_);
       row.push_back(clump.displacement[0] / initial_sample_height_);
     }
-    const double volume = dem::sample_volume(system_);
-    const dem::Mat3 stress = volume > 0 ? dem::love_weber_stress(system_, volume) : dem::Mat3::Zero();
+    const double volume = stress_volume();
+    const dem::Mat3 stress = volume > 0 ? dem::love_weber_stress(system_, volume, true, platens_) : dem::Mat3::Zero();
     for (const auto &[r, c] : {std::pair{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}})
       row.push_back(stress(r, c));
     const double p = dem::mean_pressure(stress);
@@ -800,7 +825,9 @@ namespace anticrack::dem
       l["stop_strain"] = loading.stop_strain;
       l["stopped_at_stop_strain"] = protocol_finished_;
       d["loading"] = l;
-      d["specimen"] = {{"height_m", initial_sample_height_}, {"layer_thickness_m", initial_layer_thickness_}};
+      d["specimen"] = {{"height_m", initial_sample_height_},
+                       {"layer_thickness_m", initial_layer_thickness_},
+                       {"love_weber_volume", platens_.empty() ? "sphere extent" : "base area x platen separation"}};
       if (failure_analysis_)
         d["failure_analysis"] = failure_analysis_json(*failure_analysis_);
     }

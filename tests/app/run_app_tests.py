@@ -927,7 +927,7 @@ def cam_clay_radius(angle, p0, beta, M):
     return (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
 
 
-def write_synthetic_campaign(path, angles, realizations=3, version="2", noise=0.02, seed=7, microstructures=None):
+def write_synthetic_campaign(path, angles, realizations=3, version="3", noise=0.02, seed=7, microstructures=None):
     """`microstructures`: list of dicts with phi, z, bond (tensile strength), particle_modulus, E
     (the continuum's Young's modulus) and sigma_tau (the surface in that plane); default: one with
     SYNTHETIC's values."""
@@ -1134,6 +1134,9 @@ def calibrate_degenerate_input(work):
     old = write_synthetic_campaign(os.path.join(work, "old.h5"), ANGLES, version="1")
     _, stderr = anticrack("calibrate", old, "-o", os.path.join(work, "o"), expect=2)
     check("format version 1" in stderr and "--resume" in stderr, f"format-1 campaign: {stderr}")
+    diluted = write_synthetic_campaign(os.path.join(work, "diluted.h5"), ANGLES, version="2")
+    _, stderr = anticrack("calibrate", diluted, "-o", os.path.join(work, "o"), expect=2)
+    check("format version 2" in stderr and "diluted by the platens" in stderr, f"format-2 campaign: {stderr}")
     with h5py.File(os.path.join(work, "other.h5"), "w") as f:
         f["x"] = 1
     _, stderr = anticrack("calibrate", os.path.join(work, "other.h5"), "-o", os.path.join(work, "o"), expect=2)
