@@ -27,7 +27,7 @@ namespace anticrack::dem
 
   std::string lab_test_documentation()
   {
-    return "How the clump (DEM/Boundary particles) loads the specimen. " + variant_paragraphs(lab_tests());
+    return "How the clump (DEM/Boundary particles) loads the specimen. " + name_paragraphs(lab_tests());
   }
 
   const std::vector<SharedEntry> &shared_loading_entries()

@@ -254,7 +254,7 @@ namespace anticrack::dem
     void Sample::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Sample");
-      type = &variant_named(sample_types(), prm.get("Type"));
+      type = &row_named(sample_types(), prm.get("Type"));
       parse_shared_sample_entries(prm, *this);
       type->parse_parameters(prm, *this);
       prm.leave_subsection();
@@ -488,7 +488,7 @@ namespace anticrack::dem
     void Loading::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Loading");
-      test = &variant_named(lab_tests(), prm.get("Test"));
+      test = &row_named(lab_tests(), prm.get("Test"));
       parse_shared_loading_entries(prm, *this);
       test->parse_parameters(prm, *this);
       prm.leave_subsection();
@@ -849,10 +849,10 @@ namespace anticrack::dem
       ParameterHandler prm;
       prm.enter_subsection("DEM");
       prm.enter_subsection("Sample");
-      prm.declare_entry("Type", sample_types().front().name, Patterns::Selection(variant_pattern(sample_types())));
+      prm.declare_entry("Type", sample_types().front().name, Patterns::Selection(names_pattern(sample_types())));
       prm.leave_subsection();
       prm.enter_subsection("Loading");
-      prm.declare_entry("Test", lab_tests().front().name, Patterns::Selection(variant_pattern(lab_tests())));
+      prm.declare_entry("Test", lab_tests().front().name, Patterns::Selection(names_pattern(lab_tests())));
       prm.leave_subsection();
       prm.leave_subsection();
       std::istringstream input(bytes);
@@ -871,10 +871,10 @@ namespace anticrack::dem
       declaration.kind = kind;
       prm.enter_subsection("DEM");
       prm.enter_subsection("Sample");
-      declaration.sample_type = static_cast<int>(&variant_named(sample_types(), prm.get("Type")) - sample_types().data());
+      declaration.sample_type = static_cast<int>(&row_named(sample_types(), prm.get("Type")) - sample_types().data());
       prm.leave_subsection();
       prm.enter_subsection("Loading");
-      declaration.loading_test = static_cast<int>(&variant_named(lab_tests(), prm.get("Test")) - lab_tests().data());
+      declaration.loading_test = static_cast<int>(&row_named(lab_tests(), prm.get("Test")) - lab_tests().data());
       prm.leave_subsection();
       prm.leave_subsection();
       return declaration;

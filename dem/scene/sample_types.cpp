@@ -64,7 +64,7 @@ namespace anticrack::dem
 
   std::string sample_type_documentation()
   {
-    return variant_paragraphs(sample_types()) +
+    return name_paragraphs(sample_types()) +
            " The generators are seeded by DEM/Random seed and run again by `anticrack check`, which prints "
            "their statistics.";
   }

@@ -90,7 +90,7 @@ namespace anticrack::dem
   void declare_variants(dealii::ParameterHandler &prm, const std::string &selection, const std::vector<V> &variants,
                         const V *chosen, const std::vector<SharedEntry> &shared, const std::string &documentation)
   {
-    prm.declare_entry(selection, variants.front().name, Patterns::Selection(variant_pattern(variants)), documentation);
+    prm.declare_entry(selection, variants.front().name, Patterns::Selection(names_pattern(variants)), documentation);
     std::set<std::string> declared; // every variant at once: an entry shared by several, once
     VariantEntries entries(prm, shared, declared);
     for (const V &each : variants)

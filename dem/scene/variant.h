@@ -1,8 +1,10 @@
 // A value of a selection whose values declare their own entries (DEM/Sample/Type: SampleType in
 // dem/scene/sample_types.h; DEM/Loading/Test: LabTest in dem/scene/lab_tests.h): its name, its
 // paragraph of the selection's documentation, its entries. The selection is the table of its
-// variants; the functions below read such a table.
+// variants, read with util/named_rows.h.
 #pragma once
+
+#include "util/named_rows.h"
 
 #include <stdexcept>
 #include <string>
@@ -42,44 +44,13 @@ namespace anticrack::dem
     [[nodiscard]] bool has_entry(const std::string &entry) const;
   };
 
-  /// "a|b|c", for Patterns::Selection.
-  template <class V>
-  std::string variant_pattern(const std::vector<V> &variants)
-  {
-    std::string pattern;
-    for (const Variant &v : variants)
-      pattern += (pattern.empty() ? "" : "|") + std::string(v.name);
-    return pattern;
-  }
-
-  /// The variant called `name`; throws std::invalid_argument naming the allowed ones.
-  template <class V>
-  const V &variant_named(const std::vector<V> &variants, const std::string &name)
-  {
-    for (const V &v : variants)
-      if (name == v.name)
-        return v;
-    throw std::invalid_argument("`" + name + "` is none of " + variant_pattern(variants));
-  }
-
-  /// Every variant's paragraph, "`a`: ... `b`: ...".
-  template <class V>
-  std::string variant_paragraphs(const std::vector<V> &variants)
-  {
-    std::string text;
-    for (const Variant &v : variants)
-      text += (text.empty() ? "`" : " `") + std::string(v.name) + "`: " + v.documentation;
-    return text;
-  }
+  // The table of a selection's variants is read with util/named_rows.h (names_pattern, row_named,
+  // name_paragraphs); what is the variants' own:
 
   /// "`a`, `b`": the variants that have `entry`, for messages.
   template <class V>
   std::string variants_with_entry(const std::vector<V> &variants, const std::string &entry)
   {
-    std::string list;
-    for (const Variant &v : variants)
-      if (v.has_entry(entry))
-        list += (list.empty() ? "`" : ", `") + std::string(v.name) + "`";
-    return list;
+    return quoted_names(variants, [&](const Variant &v) { return v.has_entry(entry); });
   }
 } // namespace anticrack::dem

@@ -4,6 +4,7 @@
 #include "fem/scene/snowpack_scene.h"
 #include "util/console.h"
 #include "util/input_error.h"
+#include "util/named_rows.h"
 #include "util/phase_timer.h"
 #include "util/run_options.h"
 #include "util/run_summary.h"
@@ -21,16 +22,6 @@ namespace anticrack::fem
 
   namespace
   {
-    /// "`explicit dynamics`": the analyses whose checkpoints --resume continues.
-    std::string resumable_analyses()
-    {
-      std::string names;
-      for (const AnalysisType &type : analysis_types())
-        if (type.time_integration)
-          names += (names.empty() ? "`" : ", `") + std::string(type.name) + "`";
-      return names;
-    }
-
     /// Output files of a snowpack run (an earlier run's are refused without --overwrite).
     const std::vector<std::string> run_files{"summary.json", "series.h5",        "energy_release_rate.h5",
                                              "fields",       "checkpoint.json", "checkpoint"};
@@ -67,7 +58,7 @@ namespace anticrack::fem
     {
       if (!scene.analysis.type->time_integration)
         throw InputError("--resume: Analysis/Type = `" + std::string(scene.analysis.type->name) +
-                         "` writes no checkpoints (only analyses that march in time do: " + resumable_analyses() + ")");
+                         "` writes no checkpoints (only analyses that march in time do: " + quoted_names(analysis_types(), [](const AnalysisType &t) { return t.time_integration; }) + ")");
       if (!fs::exists(dir / "checkpoint.json", error))
         throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json (set Output/Checkpoint "
                          "interval, or run without --resume).");

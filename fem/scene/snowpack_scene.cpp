@@ -4,6 +4,7 @@
 #include "fem/model/layers.h"
 #include "util/format.h"
 #include "util/input_error.h"
+#include "util/named_rows.h"
 #include "util/parameter_files.h"
 #include "util/problems.h"
 #include "util/sha256.h"
@@ -147,21 +148,9 @@ namespace anticrack::fem
 
   std::string slab_layer_section(const unsigned int k) { return "Slab layer " + std::to_string(k + 1); }
 
-  const AnalysisType &analysis_type_named(const std::string &name)
-  {
-    for (const AnalysisType &type : analysis_types())
-      if (name == type.name)
-        return type;
-    throw std::invalid_argument("`" + name + "` is none of " + analysis_type_pattern());
-  }
+  const AnalysisType &analysis_type_named(const std::string &name) { return row_named(analysis_types(), name); }
 
-  std::string analysis_type_pattern()
-  {
-    std::string pattern;
-    for (const AnalysisType &type : analysis_types())
-      pattern += (pattern.empty() ? "" : "|") + std::string(type.name);
-    return pattern;
-  }
+  std::string analysis_type_pattern() { return names_pattern(analysis_types()); }
 
   const EnumTable<Analysis::LinearSolver> &linear_solver_names()
   {
@@ -245,13 +234,9 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("Analysis");
-    {
-      std::string documentation;
-      for (const AnalysisType &t : analysis_types())
-        documentation += (documentation.empty() ? "`" : " `") + std::string(t.name) + "`: " + t.documentation;
-      prm.declare_entry("Type", (type ? *type : default_analysis_type()).name,
-                        Selection(type ? std::string(type->name) : analysis_type_pattern()), documentation);
-    }
+    prm.declare_entry("Type", (type ? *type : default_analysis_type()).name,
+                      Selection(type ? std::string(type->name) : analysis_type_pattern()),
+                      name_paragraphs(analysis_types()));
     if (pst)
       prm.declare_entry("Crack band regularisation", "true", Bool(),
                         "true: softening layers soften and collapse in one element row with the energy and the "
@@ -337,10 +322,8 @@ namespace anticrack::fem
       for (const ParameterSetting &setting : scan_parameter_settings(text))
         if (!declared.count(setting.path) && known.count(setting.path))
         {
-          std::string owners;
-          for (const AnalysisType &other : analysis_types())
-            if (entries_of(&other).count(setting.path))
-              owners += (owners.empty() ? "`" : ", `") + std::string(other.name) + "`";
+          const std::string owners = quoted_names(
+            analysis_types(), [&](const AnalysisType &other) { return entries_of(&other).count(setting.path) > 0; });
           problems.add(setting.path_text() + " (line " + std::to_string(setting.line) + ")",
                        "belongs to Analysis/Type = " + owners + ", not to this scene's `" + type.name + "`");
         }
