@@ -2,7 +2,7 @@
 //
 //   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T]
 //   anticrack check SCENE.prm [--threads T]
-//   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--fe-plane p-q|sigma-tau] [--poisson-ratio NU]
+//   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--poisson-ratio NU]
 //                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
 //                       [--threads T]
 //   anticrack params [--snowpack] [--format prm|description|json]
@@ -128,12 +128,6 @@ int main(int argc, char **argv)
   calibrate->add_option("--confidence", calibrate_options.confidence, "Level of every interval")
     ->check(CLI::Range(0.5, 0.999))
     ->capture_default_str();
-  std::string fe_plane = "p-q";
-  calibrate->add_option("--fe-plane", fe_plane,
-                        "Plane whose Cam-Clay fit goes into the material file: p-q (Love-Weber invariants) or "
-                        "sigma-tau (base stresses, Ritter et al. 2020)")
-    ->check(CLI::IsMember({"p-q", "sigma-tau"}))
-    ->capture_default_str();
   calibrate->add_option("--poisson-ratio", calibrate_options.poisson_ratio,
                         "Poisson's ratio to use instead of the one from the 0 and 90 degree tests (E then comes from "
                         "the axial modulus alone); for specimens that are not isotropic")
@@ -203,7 +197,6 @@ int main(int argc, char **argv)
     if (*calibrate)
     {
       calibrate_options.plots = !no_plots;
-      calibrate_options.fe_plane_base_stresses = fe_plane == "sigma-tau";
       calibrate_options.command_line = join_arguments(argc, argv);
       return coupling::run_calibration(calibrate_options);
     }

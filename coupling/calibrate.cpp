@@ -2,6 +2,7 @@
 
 #include "coupling/calibration_scene.h"
 #include "coupling/material_handoff.h"
+#include "coupling/material_point_replay.h"
 
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
@@ -95,8 +96,6 @@ namespace anticrack::coupling
     try
     {
       params::CalibrationOptions calibration_options;
-      calibration_options.fe_plane =
-        options.fe_plane_base_stresses ? params::StressPlane::base_stresses : params::StressPlane::invariants;
       calibration_options.confidence = options.confidence;
       if (options.poisson_ratio > -1)
         calibration_options.poisson_ratio = options.poisson_ratio;
@@ -121,11 +120,14 @@ namespace anticrack::coupling
     output_phase.emplace(timer, "output");
     const std::string version = version_info()["anticrack"].get<std::string>();
     std::vector<std::string> material_names, material_texts;
+    std::vector<MaterialPointReplay> replays;
     for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
     {
       material_names.push_back(material_file_name(m, calibration.microstructures.size()));
       material_texts.push_back(fem::material_file_text(material_handoff(calibration, m, version)));
-      fem::read_material_text(material_texts.back(), material_names.back());
+      // The material as the solver reads it, driven along the DEM tests' paths.
+      replays.push_back(replay_tests(calibration.microstructures[m],
+                                     fem::read_material_text(material_texts.back(), material_names.back())));
     }
     fs::create_directories(directory);
     for (std::size_t m = 0; m < material_names.size(); ++m)
@@ -140,6 +142,8 @@ namespace anticrack::coupling
     summary["command"] = options.command_line;
     summary["input"] = options.input;
     summary["calibration"] = params::calibration_summary(calibration);
+    for (std::size_t m = 0; m < replays.size(); ++m)
+      summary["calibration"]["microstructures"][m]["material_point_replay"] = replay_json(replays[m]);
     summary["outputs"] = Json{{"data", "calibration.h5"}, {"materials", material_names}, {"summary", "summary.json"}};
     output_phase.reset();
     const auto now = std::chrono::steady_clock::now();
@@ -150,12 +154,15 @@ namespace anticrack::coupling
     summary["versions"] = version_info();
     write_json_atomically((directory / "summary.json").string(), summary);
 
-    const params::PlaneCalibration &first = calibration.microstructures.front().plane(calibration.options.fe_plane);
+    const params::PlaneCalibration &first = calibration.microstructures.front().material_plane();
     const params::CamClaySurface surface = first.cam_clay_surface();
     std::cout << "anticrack calibrate: " << calibration.microstructures.size() << " microstructure(s) from "
-              << campaign_file << "\n  microstructure 0, " << params::plane_id(calibration.options.fe_plane)
-              << " plane: p0 = " << surface.p0 << " Pa, beta = " << surface.beta << ", M = " << surface.M
-              << ", R^2 = " << first.cam_clay().r_squared << "\n  wrote " << directory.string() << "/{"
+              << campaign_file << "\n  microstructure 0, FE point on the tests' paths (lateral stress ratio "
+              << calibration.microstructures.front().path.lateral_stress_ratio() << "): p0 = " << surface.p0 << " Pa, beta = " << surface.beta << ", M = " << surface.M
+              << ", R^2 = " << first.cam_clay().r_squared
+              << "\n  the FE point repeats the DEM tests: largest error of an angle's mean failure stress "
+              << 100 * replays.front().largest_angle_error() << " % (fit RMSE " << 100 * replays.front().fit_rmse
+              << " %)\n  wrote " << directory.string() << "/{"
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
 

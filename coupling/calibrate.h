@@ -12,7 +12,6 @@ namespace anticrack::coupling
   {
     std::string input;            ///< campaign.h5, or a scene (.prm) with a Campaign subsection
     std::string output_directory;
-    bool fe_plane_base_stresses = false; ///< material from the (σ, τ) fit instead of (p, q)
     double confidence = 0.95;
     double poisson_ratio = -2;    ///< in (-1, 0.5): given ν (E from the axial modulus alone); else measured
     int bootstrap_samples = 1000;

@@ -20,10 +20,6 @@ namespace anticrack::coupling
   void CalibrationParameters::declare_parameters(dealii::ParameterHandler &prm)
   {
     prm.enter_subsection("Calibration");
-    prm.declare_entry("FE plane", "p-q", Patterns::Selection("p-q|sigma-tau"),
-                      "Plane whose cohesive Cam-Clay fit goes into the material file: `p-q`, the invariants of "
-                      "the Love-Weber stress, or `sigma-tau`, the base stresses of Ritter et al. 2020, Eq. 1 "
-                      "(docs/calibration.md says which to choose). Same as `anticrack calibrate --fe-plane`.");
     prm.declare_entry("Poisson's ratio", "", Patterns::Anything(),
                       "nu: Poisson's ratio to use instead of the one measured from the 0 and 90 degree tests "
                       "(E then comes from the axial modulus alone), in (-1, 0.5); empty = measured. For "
@@ -41,7 +37,6 @@ namespace anticrack::coupling
   void CalibrationParameters::parse_parameters(dealii::ParameterHandler &prm, CalibrateOptions &options)
   {
     prm.enter_subsection("Calibration");
-    options.fe_plane_base_stresses = prm.get("FE plane") == "sigma-tau";
     const std::string nu = dealii::Utilities::trim(prm.get("Poisson's ratio"));
     options.poisson_ratio = nu.empty() ? -2 : dealii::Utilities::string_to_double(nu);
     options.bootstrap_samples = static_cast<int>(prm.get_integer("Bootstrap resamples"));
@@ -111,8 +106,7 @@ namespace anticrack::coupling
     const CalibrateOptions options = calibration_options(file);
     dem::check_dem_scene(scene, threads);
     dem::describe_campaign(std::cout, scene);
-    std::cout << "\nCalibration: Cam-Clay fit of the " << (options.fe_plane_base_stresses ? "(sigma, tau)" : "(p, q)")
-              << " plane into the material file, " << options.bootstrap_samples << " bootstrap resamples, "
+    std::cout << "\nCalibration: Cam-Clay surface of the FE point on the tests' paths into the material file, " << options.bootstrap_samples << " bootstrap resamples, "
               << options.confidence * 100 << " % intervals\n";
   }
 

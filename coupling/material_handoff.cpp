@@ -14,8 +14,8 @@ namespace anticrack::coupling
     {
       using fem::material_file_number;
       const params::CampaignData &campaign = calibration.campaign;
-      const params::StressPlane plane = calibration.options.fe_plane;
-      const params::EnvelopeFit &surface = c.plane(plane).cam_clay();
+      const params::EnvelopeFit &surface = c.material_plane().cam_clay();
+      const double k = c.path.lateral_stress_ratio();
       const params::ElasticConstants &e = c.elastic;
       std::vector<std::string> lines = {
         "anticrack material file, written by `anticrack calibrate` (params/, anticrack " + tool_version + ").",
@@ -28,15 +28,19 @@ namespace anticrack::coupling
           std::to_string(c.realizations.size()) + " realization(s), " + std::to_string(c.tests.size()) +
           " failure points.",
         "Yield surface: cohesive Cam-Clay (1 + 2 beta) q^2 + M^2 (p + beta p0)(p - p0) = 0, fitted to the"};
-      if (plane == params::StressPlane::invariants)
-        lines.push_back("failure points in the (p, q) plane of the Love-Weber stress (the invariants the FE solver "
-                        "uses) by");
-      else
-      {
-        lines.push_back("failure points in the (sigma, tau) plane of the base stresses (chosen with --fe-plane "
-                        "sigma-tau;");
-        lines.push_back("p0, beta, M of Ritter et al.'s (2020) plane, used as the FE's invariant-plane parameters) by");
-      }
+      lines.push_back("failure points as the FE material point sees them on each DEM test's path: the base stresses");
+      lines.push_back("(sigma, tau) are the layer-plane traction, the lateral stresses those of this file's elasticity");
+      lines.push_back(c.path.laterally_confined ?
+                        "under the test's periodic sides (no lateral strain: sigma_xx = sigma_yy = k sigma_zz, k = nu/(1 - nu) = " +
+                          material_file_number(k) + "),"
+                                                : std::string("under the test's open sides (sigma_xx = sigma_yy = 0, k = 0),"));
+      lines.push_back("so p = (1 + 2k) sigma/3, q = sqrt((1 - k)^2 sigma^2 + 3 tau^2); the DEM's Love-Weber lateral ratio at");
+      lines.push_back("failure was " +
+                      (c.lateral_stress_ratio_at_failure.n > 0 ?
+                         material_file_number(c.lateral_stress_ratio_at_failure.mean) + " (mean of " +
+                           std::to_string(c.lateral_stress_ratio_at_failure.n) + " tests)." :
+                         std::string("not measured.")) +
+                      " Fitted so, the FE point fails at the DEM's (sigma, tau) along every test's ray, by");
       lines.push_back("least squares of the relative radial residuals ln(r/R): R^2 = " +
                       material_file_number(surface.r_squared) + ", RMSE = " + material_file_number(100 * surface.rmse) +
                       " %.");
@@ -48,7 +52,7 @@ namespace anticrack::coupling
                       (e.laterally_confined ? "laterally confined: constrained modulus" : "open sides: Young's modulus") +
                       "), shear secant modulus " + material_file_number(e.shear_modulus.mean) + " Pa at psi = 90 deg" +
                       (e.poisson_ratio_given ? " (not used: Poisson's ratio given)" : "") + "; bulk modulus K = " +
-                      material_file_number(e.bulk_modulus.mean) + " Pa.");
+                      material_file_number(e.continuum_bulk_modulus) + " Pa (E, nu, K of the mean moduli, so that the FE layer has both).");
       lines.push_back("Softening: p0 = K sinh(xi max(-alpha, 0)), collapse law (every plastic volume change softens);");
       lines.push_back("xi from the drop to R p0 over a plastic volumetric strain of " +
                       material_file_number(c.softening.plastic_volumetric_strain.mean) + " at psi = 0.");
@@ -61,19 +65,20 @@ namespace anticrack::coupling
   {
     const params::MicrostructureCalibration &c = calibration.microstructures.at(m);
     const params::CampaignData &campaign = calibration.campaign;
-    const params::StressPlane plane = calibration.options.fe_plane;
-    const params::CamClaySurface surface = c.plane(plane).cam_clay_surface();
-    const params::CamClaySurfaceInterval surface_interval = c.plane(plane).cam_clay_interval();
+    const params::PlaneCalibration &plane = c.material_plane();
+    const params::CamClaySurface surface = plane.cam_clay_surface();
+    const params::CamClaySurfaceInterval surface_interval = plane.cam_clay_interval();
     const params::ElasticConstants &e = c.elastic;
     const params::SofteningEstimate &soft = c.softening;
 
     fem::MaterialFile file;
     file.comment = comment(calibration, c, tool_version);
     fem::ContinuumMaterial &material = file.material;
+    material.yield_surface_plane = "invariants";
     material.name = std::filesystem::path(campaign.scene_file).stem().string() + " m" + std::to_string(c.index);
     material.density = c.density;
-    material.youngs_modulus = e.youngs_modulus.mean;
-    material.poisson_ratio = e.poisson_ratio.mean;
+    material.youngs_modulus = e.continuum_youngs_modulus;
+    material.poisson_ratio = e.continuum_poisson_ratio;
     material.p0 = surface.p0;
     material.beta = surface.beta;
     material.M = surface.M;
@@ -97,8 +102,10 @@ namespace anticrack::coupling
     p.scene_file = campaign.scene_file;
     p.scene_sha256 = campaign.scene_file_sha256;
     p.microstructure = c.index;
-    p.fit_plane = plane == params::StressPlane::invariants ? "p-q" : "sigma-tau";
-    p.r_squared = c.plane(plane).cam_clay().r_squared;
+    p.fit_plane = std::string(fem::path_fit_plane) + ", lateral stress ratio " +
+                  fem::material_file_number(c.path.lateral_stress_ratio()) +
+                  (c.path.laterally_confined ? " (periodic sides)" : " (open sides)");
+    p.r_squared = plane.cam_clay().r_squared;
     return file;
   }
 } // namespace anticrack::coupling

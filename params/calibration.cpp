@@ -70,7 +70,7 @@ namespace anticrack::params
       return why.str();
     }
 
-    PlaneCalibration fit_plane(StressPlane plane, const std::vector<CampaignTest> &tests,
+    PlaneCalibration fit_plane(StressPlane plane, const std::vector<CampaignTest> &tests, const TestPath &path,
                                const CalibrationOptions &options, const std::string &where)
     {
       PlaneCalibration c;
@@ -79,7 +79,8 @@ namespace anticrack::params
       {
         // Shear is a magnitude in both planes: q >= 0 by definition, τ's sign only says along ±x.
         c.points.push_back(plane == StressPlane::base_stresses ? StressPoint{t.sigma, std::abs(t.tau)} :
-                                                                 StressPoint{t.p, t.q});
+                           plane == StressPlane::invariants    ? StressPoint{t.p, t.q} :
+                                                                 path.invariants(t.sigma, t.tau));
         c.realizations.push_back(t.realization);
       }
       EnvelopeFitOptions fit_options;
@@ -99,6 +100,61 @@ namespace anticrack::params
           c.best_by_aicc = k;
       c.cam_clay_not_determined = undetermined_cam_clay(c);
       return c;
+    }
+
+    /// The DEM's (σ_xx + σ_yy)/(2 σ_zz) of the Love–Weber stress at failure over the tests with
+    /// |σ| >= half the largest |σ| of the microstructure (the lateral ratio of shear-dominated tests
+    /// is a ratio of small numbers).
+    SampleStatistics lateral_stress_ratio_at_failure(const std::vector<CampaignTest> &tests, double confidence,
+                                                     const std::string &where)
+    {
+      double largest = 0;
+      for (const auto &t : tests)
+        largest = std::max(largest, std::abs(t.sigma));
+      std::vector<double> ratios;
+      for (const auto &t : tests)
+        if (std::abs(t.sigma) >= 0.5 * largest && t.love_stress[8] != 0)
+          ratios.push_back(0.5 * (t.love_stress[0] + t.love_stress[4]) / t.love_stress[8]);
+      if (ratios.size() < 2)
+        return {};
+      return describe(ratios, confidence, where + " lateral stress ratio at failure");
+    }
+
+    /// Why no isotropic surface on the tests' paths follows the failure points, or "" (calibration.h:
+    /// the chord test of test_path.h on the (σ, τ) fit's strengths, then path_misfit_factor).
+    std::string isotropic_misfit(const MicrostructureCalibration &c)
+    {
+      const double base_rmse = c.base_plane.cam_clay().rmse, path_rmse = c.path_plane.cam_clay().rmse;
+      // The (σ, τ) fit's strengths in compression, shear (at σ = 0) and tension.
+      const CamClaySurface s = c.base_plane.cam_clay_surface();
+      const double shear = s.M * s.p0 * std::sqrt(s.beta / (1 + 2 * s.beta));
+      const double deficit = chord_shear_deficit(c.path, s.p0, shear, -s.beta * s.p0);
+      const double shear_ratio = s.M / std::sqrt(1 + 2 * s.beta), least = least_cam_clay_shear_ratio(c.path);
+      if (shear_ratio > least && !(deficit > 0) && path_rmse <= path_misfit_factor * base_rmse + path_misfit_margin)
+        return "";
+      std::ostringstream why;
+      why.precision(3);
+      why << "no isotropic invariant-plane surface fails where the DEM failed on the tests' paths ("
+          << (c.path.laterally_confined ? "periodic sides, lateral stress ratio " : "open sides, lateral stress ratio ")
+          << c.path.lateral_stress_ratio() << "). The (sigma, tau) fit's strengths are " << s.p0
+          << " Pa in compression, " << shear << " Pa in shear and " << s.beta * s.p0 << " Pa in tension";
+      if (!(shear_ratio > least))
+        why << "; its peak shear strength over half its compressive-tensile range, M/sqrt(1 + 2 beta) = "
+            << shear_ratio << ", is at most " << least << " = (1 - k)/sqrt(3), the least any cohesive Cam-Clay "
+            << "surface of the invariants has on these paths (a uniaxial load there already carries q = (1 - k) "
+            << "sigma; params/test_path.h)";
+      if (deficit > 0)
+        why << "; on the paths the shear point lies " << 100 * deficit << " % below the chord between the "
+            << "uniaxial points, so no convex surface reaches it (the layer is weaker in shear than an "
+            << "isotropic material of its uniaxial strengths can be: an anisotropic microstructure, or too "
+            << "few or too scattered points)";
+      why << ". The cohesive Cam-Clay fit of the FE point misses the failure points by RMSE " << 100 * path_rmse
+          << " % where the (sigma, tau) fit misses them by " << 100 * base_rmse << " %. "
+          << (c.path.laterally_confined ? "" : "Calibrate a laterally periodic specimen of the layer, or add ")
+          << (c.path.laterally_confined ? "Add" : "add")
+          << " realizations and loading angles (if the strengths' scatter is the cause), or model the layer with a "
+             "material the FE solver does not have yet (a yield surface on the layer-plane traction)";
+      return why.str();
     }
 
     FlowRuleAnalysis analyse_flow_rule(const std::vector<CampaignTest> &tests, const CamClaySurface &surface,
@@ -142,11 +198,32 @@ namespace anticrack::params
     }
   } // namespace
 
-  std::string plane_id(StressPlane plane) { return plane == StressPlane::base_stresses ? "sigma_tau" : "p_q"; }
+  std::string plane_id(StressPlane plane)
+  {
+    switch (plane)
+    {
+      case StressPlane::base_stresses:
+        return "sigma_tau";
+      case StressPlane::invariants:
+        return "p_q";
+      case StressPlane::path_invariants:
+        break;
+    }
+    return "p_q_path";
+  }
 
   const PlaneCalibration &MicrostructureCalibration::plane(StressPlane which) const
   {
-    return which == StressPlane::base_stresses ? base_plane : invariant_plane;
+    switch (which)
+    {
+      case StressPlane::base_stresses:
+        return base_plane;
+      case StressPlane::invariants:
+        return invariant_plane;
+      case StressPlane::path_invariants:
+        break;
+    }
+    return path_plane;
   }
 
   const EnvelopeFit &PlaneCalibration::cam_clay() const
@@ -202,24 +279,27 @@ namespace anticrack::params
       c.layer_thickness = mean_of(c.tests, &CampaignTest::layer_thickness);
       c.density = c.solid_fraction * c.material.particle_density;
 
-      c.base_plane = fit_plane(StressPlane::base_stresses, c.tests, options, where);
-      c.invariant_plane = fit_plane(StressPlane::invariants, c.tests, options, where);
-      const PlaneCalibration &fe = c.plane(options.fe_plane);
-      if (!fe.cam_clay_not_determined.empty())
-        throw CalibrationError(
-          where + ", " + plane_id(options.fe_plane) + " plane: the cohesive Cam-Clay fit does not determine the "
-          "surface for the material file: " + fe.cam_clay_not_determined + ". " +
-          (options.fe_plane == StressPlane::invariants ?
-             std::string(c.material.laterally_periodic ? "Laterally confined tests reach only a narrow fan of q/p; "
-                                                         "take" :
-                                                         "Take") +
-               " the material from the (sigma, tau) fit (--fe-plane sigma-tau), or add stress paths of "
-               "other q/p (open sides, triaxial tests), loading angles or realizations" :
-             std::string("Add loading angles near 0 and 180 deg, or realizations")));
-      c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_surface(), options.confidence);
+      // The FE elasticity first: it sets the lateral stresses of the tests' paths (test_path.h).
       c.elastic = elastic_constants(campaign, c.index, options.confidence, options.poisson_ratio);
+      c.path = TestPath{c.material.laterally_periodic, c.elastic.continuum_poisson_ratio};
+      c.lateral_stress_ratio_at_failure = lateral_stress_ratio_at_failure(c.tests, options.confidence, where);
+      c.base_plane = fit_plane(StressPlane::base_stresses, c.tests, c.path, options, where);
+      c.invariant_plane = fit_plane(StressPlane::invariants, c.tests, c.path, options, where);
+      c.path_plane = fit_plane(StressPlane::path_invariants, c.tests, c.path, options, where);
+      // A surface that cannot follow the points first: its fit may also be undetermined, but the
+      // misfit says why.
+      const std::string misfit = isotropic_misfit(c);
+      if (!misfit.empty())
+        throw CalibrationError(where + ": " + misfit);
+      const PlaneCalibration &fe = c.material_plane();
+      if (!fe.cam_clay_not_determined.empty())
+        throw CalibrationError(where + ", " + plane_id(fe.plane) + " plane (the FE point on the tests' paths): the "
+                               "cohesive Cam-Clay fit does not determine the surface for the material file: " +
+                               fe.cam_clay_not_determined +
+                               ". Add loading angles near 0 and 180 deg, or realizations");
+      c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_surface(), options.confidence);
       c.softening = collapse_softening(campaign, c.index, fe.cam_clay_surface().p0,
-                                       c.elastic.bulk_modulus.mean, c.elastic.axial_modulus.mean, options.confidence);
+                                       c.elastic.continuum_bulk_modulus, c.elastic.axial_modulus.mean, options.confidence);
       result.microstructures.push_back(std::move(c));
     }
 
@@ -258,7 +338,7 @@ namespace anticrack::params
         if (std::abs(t.loading_angle_deg) < 1e-6)
           strength += t.sigma, ++count;
       mm.particle_modulus.push_back(c.material.particle_modulus);
-      mm.macro_modulus.push_back(c.elastic.youngs_modulus.mean);
+      mm.macro_modulus.push_back(c.elastic.continuum_youngs_modulus);
       mm.bond_strength.push_back(c.material.bond_tensile_strength);
       mm.macro_strength.push_back(strength / count); // count > 0: elastic_constants needs psi = 0
       reference_thickness += c.layer_thickness / static_cast<double>(result.microstructures.size());

@@ -10,20 +10,19 @@
 // (Ritter et al. 2020, Eqs. 2–3), M's mean and spread, and the linear micro-to-macro laws of Bobillier et al. 2020 (Eqs. 5–8)
 // when the campaign varies the particle modulus or the bond strength.
 //
-// Which plane the FE solver uses: (p, q) by default (CalibrationOptions::fe_plane). The continuum yield function is a function of the stress
-// tensor's invariants; the Love–Weber stress is the DEM's volume-averaged Cauchy stress, so its
-// (p, q) at failure are the continuum's invariants at yield. The base stresses (σ, τ) are two
-// traction components on one plane: under mixed-mode loading the lateral stresses (σ_xx, σ_yy) are
-// not controlled (periodic sides confine the specimen), so (σ, τ) and (p, q) differ in shape, not only
-// in scale — in compression the lateral stresses put the failure points at q > 0. The (σ, τ) fit is
-// kept for comparison with Ritter et al. 2020 (its σ0, β, M, scaling laws and flow rule are in that plane).
-// Laterally confined tests (periodic sides) reach only a narrow fan of q/p in the invariant plane
-// (failure points at polar angles of roughly 60–120°, the lateral stresses following the axial one),
-// so the tips p0 and −βp0 there are extrapolations: well determined when the points bend over
-// towards the compressive tip, undetermined when they do not (the fit then runs off to an elongated
-// ellipse). Such a fit is refused for the material file with a message; the material can then be
-// taken from the (σ, τ) fit (fe_plane = base_stresses), or the campaign extended by stress paths of
-// other q/p (open sides, triaxial tests).
+// Which surface the FE solver gets: the invariant-plane (p, q) fit of the failure points as the FE
+// material point sees them on each test's own path (params/test_path.h): the base stresses (σ, τ)
+// are the layer-plane traction, the lateral stresses those of the FE elasticity under the test's
+// lateral condition (periodic sides: no lateral strain; open sides: none). Fitted so, the FE point
+// driven along every DEM test's path fails where the DEM failed, in the fit's own residual measure.
+// Two other fits are kept for comparison and never written as FE parameters: the (σ, τ) fit of
+// Ritter et al. (2020) (its σ0, β, M, scaling laws and flow rule are in that plane) and the (p, q)
+// fit of the specimen's Love–Weber stress (its lateral stresses are the DEM's, which the FE point
+// does not have; laterally confined tests reach only a narrow fan of q/p there, so its tips are
+// often undetermined). The material surface is refused, with the reason, when no convex isotropic
+// surface can pass through the (σ, τ) fit's compressive, shear and tensile strengths on the paths
+// (the chord test of params/test_path.h), when it misses the DEM's failure points by more than the
+// (σ, τ) fit does, or when its tips are extrapolated far beyond the data or its covariance is singular.
 #pragma once
 
 #include "params/campaign_data.h"
@@ -31,6 +30,7 @@
 #include "params/envelope_fit.h"
 #include "params/flow_rule.h"
 #include "params/regression.h"
+#include "params/test_path.h"
 #include "params/yield_envelopes.h"
 
 #include <cstdint>
@@ -42,16 +42,16 @@ namespace anticrack::params
 {
   enum class StressPlane
   {
-    base_stresses, ///< (σ, τ) at the fixed base (Ritter et al. 2020)
-    invariants     ///< (p, q) of the Love–Weber stress — the FE solver's plane
+    base_stresses,  ///< (σ, τ) at the fixed base (Ritter et al. 2020), for comparison
+    invariants,     ///< (p, q) of the specimen's Love–Weber stress, for comparison
+    path_invariants ///< (p, q) of the FE material point on each test's path — the FE solver's surface
   };
 
-  /// "sigma_tau" or "p_q" (group names in calibration.h5).
+  /// "sigma_tau", "p_q" or "p_q_path" (group names in calibration.h5).
   std::string plane_id(StressPlane plane);
 
   struct CalibrationOptions
   {
-    StressPlane fe_plane = StressPlane::invariants; ///< whose Cam-Clay fit the material file carries
     double confidence = 0.95;
     int bootstrap_samples = 1000; ///< resamples of the realizations (needs >= 3 realizations)
     std::uint64_t seed = 1;       ///< of the bootstrap: the calibration is reproducible
@@ -98,12 +98,18 @@ namespace anticrack::params
     double solid_fraction = 0, coordination = 0, contact_density = 0; ///< means over the tests
     double layer_thickness = 0;       ///< h of the deformable layer [m], the reference thickness
     double density = 0;               ///< φ ρ_particle [kg/m³]
-    PlaneCalibration base_plane, invariant_plane;
+    TestPath path;                    ///< the tests' path for the FE point (the FE elasticity's ν)
+    /// The DEM's lateral stress ratio at failure, (σ_xx + σ_yy)/(2 σ_zz) of the Love–Weber stress,
+    /// over the tests with |σ| >= half the largest (beside path.lateral_stress_ratio()).
+    SampleStatistics lateral_stress_ratio_at_failure;
+    PlaneCalibration base_plane, invariant_plane, path_plane;
     FlowRuleAnalysis flow_rule;
     ElasticConstants elastic;
     SofteningEstimate softening;
 
     [[nodiscard]] const PlaneCalibration &plane(StressPlane which) const;
+    /// The FE solver's surface: path_plane.
+    [[nodiscard]] const PlaneCalibration &material_plane() const { return path_plane; }
   };
 
   /// Eqs. 2–3 of Ritter et al. (2020) across microstructures (in the (σ, τ) plane, as published).
@@ -136,9 +142,20 @@ namespace anticrack::params
   /// p0 and β p0 at most this many times the largest failure-point radius of the plane.
   constexpr double tip_extrapolation_limit = 5.0;
 
+  /// How much worse than the (σ, τ) fit the surface on the tests' paths may fit the same failure
+  /// points: RMSE_path <= path_misfit_factor RMSE_(σ,τ) + path_misfit_margin. The two are fits of
+  /// the same points along the same rays with 3-parameter families of ellipses symmetric about the
+  /// normal axis (the FE surface's image in the (σ, τ) plane is one, by Eq. (P1) of test_path.h), so
+  /// where one family reaches the other's shape their minima coincide (the SHS campaign: equal to
+  /// four digits, docs/calibration.md); a clearly larger RMSE means the isotropic surface cannot
+  /// follow the DEM. The margin (0.5 % relative error) keeps near-perfect fits from tripping it.
+  constexpr double path_misfit_factor = 1.25;
+  constexpr double path_misfit_margin = 0.005;
+
   /// Calibrates every microstructure of `campaign`. Throws CalibrationError for degenerate data (a
   /// microstructure with fewer completed tests than 4, fewer than 3 distinct loading angles, or no
-  /// tensile point) before anything is computed, and when the Cam-Clay fit of options.fe_plane does
-  /// not determine the surface, naming the file, the microstructure and what would help.
+  /// tensile point) before anything is computed, and when the Cam-Clay fit on the tests' paths does
+  /// not determine the surface or misses the failure points (see above), naming the file, the
+  /// microstructure, the reason and what would help.
   Calibration calibrate(const CampaignData &campaign, const CalibrationOptions &options);
 } // namespace anticrack::params

@@ -94,7 +94,8 @@ namespace anticrack::params
                             "see parameter_units", "fitted parameters of every bootstrap resample [resample][parameter]",
                             {static_cast<hsize_t>(samples.rows()), static_cast<hsize_t>(samples.cols())});
       }
-      hdf5::write_doubles(g.id, "residuals", to_vector(f.residuals), "Pa", "radial residuals r_i - R(a_i)");
+      hdf5::write_doubles(g.id, "residuals", to_vector(f.residuals), "-",
+                          "relative radial residuals ln r_i - ln R(a_i)");
       const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> covariance = f.covariance;
       hdf5::write_doubles(g.id, "covariance", {covariance.data(), covariance.data() + covariance.size()},
                           "products of parameter_units", "covariance of the parameters (delta method)",
@@ -124,14 +125,17 @@ namespace anticrack::params
       hdf5::write_number_attribute(g.id, "layer_thickness", c.layer_thickness);
       hdf5::write_number_attribute(g.id, "bond_tensile_strength", c.material.bond_tensile_strength);
       hdf5::write_number_attribute(g.id, "particle_modulus", c.material.particle_modulus);
+      hdf5::write_number_attribute(g.id, "path_lateral_stress_ratio", c.path.lateral_stress_ratio());
       {
         const hdf5::Handle p = hdf5::create_group(g.id, "points");
         std::vector<std::string> ids;
-        std::vector<double> angle, realization, sigma, tau, pressure, q, flow;
+        std::vector<double> angle, realization, sigma, tau, pressure, q, path_p, path_q, flow;
         for (const auto &t : c.tests)
         {
           ids.push_back(t.id), angle.push_back(t.loading_angle_deg), realization.push_back(t.realization);
           sigma.push_back(t.sigma), tau.push_back(std::abs(t.tau)), pressure.push_back(t.p), q.push_back(t.q);
+          const StressPoint on_path = c.path.invariants(t.sigma, t.tau);
+          path_p.push_back(on_path.normal), path_q.push_back(on_path.shear);
           flow.push_back(t.flow_angle_deg);
         }
         hdf5::write_strings(p.id, "test", ids, "campaign test id");
@@ -141,11 +145,15 @@ namespace anticrack::params
         hdf5::write_doubles(p.id, "tau", tau, "Pa", "|base shear stress| at failure");
         hdf5::write_doubles(p.id, "p", pressure, "Pa", "Love-Weber mean pressure at failure, compression positive");
         hdf5::write_doubles(p.id, "q", q, "Pa", "Love-Weber von Mises stress at failure");
+        hdf5::write_doubles(p.id, "p_path", path_p, "Pa",
+                            "mean pressure of the FE point carrying the base stresses on the test's path");
+        hdf5::write_doubles(p.id, "q_path", path_q, "Pa",
+                            "von Mises stress of the FE point carrying the base stresses on the test's path");
         hdf5::write_doubles(p.id, "flow_angle_deg", flow, "deg", "atan2(du_z, du_x) after failure");
       }
       {
         const hdf5::Handle fits = hdf5::create_group(g.id, "fits");
-        for (const PlaneCalibration *plane : {&c.base_plane, &c.invariant_plane})
+        for (const PlaneCalibration *plane : {&c.base_plane, &c.invariant_plane, &c.path_plane})
         {
           const hdf5::Handle pg = hdf5::create_group(fits.id, plane_id(plane->plane));
           for (std::size_t k = 0; k < plane->fits.size(); ++k)
@@ -203,11 +211,11 @@ namespace anticrack::params
   {
     hdf5::write_file_atomically(file, [&](const hdf5::Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-calibration");
-      hdf5::write_number_attribute(f.id, "format_version", 1);
+      hdf5::write_number_attribute(f.id, "format_version", 2);
       hdf5::write_string_attribute(f.id, "campaign_file", calibration.campaign.file);
       hdf5::write_string_attribute(f.id, "campaign_sha256", calibration.campaign.sha256);
       hdf5::write_string_attribute(f.id, "scene_file", calibration.campaign.scene_file);
-      hdf5::write_string_attribute(f.id, "fe_plane", plane_id(calibration.options.fe_plane));
+      hdf5::write_string_attribute(f.id, "fe_plane", plane_id(StressPlane::path_invariants));
       hdf5::write_number_attribute(f.id, "confidence", calibration.options.confidence);
       hdf5::write_string_attribute(f.id, "conventions",
                                    "sigma and p compression positive; tau, q >= 0; angles in the (normal, shear) "
@@ -285,12 +293,25 @@ namespace anticrack::params
         {"layer_thickness_m", c.layer_thickness},
         {"sigma_tau_plane", plane_json(c.base_plane)},
         {"p_q_plane", plane_json(c.invariant_plane)},
+        {"p_q_path_plane", plane_json(c.path_plane)},
+        {"test_path",
+         Json{{"laterally_confined", c.path.laterally_confined},
+              {"lateral_stress_ratio", c.path.lateral_stress_ratio()},
+              {"dem_lateral_stress_ratio_at_failure", c.lateral_stress_ratio_at_failure.n > 0 ?
+                                                        statistics_json(c.lateral_stress_ratio_at_failure) :
+                                                        Json(nullptr)}}},
         {"flow_rule", flow},
         {"elastic",
          Json{{"laterally_confined", c.elastic.laterally_confined},
               {"poisson_ratio_given", c.elastic.poisson_ratio_given},
               {"axial_secant_modulus_Pa", statistics_json(c.elastic.axial_modulus)},
               {"shear_modulus_Pa", statistics_json(c.elastic.shear_modulus)},
+              {"continuum",
+               Json{{"what", "E, nu, K of the mean axial and shear moduli: the material file's, which reproduce "
+                             "both mean stiffnesses"},
+                    {"youngs_modulus_Pa", c.elastic.continuum_youngs_modulus},
+                    {"poisson_ratio", c.elastic.continuum_poisson_ratio},
+                    {"bulk_modulus_Pa", c.elastic.continuum_bulk_modulus}}},
               {"youngs_modulus_Pa", statistics_json(c.elastic.youngs_modulus)},
               {"poisson_ratio", statistics_json(c.elastic.poisson_ratio)},
               {"bulk_modulus_Pa", statistics_json(c.elastic.bulk_modulus)},
@@ -306,7 +327,7 @@ namespace anticrack::params
     Json s{{"confidence", calibration.options.confidence},
            {"bootstrap_samples", calibration.options.bootstrap_samples},
            {"bootstrap_seed", calibration.options.seed},
-           {"fe_plane", plane_id(calibration.options.fe_plane)},
+           {"fe_plane", plane_id(StressPlane::path_invariants)},
            {"campaign", Json{{"file", calibration.campaign.file},
                              {"sha256", calibration.campaign.sha256},
                              {"scene_file", calibration.campaign.scene_file},

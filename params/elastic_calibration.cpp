@@ -27,6 +27,31 @@ namespace anticrack::params
       return static_cast<dem::Index>(std::max_element(values.begin(), values.end()) - values.begin());
     }
 
+    struct IsotropicConstants
+    {
+      double youngs_modulus, poisson_ratio, bulk_modulus;
+    };
+
+    /// E, ν, K of an isotropic solid from the axial modulus (constrained if `confined`, else Young's)
+    /// and the shear modulus G; with a given ν, E from the axial modulus alone.
+    IsotropicConstants isotropic_constants(double axial, double G, bool confined, std::optional<double> given_nu)
+    {
+      if (given_nu)
+      {
+        // nu given: E from the axial modulus alone (M = E (1 - nu)/((1 + nu)(1 - 2 nu)) if confined).
+        const double nu = *given_nu;
+        const double E = confined ? axial * (1 + nu) * (1 - 2 * nu) / (1 - nu) : axial;
+        return {E, nu, E / (3.0 * (1.0 - 2.0 * nu))};
+      }
+      if (confined)
+      {
+        const double K = axial - 4.0 * G / 3.0;
+        return {9.0 * K * G / (3.0 * K + G), (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G)), K};
+      }
+      const double nu = axial / (2.0 * G) - 1.0;
+      return {axial, nu, axial / (3.0 * (1.0 - 2.0 * nu))};
+    }
+
     /// Statistics of per-realization values; with one realization the interval is the value itself
     /// (no spread can be estimated, and the caller reports n = 1).
     SampleStatistics statistics(const std::vector<double> &values, double confidence, const std::string &what)
@@ -66,26 +91,7 @@ namespace anticrack::params
       const double G = dem::secant_modulus(h.shear_strain, h.tau, peak_index(h.tau), 0.7);
       const TestHistory ch = campaign.history(*compression_test);
       const double M = dem::secant_modulus(ch.normal_strain, ch.sigma, peak_index(ch.sigma), 0.7);
-      double E, nu, K;
-      if (given_poisson_ratio)
-      {
-        // nu given: E from the axial modulus alone (M = E (1 - nu)/((1 + nu)(1 - 2 nu)) if confined).
-        nu = *given_poisson_ratio;
-        E = c.laterally_confined ? M * (1 + nu) * (1 - 2 * nu) / (1 - nu) : M;
-        K = E / (3.0 * (1.0 - 2.0 * nu));
-      }
-      else if (c.laterally_confined)
-      {
-        K = M - 4.0 * G / 3.0;
-        E = 9.0 * K * G / (3.0 * K + G);
-        nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
-      }
-      else
-      {
-        E = M;
-        nu = E / (2.0 * G) - 1.0;
-        K = E / (3.0 * (1.0 - 2.0 * nu));
-      }
+      const auto [E, nu, K] = isotropic_constants(M, G, c.laterally_confined, given_poisson_ratio);
       if (!(K > 0) || !(nu > -1.0 && nu < 0.5) || !(G > 0))
         throw CalibrationError(where + ", tests " + compression_test->id + " and " + s->second->id +
                                ": inadmissible elastic constants (axial modulus " + std::to_string(M) +
@@ -116,6 +122,14 @@ namespace anticrack::params
     c.bulk_modulus = statistics(bulk, confidence, where + " bulk modulus");
     if (!k0.empty())
       c.k0_poisson_ratio = statistics(k0, confidence, where + " K0 Poisson's ratio");
+    const auto [E, nu, K] =
+      isotropic_constants(c.axial_modulus.mean, c.shear_modulus.mean, c.laterally_confined, given_poisson_ratio);
+    if (!(K > 0) || !(nu > -1.0 && nu < 0.5))
+      throw CalibrationError(where + ": the mean axial modulus " + std::to_string(c.axial_modulus.mean) +
+                             " Pa and shear modulus " + std::to_string(c.shear_modulus.mean) + " Pa give K = " +
+                             std::to_string(K) + " Pa, nu = " + std::to_string(nu) +
+                             "; need K > 0 and -1 < nu < 0.5");
+    c.continuum_youngs_modulus = E, c.continuum_poisson_ratio = nu, c.continuum_bulk_modulus = K;
     return c;
   }
 

@@ -45,6 +45,10 @@ namespace anticrack::params
     SampleStatistics poisson_ratio;   ///< ν
     SampleStatistics bulk_modulus;    ///< K [Pa]
     SampleStatistics k0_poisson_ratio; ///< ν from K0 (confined only; n = 0 otherwise)
+    /// The continuum's constants: those of the MEAN axial and shear moduli, so that the FE layer
+    /// reproduces both mean stiffnesses (the means of E and ν over the realizations above do not:
+    /// the relations are nonlinear; on the SHS yield-surface campaign by 2.8 % in the normal one).
+    double continuum_youngs_modulus = 0, continuum_poisson_ratio = 0, continuum_bulk_modulus = 0;
   };
 
   /// From the ψ = 0 and ψ = 90° tests of microstructure `m` (every completed realization having both).

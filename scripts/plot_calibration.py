@@ -5,7 +5,8 @@ Usage: scripts/plot_calibration.py DIR
 
 Reads DIR/calibration.h5 (written by `anticrack calibrate`) and writes into DIR:
   yield_surface.png             failure points, the cohesive Cam-Clay fit and its confidence band in the
-                                (sigma, tau) base-stress plane and the (p, q) Love-Weber plane
+                                (p, q) plane of the FE point on the tests' paths (the FE's surface),
+                                the (sigma, tau) base-stress plane and the (p, q) Love-Weber plane
   model_comparison.png          the three fitted envelopes per plane and microstructure (R^2, delta AICc)
   normalised_yield_surface.png  (sigma*, tau*) against the unit circle (Ritter et al. 2020, Fig. 5A)
   flow_rule.png                 theta* against psi* (Ritter et al. 2020, Fig. 5B); flow angle against loading angle
@@ -30,6 +31,8 @@ from matplotlib.transforms import offset_copy  # noqa: E402
 
 KPA = 1e-3
 PLANES = {  # points' keys, axis labels, panel title
+    "p_q_path": ("p_path", "q_path", "mean stress p [kPa] (compression +)", "von Mises stress q [kPa]",
+                 "(p, q) of the FE point on the tests' paths"),
     "sigma_tau": ("sigma", "tau", "base normal stress σ [kPa] (compression +)", "base shear stress τ [kPa]",
                   "(σ, τ) base stresses, Ritter et al. 2020"),
     "p_q": ("p", "q", "mean stress p [kPa] (compression +)", "von Mises stress q [kPa]",
@@ -119,7 +122,7 @@ def parameter_text(fit, confidence):
 
 def plot_yield_surface(data, micros):
     confidence = f"{100 * data.attrs.get('confidence', 0.95):g} %"
-    fig, axes = plt.subplots(1, 2, figsize=(15, 6))
+    fig, axes = plt.subplots(1, len(PLANES), figsize=(7.5 * len(PLANES), 6))
     for ax, plane in zip(axes, PLANES):
         x, y = PLANES[plane][:2]
         for k, (name, m) in enumerate(micros):
@@ -138,7 +141,7 @@ def plot_yield_surface(data, micros):
 
 
 def plot_model_comparison(data, micros):
-    fig, axes = plt.subplots(len(micros), 2, figsize=(15, 5 * len(micros)), squeeze=False,
+    fig, axes = plt.subplots(len(micros), len(PLANES), figsize=(7.5 * len(PLANES), 5 * len(micros)), squeeze=False,
                              gridspec_kw={"hspace": 0.5})
     for row, (name, m) in zip(axes, micros):
         for ax, plane in zip(row, PLANES):

@@ -5,8 +5,10 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cctype>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace anticrack::fem
@@ -71,7 +73,7 @@ namespace anticrack::fem
     void declare_material_file(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
-      declare_material_entries(prm);
+      declare_material_entries(prm, /*required=*/true);
       prm.enter_subsection("Uncertainty");
       prm.declare_entry(confidence_entry, "0.95", Double(0, 1), "level of the intervals");
       for (const MaterialEntry *e : material_interval_entries())
@@ -89,6 +91,26 @@ namespace anticrack::fem
       }
       prm.leave_subsection();
       prm.leave_subsection();
+    }
+
+    /// "Material/Density [kg/m^3]" of deal.II's "Material.Density_20_5bkg_2fm_5e3_5d": the paths of
+    /// ParameterHandler::get_entries_wrongly_not_set() are of mangled names (every character but
+    /// letters and digits as "_" and two hex digits), their subsections joined by ".".
+    std::string demangled_path(const std::string &mangled)
+    {
+      std::string path;
+      for (std::size_t k = 0; k < mangled.size(); ++k)
+      {
+        if (mangled[k] == '_' && k + 2 < mangled.size() && std::isxdigit(mangled[k + 1]) &&
+            std::isxdigit(mangled[k + 2]))
+        {
+          path += static_cast<char>(std::stoi(mangled.substr(k + 1, 2), nullptr, 16));
+          k += 2;
+        }
+        else
+          path += mangled[k] == '.' ? '/' : mangled[k];
+      }
+      return path;
     }
 
     /// The file parsed and checked by deal.II, positioned at the root.
@@ -109,6 +131,25 @@ namespace anticrack::fem
       catch (const std::exception &e)
       {
         throw InputError("material file " + name + ": " + e.what());
+      }
+      prm.enter_subsection("Material");
+      prm.enter_subsection("Provenance");
+      const std::string fit_plane = prm.get("Fit plane");
+      prm.leave_subsection();
+      prm.leave_subsection();
+      if (!fit_plane.empty() && fit_plane.rfind(path_fit_plane, 0) != 0)
+        throw InputError("material file " + name + ": Material/Provenance/Fit plane = " + fit_plane +
+                         ": its surface was fitted in another plane than the one the FE point fails in (allowed: \"" +
+                         path_fit_plane + ", ...\"); recalibrate the campaign with `anticrack calibrate`, which "
+                         "fits the invariants of the FE point on every test's path (docs/calibration.md)");
+      const std::set<std::string> missing = prm.get_entries_wrongly_not_set();
+      if (!missing.empty())
+      {
+        std::string list;
+        for (const std::string &entry : missing)
+          list += "\n  " + demangled_path(entry);
+        throw InputError("material file " + name + ": entries not set (a material file gives every entry of "
+                         "subsection Material but its name; there are no defaults):" + list);
       }
     }
 
@@ -146,6 +187,11 @@ namespace anticrack::fem
   {
     static const std::vector<MaterialEntry> entries = {
       text_entry("Name", "Label of the material (in messages and outputs).", "", &C::name, nullptr),
+      text_entry("Yield surface plane",
+                 "What p0, beta and M describe: invariants, the cohesive Cam-Clay surface in the (p, q) plane of "
+                 "the stress tensor (docs/physics.md §2). Parameters of the (sigma, tau) plane of base stresses "
+                 "are not accepted.",
+                 "invariants", &C::yield_surface_plane, "invariants"),
       number_entry("Density", "kg/m^3", "rho: bulk density, phi rho_particle (phi the solid volume fraction). Units: kg/m^3.", "200", &C::density, 1e-3),
       number_entry("Young's modulus", "Pa", "E: Young's modulus. Units: Pa.", "1e6", &C::youngs_modulus, 0, unbounded, &U::youngs_modulus),
       number_entry("Poisson's ratio", "", "nu: Poisson's ratio. Dimensionless.", "0.2", &C::poisson_ratio, -0.999, 0.4999, &U::poisson_ratio),
@@ -183,16 +229,17 @@ namespace anticrack::fem
     return entries;
   }
 
-  void declare_material_entries(ParameterHandler &prm)
+  void declare_material_entries(ParameterHandler &prm, bool required)
   {
     for (const MaterialEntry &e : material_entries())
     {
+      const bool has_to_be_set = required && e.text != &C::name;
       if (e.number)
-        prm.declare_entry(e.name(), e.default_value, Double(e.lower, e.upper), e.meaning);
+        prm.declare_entry(e.name(), e.default_value, Double(e.lower, e.upper), e.meaning, has_to_be_set);
       else if (e.choices)
-        prm.declare_entry(e.name(), e.default_value, Selection(e.choices), e.meaning);
+        prm.declare_entry(e.name(), e.default_value, Selection(e.choices), e.meaning, has_to_be_set);
       else
-        prm.declare_entry(e.name(), e.default_value, Anything(), e.meaning);
+        prm.declare_entry(e.name(), e.default_value, Anything(), e.meaning, has_to_be_set);
     }
   }
 

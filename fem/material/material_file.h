@@ -22,6 +22,10 @@ namespace anticrack::fem
   struct ContinuumMaterial
   {
     std::string name;
+    /// What p0, beta and M are: "invariants", the cohesive Cam-Clay surface in (p, q) of the stress
+    /// tensor (the only surface the solver has). A file states it, so that parameters of another
+    /// plane (the (σ, τ) base stresses of Ritter et al. 2020) are never read as these.
+    std::string yield_surface_plane = "invariants";
     double density = 0;             ///< [kg/m³]
     double youngs_modulus = 0;      ///< E [Pa]
     double poisson_ratio = 0;       ///< ν
@@ -55,7 +59,10 @@ namespace anticrack::fem
   {
     std::string campaign_file, campaign_sha256, scene_file, scene_sha256;
     int microstructure = 0;     ///< index in the campaign
-    std::string fit_plane;      ///< p-q | sigma-tau
+    /// How the surface was fitted: "p-q on the tests' paths, ..." (coupling/material_handoff.h). A
+    /// file whose fit plane says otherwise (an older calibration's "p-q" of the Love–Weber stress
+    /// or "sigma-tau") is refused by the readers.
+    std::string fit_plane;
     double r_squared = 0;       ///< of the yield-surface fit
   };
 
@@ -97,15 +104,20 @@ namespace anticrack::fem
   /// The entries that have an interval in subsection Uncertainty, in the order of the files.
   const std::vector<const MaterialEntry *> &material_interval_entries();
 
-  /// Declares the entries of a ContinuumMaterial in the current subsection of `prm`.
-  void declare_material_entries(dealii::ParameterHandler &prm);
+  /// Declares the entries of a ContinuumMaterial in the current subsection of `prm`. With
+  /// `required`, every entry but the name has to be set (a material file: no defaults for physics).
+  void declare_material_entries(dealii::ParameterHandler &prm, bool required = false);
+
+  /// The beginning of Provenance/Fit plane of a calibration whose surface the solver can use.
+  inline constexpr const char *path_fit_plane = "p-q on the tests' paths";
 
   /// Reads what declare_material_entries() declared, from the current subsection.
   ContinuumMaterial parse_material_entries(dealii::ParameterHandler &prm);
 
   /// Parses `file` (a material file or a scene containing subsection Material); throws
-  /// anticrack::InputError naming the file and the entry for unknown entries, bad values or values
-  /// out of range.
+  /// anticrack::InputError naming the file and the entry for unknown entries, bad values, values
+  /// out of range, entries that are not set (every one but the name must be), and a surface fitted in
+  /// another plane than the invariants on the tests' paths (Provenance/Fit plane).
   ContinuumMaterial read_material_file(const std::string &file);
 
   /// The same for the text of a material file; `name` is used in messages.

@@ -26,7 +26,8 @@ namespace
     m.material.label = "scene sample";
     m.solid_fraction = 0.3, m.coordination = 2.8, m.contact_density = 0.84;
     m.layer_thickness = 0.008, m.density = 275.1;
-    for (params::PlaneCalibration *plane : {&m.base_plane, &m.invariant_plane})
+    m.path = params::TestPath{true, 0.2};
+    for (params::PlaneCalibration *plane : {&m.base_plane, &m.invariant_plane, &m.path_plane})
     {
       plane->models = {params::EnvelopeKind::cohesive_cam_clay};
       params::EnvelopeFit fit;
@@ -38,7 +39,8 @@ namespace
       fit.rmse = 0.031;
       plane->fits = {fit};
     }
-    m.elastic.youngs_modulus.mean = 1.2345e6;
+    m.elastic.continuum_youngs_modulus = 1.2345e6;
+    m.elastic.continuum_poisson_ratio = 0.21;
     m.elastic.youngs_modulus.mean_ci = {1.1e6, 1.3e6};
     m.elastic.poisson_ratio.mean = 0.21;
     m.elastic.poisson_ratio.mean_ci = {0.19, 0.23};
@@ -54,11 +56,12 @@ TEST(MaterialFile, WhatTheWriterWritesTheReaderReads)
 {
   fem::MaterialFile file;
   file.comment = {"a comment", "  indented"};
-  file.material = {"weak layer", 275.1, 1.2345e6, 0.21, 3456.7, 0.45, 1.05, "signed", 42.5, 0.35, 0.008};
+  file.material = {"weak layer", "invariants", 275.1, 1.2345e6, 0.21, 3456.7, 0.45, 1.05, "signed", 42.5, 0.35, 0.008};
   file.uncertainty.confidence = 0.9;
   file.uncertainty.p0 = {3000, 4000};
   file.uncertainty.youngs_modulus = {1.1e6, 1.3e6};
-  file.provenance = {"campaign.h5", "abc", "scene.prm", "def", 3, "sigma-tau", 0.987};
+  const std::string fit_plane = std::string(fem::path_fit_plane) + ", lateral stress ratio 0.25 (periodic sides)";
+  file.provenance = {"campaign.h5", "abc", "scene.prm", "def", 3, fit_plane, 0.987};
   const std::string text = fem::material_file_text(file);
   EXPECT_EQ(text.rfind("# a comment\n#   indented\nsubsection Material\n", 0), 0u) << text;
 
@@ -79,9 +82,71 @@ TEST(MaterialFile, WhatTheWriterWritesTheReaderReads)
   EXPECT_EQ(back.uncertainty.youngs_modulus.upper, 1.3e6);
   EXPECT_TRUE(std::isnan(back.uncertainty.beta.lower)); // written as "nan, nan", read back as NaN
   EXPECT_EQ(back.provenance.microstructure, 3);
-  EXPECT_EQ(back.provenance.fit_plane, "sigma-tau");
+  EXPECT_EQ(back.provenance.fit_plane, fit_plane);
   EXPECT_EQ(back.provenance.r_squared, 0.987);
   EXPECT_EQ(fem::read_material_text(text, "round trip").p0, a.p0);
+}
+
+namespace
+{
+  /// The text of a complete, valid material file with `from` replaced by `to` (exactly once).
+  std::string edited_material_file(const std::string &from, const std::string &to)
+  {
+    fem::MaterialFile file;
+    file.material = {"layer", "invariants", 275.1, 1.2345e6, 0.21, 3456.7, 0.45, 1.05, "collapse", 42.5, 0.35, 0.008};
+    file.provenance.fit_plane = std::string(fem::path_fit_plane) + ", lateral stress ratio 0 (open sides)";
+    std::string text = fem::material_file_text(file);
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  }
+
+  /// The message read_material_text() throws for `text`, or "" if it reads it.
+  std::string refusal(const std::string &text)
+  {
+    try
+    {
+      fem::read_material_text(text, "edited.prm");
+    }
+    catch (const std::exception &e)
+    {
+      return e.what();
+    }
+    return "";
+  }
+} // namespace
+
+TEST(MaterialFile, AFileStatesItsPhysicsAndNoEntryHasADefault)
+{
+  EXPECT_EQ(refusal(edited_material_file("", "")), "");
+  for (const fem::MaterialEntry &e : fem::material_entries())
+  {
+    if (e.text == &fem::ContinuumMaterial::name)
+      continue; // a label, not physics
+    const std::string without = edited_material_file("  set " + e.name() + " = ", "  # set " + e.name() + " = ");
+    const std::string message = refusal(without);
+    EXPECT_NE(message.find("edited.prm"), std::string::npos) << message;
+    EXPECT_NE(message.find(e.name()), std::string::npos) << e.name() << ": " << message;
+    EXPECT_NE(message.find("no defaults"), std::string::npos) << message;
+  }
+}
+
+TEST(MaterialFile, ParametersOfAnotherPlaneAreRefusedNamingTheEntry)
+{
+  const std::string sigma_tau = refusal(edited_material_file("Yield surface plane = invariants",
+                                                             "Yield surface plane = sigma-tau"));
+  EXPECT_NE(sigma_tau.find("Yield surface plane"), std::string::npos) << sigma_tau;
+  EXPECT_NE(sigma_tau.find("invariants"), std::string::npos) << sigma_tau;
+  // Older calibrations: the (sigma, tau) fit, and the (p, q) fit of the Love-Weber stress.
+  for (const char *older : {"sigma-tau", "p-q"})
+  {
+    const std::string message =
+      refusal(edited_material_file(std::string("Fit plane = ") + fem::path_fit_plane, std::string("Fit plane = ") + older +
+                                                                                          " was"));
+    EXPECT_NE(message.find("Provenance/Fit plane"), std::string::npos) << message;
+    EXPECT_NE(message.find(fem::path_fit_plane), std::string::npos) << message;
+    EXPECT_NE(message.find("edited.prm"), std::string::npos) << message;
+  }
 }
 
 TEST(MaterialFile, EveryEntryOfTheTableIsWrittenUnderItsNameAndUnit)
@@ -95,12 +160,15 @@ TEST(MaterialFile, EveryEntryOfTheTableIsWrittenUnderItsNameAndUnit)
   EXPECT_NE(text.find("set Tensile strength ratio beta interval = "), std::string::npos);
 }
 
-TEST(MaterialHandoff, TheFilesMaterialIsTheCalibratedOneOfTheFePlane)
+TEST(MaterialHandoff, TheFilesSurfaceIsTheFitOnTheTestsPathsNeverAnotherPlanes)
 {
   params::Calibration calibration = one_microstructure(3456.7, 0.45, 1.05);
+  // The comparison planes carry other surfaces; none of them may reach the file.
   calibration.microstructures[0].base_plane.fits[0].parameters = Eigen::Vector3d(9999, 0.9, 1.9);
+  calibration.microstructures[0].invariant_plane.fits[0].parameters = Eigen::Vector3d(8888, 0.8, 1.8);
   const fem::MaterialFile file = coupling::material_handoff(calibration, 0, "test");
   const fem::MaterialFile back = fem::read_material_file_text(fem::material_file_text(file), "hand-off");
+  EXPECT_EQ(back.material.yield_surface_plane, "invariants");
   EXPECT_EQ(back.material.p0, 3456.7);
   EXPECT_EQ(back.material.beta, 0.45);
   EXPECT_EQ(back.material.M, 1.05);
@@ -113,12 +181,8 @@ TEST(MaterialHandoff, TheFilesMaterialIsTheCalibratedOneOfTheFePlane)
   EXPECT_EQ(back.material.name, "weak_layer m0");
   EXPECT_NEAR(back.uncertainty.p0.lower, 0.9 * 3456.7, 0.01);
   EXPECT_NEAR(back.uncertainty.M.upper, 1.25 * 1.05, 1e-5);
-  EXPECT_EQ(back.provenance.fit_plane, "p-q");
+  // nu = 0.2 under periodic sides: k = nu/(1 - nu) = 0.25.
+  EXPECT_EQ(back.provenance.fit_plane, std::string(fem::path_fit_plane) + ", lateral stress ratio 0.25 (periodic sides)");
   EXPECT_EQ(back.provenance.campaign_sha256, std::string(64, 'a'));
   EXPECT_EQ(back.provenance.r_squared, 0.987);
-
-  calibration.options.fe_plane = params::StressPlane::base_stresses;
-  const fem::MaterialFile base = coupling::material_handoff(calibration, 0, "test");
-  EXPECT_EQ(base.material.p0, 9999);
-  EXPECT_EQ(base.provenance.fit_plane, "sigma-tau");
 }

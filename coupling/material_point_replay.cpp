@@ -1,0 +1,173 @@
+#include "coupling/material_point_replay.h"
+
+#include "fem/material/cohesive_cam_clay.h"
+#include "fem/model/crack_band.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace anticrack::coupling
+{
+  namespace
+  {
+    using Tensor = dealii::SymmetricTensor<2, 3>;
+
+    /// The six independent components of a symmetric tensor, as (i, j).
+    constexpr std::array<std::array<unsigned int, 2>, 6> components = {
+      {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+
+    /// The FE material point of the calibrated specimen: the file's material as the solver builds it
+    /// (crack band of the specimen's own thickness, so ξ is the file's; no lock-up).
+    fem::CamClayParameters specimen_point(const fem::ContinuumMaterial &material)
+    {
+      fem::Layer layer;
+      layer.model = fem::Layer::Model::cohesive_cam_clay;
+      layer.material = material;
+      layer.thickness = material.reference_thickness;
+      return fem::cam_clay_parameters(layer, material.reference_thickness);
+    }
+
+    /// The strain that holds the layer-plane traction σ_zz = −σ̂, σ_xz = τ̂ (unit load) under the
+    /// lateral condition, from the material's elastic tangent (the point is elastic until it yields,
+    /// and its elasticity is linear, so the strain of load λ is λ times this).
+    Tensor unit_load_strain(const fem::CamClayParameters &parameters, bool confined, double sigma_hat, double tau_hat)
+    {
+      const fem::CamClayState initial = fem::CamClayState::initial(parameters);
+      const dealii::SymmetricTensor<4, 3> C = fem::update_stress_and_tangent(parameters, initial, Tensor()).tangent;
+      // Stress-controlled components: the layer-plane traction (zz, xz, yz), and under open sides
+      // the lateral ones (xx, yy, xy) too; the others are strain-controlled at zero.
+      const std::vector<unsigned int> controlled =
+        confined ? std::vector<unsigned int>{2, 4, 5} : std::vector<unsigned int>{0, 1, 2, 3, 4, 5};
+      const auto n = static_cast<Eigen::Index>(controlled.size());
+      Eigen::MatrixXd J(n, n);
+      Eigen::VectorXd target = Eigen::VectorXd::Zero(n);
+      for (Eigen::Index a = 0; a < n; ++a)
+      {
+        const auto [i, j] = components[controlled[static_cast<std::size_t>(a)]];
+        for (Eigen::Index b = 0; b < n; ++b)
+        {
+          const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
+          // ε_kl and ε_lk are one unknown: an off-diagonal strain enters twice.
+          J(a, b) = C[i][j][k][l] * (k == l ? 1.0 : 2.0);
+        }
+        if (i == 2 && j == 2)
+          target(a) = -sigma_hat;
+        else if (i == 0 && j == 2)
+          target(a) = tau_hat;
+      }
+      const Eigen::VectorXd x = J.fullPivLu().solve(target);
+      Tensor strain;
+      for (Eigen::Index b = 0; b < n; ++b)
+      {
+        const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
+        strain[k][l] = x(b);
+      }
+      return strain;
+    }
+
+    struct Failure
+    {
+      double load = 0;           ///< λ_f [Pa]
+      Tensor stress;             ///< at λ_f
+    };
+
+    /// The largest load factor at which the point is still elastic along `unit_strain`.
+    Failure failure_load(const fem::CamClayParameters &parameters, const Tensor &unit_strain, double guess)
+    {
+      const fem::CamClayState initial = fem::CamClayState::initial(parameters);
+      const auto yields = [&](double load) { return fem::update_stress(parameters, initial, load * unit_strain).plastic; };
+      double low = 0, high = guess;
+      for (int k = 0; !yields(high); ++k)
+      {
+        if (k == 30) // 2^10 > 1e3
+          throw std::runtime_error("the FE material point does not yield below 1e3 times the DEM's failure stress");
+        low = high, high *= 2;
+      }
+      while (high - low > 1e-12 * high)
+      {
+        const double mid = 0.5 * (low + high);
+        (yields(mid) ? high : low) = mid;
+      }
+      return {low, fem::update_stress(parameters, initial, low * unit_strain).stress};
+    }
+
+    Failure replay_ray(const fem::CamClayParameters &parameters, bool confined, double sigma, double tau)
+    {
+      const double r = std::hypot(sigma, tau);
+      return failure_load(parameters, unit_load_strain(parameters, confined, sigma / r, tau / r), r / 32);
+    }
+  } // namespace
+
+  double MaterialPointReplay::largest_angle_error() const
+  {
+    double largest = 0;
+    for (const ReplayedAngle &a : angles)
+      largest = std::max(largest, std::abs(a.relative_error));
+    return largest;
+  }
+
+  MaterialPointReplay replay_tests(const params::MicrostructureCalibration &c, const fem::ContinuumMaterial &material)
+  {
+    const fem::CamClayParameters parameters = specimen_point(material);
+    MaterialPointReplay replay;
+    replay.laterally_confined = c.path.laterally_confined;
+    replay.fit_rmse = c.material_plane().cam_clay().rmse;
+
+    std::map<double, std::vector<const params::CampaignTest *>> by_angle;
+    for (const params::CampaignTest &t : c.tests)
+    {
+      by_angle[std::round(t.loading_angle_deg * 1e6) / 1e6].push_back(&t);
+      const Failure f = replay_ray(parameters, replay.laterally_confined, t.sigma, std::abs(t.tau));
+      replay.test_errors.push_back(std::log(f.load / std::hypot(t.sigma, t.tau)));
+    }
+    for (const auto &[angle, tests] : by_angle)
+    {
+      ReplayedAngle a;
+      a.loading_angle_deg = angle;
+      a.tests = static_cast<int>(tests.size());
+      for (const params::CampaignTest *t : tests)
+        a.dem_sigma += t->sigma / a.tests, a.dem_tau += std::abs(t->tau) / a.tests;
+      const Failure f = replay_ray(parameters, replay.laterally_confined, a.dem_sigma, a.dem_tau);
+      const double r = std::hypot(a.dem_sigma, a.dem_tau);
+      a.fe_sigma = -f.stress[2][2];
+      a.fe_tau = f.stress[0][2];
+      a.fe_lateral_stress_ratio = std::abs(f.stress[2][2]) > 1e-9 * f.load ? f.stress[0][0] / f.stress[2][2] : 0.0;
+      a.relative_error = std::log(f.load / r);
+      replay.angles.push_back(a);
+    }
+    replay.dem_normal_stiffness = c.elastic.axial_modulus.mean;
+    replay.dem_shear_stiffness = c.elastic.shear_modulus.mean;
+    replay.fe_normal_stiffness = 1.0 / -unit_load_strain(parameters, replay.laterally_confined, 1, 0)[2][2];
+    replay.fe_shear_stiffness = 1.0 / (2.0 * unit_load_strain(parameters, replay.laterally_confined, 0, 1)[0][2]);
+    return replay;
+  }
+
+  nlohmann::ordered_json replay_json(const MaterialPointReplay &replay)
+  {
+    using Json = nlohmann::ordered_json;
+    Json angles = Json::array();
+    for (const ReplayedAngle &a : replay.angles)
+      angles.push_back(Json{{"loading_angle_deg", a.loading_angle_deg},
+                            {"tests", a.tests},
+                            {"dem_sigma_Pa", a.dem_sigma},
+                            {"dem_tau_Pa", a.dem_tau},
+                            {"fe_sigma_Pa", a.fe_sigma},
+                            {"fe_tau_Pa", a.fe_tau},
+                            {"fe_lateral_stress_ratio", a.fe_lateral_stress_ratio},
+                            {"relative_error", a.relative_error}});
+    return Json{{"what", "the DEM tests repeated by the FE material point of the material file, along each "
+                         "test's path (coupling/material_point_replay.h); errors ln(r_FE/r_DEM)"},
+                {"laterally_confined", replay.laterally_confined},
+                {"fit_relative_rmse", replay.fit_rmse},
+                {"largest_angle_error", replay.largest_angle_error()},
+                {"angles", angles},
+                {"test_errors", replay.test_errors},
+                {"normal_stiffness_Pa", Json{{"dem", replay.dem_normal_stiffness}, {"fe", replay.fe_normal_stiffness}}},
+                {"shear_stiffness_Pa", Json{{"dem", replay.dem_shear_stiffness}, {"fe", replay.fe_shear_stiffness}}}};
+  }
+} // namespace anticrack::coupling
