@@ -12,6 +12,7 @@
 #include "util/phase_timer.h"
 #include "util/progress.h"
 #include "util/run_summary.h"
+#include "util/worker_processes.h"
 
 #include <algorithm>
 #include <chrono>
@@ -397,91 +398,154 @@ namespace anticrack::dem
     }
     mpi.barrier();
 
-    // Threads per rank: the scene's (or --threads), but the cores are shared among the ranks.
+    // Who runs which tests (contiguous blocks balanced by expected cost, block_of). Under mpirun
+    // the ranks, the cores' threads shared among them. Without it, one worker process per core
+    // (util/worker_processes.h), each running its block on one thread: independent tests side by
+    // side rather than one test on many threads, which scale poorly on small samples. The cores are
+    // --threads, else DEM/Threads, else all; 1 runs the tests one after another in this process.
+    // The results do not depend on it: a test's DEM is the same on any number of threads.
     int threads = options.threads >= 0 ? options.threads : scene.dem.threads;
-    if (threads <= 0 && mpi.size() > 1)
+    int members = mpi.size();
+    const bool workers = !mpi.active() && std::min<std::size_t>(threads > 0 ? threads : dem::DemSystem::threads(),
+                                                                tests.size()) > 1;
+    if (workers)
+    {
+      members = static_cast<int>(
+        std::min<std::size_t>(threads > 0 ? threads : dem::DemSystem::threads(), tests.size()));
+      threads = 1;
+    }
+    else if (threads <= 0 && mpi.size() > 1)
       threads = std::max(1, dem::DemSystem::threads() / mpi.size());
     apply_thread_count(threads);
 
-    const auto [first, last] = block_of(tests, mpi.rank(), mpi.size());
     root_console() << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
                 << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
                 << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
-                << " (quasi-static references included) on " << mpi.size() << " rank(s) x "
-                << dem::DemSystem::threads() << " thread(s)\n"
+                << " (quasi-static references included) on " << members
+                << (workers ? " worker process(es)" : " rank(s)") << " x " << dem::DemSystem::threads()
+                << " thread(s)\n"
                 << std::flush;
 
-    // --- this rank's tests; one sample per (microstructure, realization), copied for each angle
-    bool any_failed = false;
-    std::map<std::string, TestOutcome> outcomes; // this rank's tests, as they ran (or from their files)
-    std::pair<Index, Index> cached_sample{-1, -1};
-    std::unique_ptr<DemModel> sample;
-    for (std::size_t k = first; k < last; ++k)
+    // --- the tests of one member; one sample per (microstructure, realization), copied for each angle
+    struct Share
     {
-      const CampaignTest &t = tests[k];
-      SceneParameters test_scene = microstructure_scenes[t.microstructure];
-      test_scene.dem.seed += static_cast<std::uint64_t>(t.realization);
-      const double psi = t.angle_deg * M_PI / 180.0;
-      const Vec3 direction(std::sin(psi), 0.0, -std::cos(psi));
-      test_scene.dem.boundary.clump_force_direction = direction;
-      test_scene.dem.boundary.clump_force_rate /= t.slowdown;
-      test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
-      test_scene.output.progress_interval = 0;
+      bool any_failed = false;
+      bool interrupted = false; // Ctrl-C or SIGTERM: the test stopped, the rest of the share is not run
+      std::map<std::string, TestOutcome> outcomes; // as they ran (or from their files)
+    };
+    const auto run_share = [&](int member, const std::string &who) {
+      Share share;
+      const auto [first, last] = block_of(tests, member, members);
+      std::pair<Index, Index> cached_sample{-1, -1};
+      std::unique_ptr<DemModel> sample;
+      for (std::size_t k = first; k < last; ++k)
+      {
+        const CampaignTest &t = tests[k];
+        SceneParameters test_scene = microstructure_scenes[t.microstructure];
+        test_scene.dem.seed += static_cast<std::uint64_t>(t.realization);
+        const double psi = t.angle_deg * M_PI / 180.0;
+        const Vec3 direction(std::sin(psi), 0.0, -std::cos(psi));
+        test_scene.dem.boundary.clump_force_direction = direction;
+        test_scene.dem.boundary.clump_force_rate /= t.slowdown;
+        test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
+        test_scene.output.progress_interval = 0;
 
-      RunOptions o;
-      o.output_directory = (directory / "tests" / t.id).string();
-      o.overwrite = true;
-      o.quiet = true;
-      o.progress_label = "[rank " + std::to_string(mpi.rank()) + "] " + t.id;
-      o.threads = threads;
-      o.command_line = options.command_line;
-      o.labels = {{"campaign_test", t.id},
-                  {"microstructure", t.microstructure},
-                  {"realization", t.realization},
-                  {"loading_angle_deg", t.angle_deg},
-                  {"seed", test_scene.dem.seed},
-                  {"rate_divisor", t.slowdown},
-                  {"reference_for", t.reference_for}};
-      if (options.resume && completed(o.output_directory, o.labels))
-      {
-        std::cout << "[rank " << mpi.rank() << "] " << t.id << ": completed earlier, skipped\n" << std::flush;
-        outcomes[t.id] = read_outcome(t, o.output_directory);
-        continue;
+        RunOptions o;
+        o.output_directory = (directory / "tests" / t.id).string();
+        o.overwrite = true;
+        o.quiet = true;
+        o.progress_label = who + " " + t.id;
+        o.threads = threads;
+        o.command_line = options.command_line;
+        o.labels = {{"campaign_test", t.id},
+                    {"microstructure", t.microstructure},
+                    {"realization", t.realization},
+                    {"loading_angle_deg", t.angle_deg},
+                    {"seed", test_scene.dem.seed},
+                    {"rate_divisor", t.slowdown},
+                    {"reference_for", t.reference_for}};
+        if (options.resume && completed(o.output_directory, o.labels))
+        {
+          std::cout << who << " " << t.id << ": completed earlier, skipped\n" << std::flush;
+          share.outcomes[t.id] = read_outcome(t, o.output_directory);
+          continue;
+        }
+        const bool build = cached_sample != std::pair{t.microstructure, t.realization};
+        if (build)
+        {
+          sample = build_dem_model(test_scene, threads);
+          cached_sample = {t.microstructure, t.realization};
+        }
+        auto model = std::make_unique<DemModel>(*sample);
+        if (!build)
+          model->build_seconds = 0; // the sample was built (and timed) for an earlier test
+        model->system.clumps[model->clump].applied_force =
+          dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
+        timer.add("samples", model->build_seconds);
+        const DemRunRecord run = [&] {
+          const auto phase = timer.scope("tests");
+          return run_dem_model(test_scene, std::move(model), o);
+        }();
+        share.any_failed = share.any_failed || run.exit_code != exit_success;
+        share.interrupted = run.exit_code == exit_interrupted;
+        const TestOutcome &outcome = share.outcomes[t.id] = outcome_of(t, run.summary, run.failure_analysis);
+        std::ostringstream line;
+        line.precision(4);
+        line << who << " test " << k + 1 << "/" << tests.size() << " " << t.id << ": "
+             << outcome.row.status;
+        if (!std::isnan(outcome.row.sigma))
+          line << ", failure sigma = " << outcome.row.sigma << " Pa, tau = " << outcome.row.tau
+               << " Pa, q = " << outcome.row.q << " Pa";
+        else if (!outcome.analysis_error.empty())
+          line << " (" << outcome.analysis_error << ")";
+        line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s) << "\n";
+        std::cout << line.str() << std::flush;
+        if (share.interrupted)
+          break;
       }
-      const bool build = cached_sample != std::pair{t.microstructure, t.realization};
-      if (build)
+      return share;
+    };
+
+    bool any_failed = false, interrupted = false;
+    std::map<std::string, TestOutcome> outcomes; // this process's tests; the others' are read from their files
+    if (workers)
+    {
+      // Each worker reports its phase times; the parent's phases are their means, so that they
+      // still add up to no more than the campaign's wall time.
+      const auto wait_start = std::chrono::steady_clock::now();
+      const std::vector<WorkerExit> exits = run_in_worker_processes(members, [&](int member, std::string &report) {
+        const Share share = run_share(member, "[worker " + std::to_string(member) + "]");
+        report = std::to_string(timer.seconds("samples"));
+        return share.interrupted ? exit_interrupted : share.any_failed ? exit_numerical_failure : exit_success;
+      });
+      double samples = 0;
+      for (std::size_t k = 0; k < exits.size(); ++k)
       {
-        sample = build_dem_model(test_scene, threads);
-        cached_sample = {t.microstructure, t.realization};
+        interrupted = interrupted || exits[k].exit_code == exit_interrupted;
+        if (exits[k].exit_code != exit_success && exits[k].exit_code != exit_interrupted)
+        {
+          any_failed = true;
+          std::cerr << "anticrack campaign: " << describe_worker_exit(static_cast<int>(k), exits[k])
+                    << "; its tests are read back as their files left them\n";
+        }
+        samples += exits[k].report.empty() ? 0.0 : std::stod(exits[k].report) / static_cast<double>(exits.size());
       }
-      auto model = std::make_unique<DemModel>(*sample);
-      if (!build)
-        model->build_seconds = 0; // the sample was built (and timed) for an earlier test
-      model->system.clumps[model->clump].applied_force =
-        dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
-      timer.add("samples", model->build_seconds);
-      const DemRunRecord run = [&] {
-        const auto phase = timer.scope("tests");
-        return run_dem_model(test_scene, std::move(model), o);
-      }();
-      any_failed = any_failed || run.exit_code != exit_success;
-      const TestOutcome &outcome = outcomes[t.id] = outcome_of(t, run.summary, run.failure_analysis);
-      std::ostringstream line;
-      line.precision(4);
-      line << "[rank " << mpi.rank() << "] test " << k + 1 << "/" << tests.size() << " " << t.id << ": "
-           << outcome.row.status;
-      if (!std::isnan(outcome.row.sigma))
-        line << ", failure sigma = " << outcome.row.sigma << " Pa, tau = " << outcome.row.tau
-             << " Pa, q = " << outcome.row.q << " Pa";
-      else if (!outcome.analysis_error.empty())
-        line << " (" << outcome.analysis_error << ")";
-      line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s) << "\n";
-      std::cout << line.str() << std::flush;
+      const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
+      timer.add("samples", std::min(samples, waited));
+      timer.add("tests", std::max(0.0, waited - samples));
+    }
+    else
+    {
+      Share share = run_share(mpi.rank(), "[rank " + std::to_string(mpi.rank()) + "]");
+      any_failed = share.any_failed;
+      interrupted = share.interrupted;
+      outcomes = std::move(share.outcomes);
     }
     any_failed = mpi.any(any_failed);
+    interrupted = mpi.any(interrupted);
     mpi.barrier();
     if (!root)
-      return any_failed ? exit_numerical_failure : exit_success;
+      return interrupted ? exit_interrupted : any_failed ? exit_numerical_failure : exit_success;
 
     // --- rank 0: campaign.h5 and summary.json; the other ranks' tests from their files
     std::optional<PhaseTimer::Scope> output_phase;
@@ -671,6 +735,7 @@ namespace anticrack::dem
     timing["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timing["sum_of_test_wall_s"] = test_wall;
     timing["ranks"] = mpi.size();
+    timing["worker_processes"] = workers ? members : 0;
     timing["threads_per_rank"] = dem::DemSystem::threads();
     output_phase.reset();
     timing["phases"] = timer.to_json();
@@ -684,6 +749,11 @@ namespace anticrack::dem
       std::cout << "  quasi-static check: largest difference of the failure point (p, q) to the "
                 << c.quasi_static_slowdown << "x slower runs " << 100 * worst << " % (tolerance "
                 << 100 * c.quasi_static_tolerance << " %)\n";
+    if (interrupted)
+    {
+      std::cout << "  interrupted: the tests not completed are recorded as they stopped; --resume runs them\n";
+      return exit_interrupted;
+    }
     return any_failed ? exit_numerical_failure : exit_success;
   }
 } // namespace anticrack::dem

@@ -636,6 +636,15 @@ def failure_points(directory):
         return {name: f["failure_points"][name][()] for name in f["failure_points"]}
 
 
+def compare_campaigns(a, b):
+    """The failure points and every test's history of two campaign directories, bit for bit."""
+    compare_exactly(failure_points(a), failure_points(b), "failure points")
+    with h5py.File(os.path.join(a, "campaign.h5"), "r") as fa, h5py.File(os.path.join(b, "campaign.h5"), "r") as fb:
+        for test_id in fa["tests"]:
+            ha, hb = fa["tests"][test_id]["history"], fb["tests"][test_id]["history"]
+            compare_exactly({k: ha[k][()] for k in ha}, {k: hb[k][()] for k in hb}, f"history of {test_id}")
+
+
 @case
 def campaign_envelope(work):
     """A campaign at 0, 90 and 180 degrees fails in compression, shear and tension: the envelope is
@@ -687,14 +696,27 @@ def campaign_mpi_equals_serial(work):
     check(result.returncode == 0, f"mpirun exit {result.returncode}:\n{result.stdout}\n{result.stderr}")
     check("on 2 rank(s)" in result.stdout, f"the campaign did not run on 2 ranks:\n{result.stdout}")
     check("[rank 1]" in result.stdout, f"rank 1 ran no test:\n{result.stdout}")
-    a, b = failure_points(serial), failure_points(parallel)
-    compare_exactly(a, b, "failure points")
-    with h5py.File(os.path.join(serial, "campaign.h5"), "r") as fa, h5py.File(os.path.join(parallel, "campaign.h5"), "r") as fb:
-        for test_id in fa["tests"]:
-            ha, hb = fa["tests"][test_id]["history"], fb["tests"][test_id]["history"]
-            compare_exactly({k: ha[k][()] for k in ha}, {k: hb[k][()] for k in hb}, f"history of {test_id}")
+    compare_campaigns(serial, parallel)
     summary = json.load(open(os.path.join(parallel, "summary.json")))
     check(summary["timing"]["ranks"] == 2, f"summary timing {summary['timing']}")
+
+
+@case
+def campaign_workers_equal_serial(work):
+    """Without mpirun, the campaign runs its tests side by side in worker processes (`--threads 2`:
+    two, one thread each) and writes exactly the failure points and histories of the tests run one
+    after another (`--threads 1`); both workers ran tests, and summary.json says how many there were."""
+    scene = write(os.path.join(work, "campaign.prm"), campaign_scene("0, 45, 135, 180"))
+    serial, workers = os.path.join(work, "serial"), os.path.join(work, "workers")
+    stdout, _ = anticrack("run", scene, "-o", serial, "--threads", "1")
+    check("on 1 rank(s)" in stdout and "[worker" not in stdout, f"--threads 1 did not run in the process:\n{stdout}")
+    stdout, _ = anticrack("run", scene, "-o", workers, "--threads", "2")
+    check("on 2 worker process(es) x 1 thread(s)" in stdout, f"the campaign did not run on 2 workers:\n{stdout}")
+    check("[worker 0] test" in stdout and "[worker 1] test" in stdout, f"a worker ran no test:\n{stdout}")
+    compare_campaigns(serial, workers)
+    summary = json.load(open(os.path.join(workers, "summary.json")))
+    check(summary["timing"]["worker_processes"] == 2, f"summary timing {summary['timing']}")
+    check_phases(summary, ["samples", "tests", "output"], "campaign on workers", within_wall_time=True)
 
 
 @case
