@@ -4,7 +4,7 @@
 //   anticrack check SCENE.prm [--threads T]
 //   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--poisson-ratio NU]
 //                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
-//                       [--threads T]
+//                       [--threads T] [--snow-bond-strength PA --snow-particle-density KG_M3]
 //   anticrack params [--snowpack] [--format prm|description|json]
 //   anticrack bench dem --lattice n --steps S --threads T
 //
@@ -132,6 +132,17 @@ int main(int argc, char **argv)
                         "Poisson's ratio to use instead of the one from the 0 and 90 degree tests (E then comes from "
                         "the axial modulus alone); for specimens that are not isotropic")
     ->check(CLI::Range(-0.999, 0.499));
+  coupling::SnowUnits snow;
+  auto *snow_strength =
+    calibrate->add_option("--snow-bond-strength", snow.bond_tensile_strength,
+                          "Also write the material in snow units (material_snow.prm): the snow's bond tensile strength "
+                          "[Pa]; every modulus and strength scales by it over the DEM's (docs/calibration.md)")
+      ->check(CLI::PositiveNumber);
+  calibrate->add_option("--snow-particle-density", snow.particle_density,
+                        "The snow's grain density for material_snow.prm [kg/m^3] (ice: 917)")
+    ->check(CLI::PositiveNumber)
+    ->needs(snow_strength);
+  snow_strength->needs(calibrate->get_option("--snow-particle-density"));
   calibrate->add_flag("--no-plots", no_plots, "Do not run scripts/plot_calibration.py");
   calibrate->add_flag("--overwrite", calibrate_options.overwrite, "Replace an earlier calibration in DIR");
   calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads of a scene's campaign")
@@ -197,6 +208,8 @@ int main(int argc, char **argv)
     if (*calibrate)
     {
       calibrate_options.plots = !no_plots;
+      if (*snow_strength)
+        calibrate_options.snow = snow;
       calibrate_options.command_line = join_arguments(argc, argv);
       return coupling::run_calibration(calibrate_options);
     }

@@ -1,6 +1,7 @@
 #include "app/scenes.h"
 
 #include "coupling/calibration_scene.h"
+#include "coupling/pipeline.h"
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "dem/scene/run.h"
@@ -55,7 +56,7 @@ namespace anticrack::app
     };
 
     // One row per kind; a new kind is a row here and its module's declare / check / run.
-    const std::array<SceneKind, 4> scene_kinds{{
+    const std::array<SceneKind, 5> scene_kinds{{
       {"dem", "one DEM run: a virtual-laboratory test or a free simulation (subsection DEM)",
        [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
        { declare_dem(prm, dem::SceneKind::dem, file, every); },
@@ -86,6 +87,8 @@ namespace anticrack::app
        },
        [](const std::string &file, int) { fem::check_snowpack_scene(file); },
        fem::run_snowpack_scene},
+      {"pipeline", "a DEM weak layer calibrated and put under the snowpacks of FE scenes, with a report (subsection Pipeline)",
+       coupling::declare_pipeline, coupling::check_pipeline_scene, coupling::run_pipeline_scene},
     }};
 
     const SceneKind &kind_named(const std::string &name, const std::string &where)

@@ -3,6 +3,7 @@
 #include "coupling/calibration_scene.h"
 #include "coupling/material_handoff.h"
 #include "coupling/material_point_replay.h"
+#include "coupling/python_script.h"
 
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
@@ -17,18 +18,11 @@
 #include "util/run_summary.h"
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 
-#ifndef ANTICRACK_SCRIPTS_DIR
-#  define ANTICRACK_SCRIPTS_DIR "scripts"
-#endif
-#ifndef ANTICRACK_PYTHON
-#  define ANTICRACK_PYTHON "/usr/bin/python3"
-#endif
 
 namespace anticrack::coupling
 {
@@ -36,12 +30,6 @@ namespace anticrack::coupling
 
   namespace
   {
-    /// The material file name of microstructure m: material.prm for a campaign of one microstructure.
-    std::string material_file_name(std::size_t m, std::size_t count)
-    {
-      return count == 1 ? "material.prm" : "material_m" + std::to_string(m) + ".prm";
-    }
-
     /// Runs the scene's campaign into DIR/campaign (resuming what an earlier call left) and returns
     /// the campaign file; returns "" on ranks other than 0 or when the campaign failed (exit code set).
     std::string campaign_of_scene(const CalibrateOptions &options, int &exit_code)
@@ -68,6 +56,11 @@ namespace anticrack::coupling
       return (fs::path(run.output_directory) / "campaign.h5").string();
     }
   } // namespace
+
+  std::string material_file_name(std::size_t m, std::size_t count, bool snow)
+  {
+    return (count == 1 ? std::string("material") : "material_m" + std::to_string(m)) + (snow ? "_snow" : "") + ".prm";
+  }
 
   int run_calibration(const CalibrateOptions &options)
   {
@@ -123,11 +116,19 @@ namespace anticrack::coupling
     std::vector<MaterialPointReplay> replays;
     for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
     {
+      const fem::MaterialFile file = material_handoff(calibration, m, version);
       material_names.push_back(material_file_name(m, calibration.microstructures.size()));
-      material_texts.push_back(fem::material_file_text(material_handoff(calibration, m, version)));
+      material_texts.push_back(fem::material_file_text(file));
       // The material as the solver reads it, driven along the DEM tests' paths.
       replays.push_back(replay_tests(calibration.microstructures[m],
                                      fem::read_material_text(material_texts.back(), material_names.back())));
+      if (options.snow)
+      {
+        material_names.push_back(material_file_name(m, calibration.microstructures.size(), true));
+        material_texts.push_back(
+          fem::material_file_text(in_snow_units(file, calibration.microstructures[m], *options.snow)));
+        fem::read_material_text(material_texts.back(), material_names.back());
+      }
     }
     fs::create_directories(directory);
     for (std::size_t m = 0; m < material_names.size(); ++m)
@@ -166,18 +167,9 @@ namespace anticrack::coupling
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
 
-    if (options.plots)
-    {
-      const std::string command = std::string(ANTICRACK_PYTHON) + " \"" + ANTICRACK_SCRIPTS_DIR +
-                                  "/plot_calibration.py\" \"" + directory.string() + "\"";
-      if (std::system(command.c_str()) != 0)
-      {
-        std::cerr << "anticrack calibrate: the plots failed (" << command
-                  << "); the data files are complete. Install python3-matplotlib and python3-h5py, or pass "
-                     "--no-plots.\n";
-        return exit_numerical_failure;
-      }
-    }
+    // A failed plot fails the run (the plots are among its outputs); --no-plots skips them.
+    if (options.plots && !run_python_script("plot_calibration.py", directory.string(), "the data files"))
+      return exit_numerical_failure;
     return exit_success;
   }
 } // namespace anticrack::coupling

@@ -3,7 +3,10 @@
 // plots of scripts/plot_calibration.py.
 #pragma once
 
+#include "coupling/snow_units.h"
+
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace anticrack::coupling
@@ -20,7 +23,13 @@ namespace anticrack::coupling
     bool overwrite = false;       ///< replace an earlier calibration in the directory
     int threads = -1;             ///< for a scene's campaign
     std::string command_line;
+    /// Also write every material in snow units (material_snow.prm, material_m<k>_snow.prm).
+    std::optional<SnowUnits> snow;
   };
+
+  /// The material file name of microstructure m of `count`: material.prm for one microstructure,
+  /// material_m<k>.prm otherwise; `snow`: the file in snow units (material_snow.prm, ...).
+  std::string material_file_name(std::size_t m, std::size_t count, bool snow = false);
 
   /// Returns the exit code; throws InputError (bad options, degenerate data) before writing.
   int run_calibration(const CalibrateOptions &options);

@@ -110,11 +110,17 @@ namespace anticrack::coupling
               << options.confidence * 100 << " % intervals\n";
   }
 
+  CalibrateOptions read_calibration_scene(const std::string &file)
+  {
+    read_campaign(file); // every problem of the scene before anything is written
+    CalibrateOptions options = calibration_options(file);
+    options.input = file;
+    return options;
+  }
+
   int run_calibration_scene(const RunOptions &run)
   {
-    read_campaign(run.scene_file); // every problem of the scene before anything is written
-    CalibrateOptions options = calibration_options(run.scene_file);
-    options.input = run.scene_file;
+    CalibrateOptions options = read_calibration_scene(run.scene_file);
     options.output_directory = run.output_directory;
     options.overwrite = run.overwrite;
     options.threads = run.threads;

@@ -6,7 +6,12 @@ namespace anticrack::coupling
 {
   namespace
   {
-    fem::MaterialInterval interval(const params::SampleStatistics &s) { return {s.mean_ci.lower, s.mean_ci.upper}; }
+    /// The t-interval over the realizations; none (NaN, "nan, nan" in the file) from one realization,
+    /// which gives no spread.
+    fem::MaterialInterval interval(const params::SampleStatistics &s)
+    {
+      return s.n >= 2 ? fem::MaterialInterval{s.mean_ci.lower, s.mean_ci.upper} : fem::MaterialInterval{};
+    }
 
     /// How every value was measured, for the reader of the file (not read by the solver).
     std::vector<std::string> comment(const params::Calibration &calibration, const params::MicrostructureCalibration &c,

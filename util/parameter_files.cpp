@@ -6,12 +6,29 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <fstream>
 #include <ostream>
 #include <sstream>
 
 namespace anticrack
 {
+  std::string demangled_parameter_path(const std::string &mangled)
+  {
+    std::string path;
+    for (std::size_t k = 0; k < mangled.size(); ++k)
+    {
+      if (mangled[k] == '_' && k + 2 < mangled.size() && std::isxdigit(mangled[k + 1]) && std::isxdigit(mangled[k + 2]))
+      {
+        path += static_cast<char>(std::stoi(mangled.substr(k + 1, 2), nullptr, 16));
+        k += 2;
+      }
+      else
+        path += mangled[k] == '.' ? '/' : mangled[k];
+    }
+    return path;
+  }
+
   using dealii::ParameterHandler;
 
   namespace

@@ -49,6 +49,11 @@ namespace anticrack
   /// throws InputError if the file cannot be read.
   std::string scene_kind_in_file(const std::string &file);
 
+  /// "Material/Density [kg/m^3]" of deal.II's "Material.Density_20_5bkg_2fm_5e3_5d": the paths
+  /// ParameterHandler::get_entries_wrongly_not_set() returns are of mangled names (every character
+  /// but letters and digits as "_" and two hex digits), their subsections joined by ".".
+  std::string demangled_parameter_path(const std::string &mangled);
+
   /// The paths (subsections, then the entry name) of every entry declared in `prm`.
   std::set<std::vector<std::string>> declared_entries(const dealii::ParameterHandler &prm);
 

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -34,55 +35,39 @@ namespace anticrack
       std::fflush(nullptr);
     }
 
-    WorkerExit wait_for(pid_t pid)
+    struct Started
     {
-      int status = 0;
-      while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR)
-          return {1, 0};
-      if (WIFSIGNALED(status))
-        return {128 + WTERMSIG(status), WTERMSIG(status)};
-      return {WEXITSTATUS(status), 0};
-    }
-  } // namespace
+      pid_t pid = -1;
+      int report_pipe = -1;
+    };
 
-  std::vector<WorkerExit> run_in_worker_processes(int members,
-                                                  const std::function<int(int member, std::string &report)> &job)
-  {
-    if (members < 1 || members > max_workers)
-      throw std::invalid_argument("run_in_worker_processes: " + std::to_string(members) + " workers (1 to " +
-                                  std::to_string(max_workers) + ")");
-    flush_streams();
-    std::vector<pid_t> pids;
-    std::string fork_error;
-    worker_count = 0;
-    void (*previous_int)(int) = std::signal(SIGINT, forward_to_workers);
-    void (*previous_term)(int) = std::signal(SIGTERM, forward_to_workers);
-    std::vector<int> report_pipes;
-    for (int member = 0; member < members; ++member)
+    /// Forks the worker of `member`; returns pid -1 (and sets `error`) if the pipe or the fork fails.
+    Started start_worker(int member, const std::function<int(int, std::string &)> &job,
+                         const std::vector<int> &open_pipes, void (*worker_int)(int), void (*worker_term)(int),
+                         std::string &error)
     {
       int channel[2];
       if (pipe(channel) != 0)
       {
-        fork_error = std::string("pipe: ") + std::strerror(errno);
-        break;
+        error = std::string("pipe: ") + std::strerror(errno);
+        return {};
       }
       const pid_t pid = fork();
       if (pid < 0)
       {
-        fork_error = std::strerror(errno);
+        error = std::strerror(errno);
         close(channel[0]), close(channel[1]);
-        break;
+        return {};
       }
       if (pid == 0)
       {
         // The worker's own signals: the parent's (it stops its run between chunks of steps).
         worker_count = 0;
-        std::signal(SIGINT, previous_int);
-        std::signal(SIGTERM, previous_term);
+        std::signal(SIGINT, worker_int);
+        std::signal(SIGTERM, worker_term);
         close(channel[0]);
-        for (const int earlier : report_pipes)
-          close(earlier);
+        for (const int other : open_pipes)
+          close(other);
         int code = 1;
         std::string report;
         try
@@ -104,29 +89,96 @@ namespace anticrack
         std::_Exit(code); // not exit(): the parent's atexit handlers and static objects are the parent's
       }
       close(channel[1]);
-      report_pipes.push_back(channel[0]);
-      pids.push_back(pid);
-      worker_pids[member] = pid;
-      worker_count = member + 1;
+      return {pid, channel[0]};
     }
-    std::vector<WorkerExit> exits;
-    for (std::size_t k = 0; k < pids.size(); ++k)
+
+    WorkerExit collect(const Started &worker, int status)
     {
-      exits.push_back(wait_for(pids[k]));
+      WorkerExit exit;
+      if (WIFSIGNALED(status))
+        exit = {128 + WTERMSIG(status), WTERMSIG(status), ""};
+      else
+        exit = {WEXITSTATUS(status), 0, ""};
       char buffer[max_worker_report];
       ssize_t n;
-      while ((n = read(report_pipes[k], buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
+      while ((n = read(worker.report_pipe, buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))
         if (n > 0)
-          exits.back().report.append(buffer, static_cast<std::size_t>(n));
-      close(report_pipes[k]);
+          exit.report.append(buffer, static_cast<std::size_t>(n));
+      close(worker.report_pipe);
+      return exit;
+    }
+  } // namespace
+
+  std::vector<WorkerExit> run_jobs_in_worker_processes(int jobs, int concurrent,
+                                                       const std::function<int(int, std::string &)> &job,
+                                                       const std::function<void(int, const WorkerExit &)> &on_exit)
+  {
+    if (jobs < 1 || concurrent < 1 || concurrent > max_workers)
+      throw std::invalid_argument("run_jobs_in_worker_processes: " + std::to_string(jobs) + " jobs, " +
+                                  std::to_string(concurrent) + " at a time (1 to " + std::to_string(max_workers) + ")");
+    flush_streams();
+    void (*previous_int)(int) = std::signal(SIGINT, forward_to_workers);
+    void (*previous_term)(int) = std::signal(SIGTERM, forward_to_workers);
+    std::vector<WorkerExit> exits(static_cast<std::size_t>(jobs));
+    std::vector<Started> running(static_cast<std::size_t>(jobs));
+    std::vector<int> open_pipes;
+    std::string fork_error;
+    int next = 0, active = 0;
+    const auto refresh_handler_list = [&] {
+      worker_count = 0;
+      int k = 0;
+      for (const Started &w : running)
+        if (w.pid > 0)
+          worker_pids[k++] = w.pid;
+      worker_count = k;
+    };
+    while (next < jobs || active > 0)
+    {
+      while (fork_error.empty() && next < jobs && active < concurrent)
+      {
+        const Started w = start_worker(next, job, open_pipes, previous_int, previous_term, fork_error);
+        if (w.pid < 0)
+          break;
+        running[static_cast<std::size_t>(next)] = w;
+        open_pipes.push_back(w.report_pipe);
+        ++next, ++active;
+        refresh_handler_list();
+      }
+      if (active == 0)
+        break; // a fork failed and nothing is left to wait for
+      int status = 0;
+      const pid_t ended = waitpid(-1, &status, 0);
+      if (ended < 0)
+      {
+        if (errno == EINTR)
+          continue;
+        break;
+      }
+      for (std::size_t k = 0; k < running.size(); ++k)
+        if (running[k].pid == ended)
+        {
+          exits[k] = collect(running[k], status);
+          open_pipes.erase(std::find(open_pipes.begin(), open_pipes.end(), running[k].report_pipe));
+          running[k].pid = -1;
+          --active;
+          refresh_handler_list();
+          if (on_exit)
+            on_exit(static_cast<int>(k), exits[k]);
+        }
     }
     std::signal(SIGINT, previous_int);
     std::signal(SIGTERM, previous_term);
     worker_count = 0;
     if (!fork_error.empty())
-      throw std::runtime_error("could not start worker process " + std::to_string(pids.size()) + " of " +
-                               std::to_string(members) + ": " + fork_error);
+      throw std::runtime_error("could not start worker process " + std::to_string(next) + " of " +
+                               std::to_string(jobs) + ": " + fork_error);
     return exits;
+  }
+
+  std::vector<WorkerExit> run_in_worker_processes(int members,
+                                                  const std::function<int(int member, std::string &report)> &job)
+  {
+    return run_jobs_in_worker_processes(members, members, job);
   }
 
   std::string describe_worker_exit(int member, const WorkerExit &exit)

@@ -41,6 +41,14 @@ namespace anticrack
   std::vector<WorkerExit> run_in_worker_processes(int members,
                                                   const std::function<int(int member, std::string &report)> &job);
 
+  /// The same for `jobs` jobs of which at most `concurrent` run at a time: a worker is forked for
+  /// the next job whenever one ends (each job its own process, e.g. an FE analysis, which
+  /// initialises MPI and can do so once per process). `on_exit(job, exit)` is called in the parent
+  /// as each ends, in the order they end.
+  std::vector<WorkerExit> run_jobs_in_worker_processes(int jobs, int concurrent,
+                                                       const std::function<int(int job, std::string &report)> &job,
+                                                       const std::function<void(int job, const WorkerExit &exit)> &on_exit = {});
+
   /// "worker 1 ended by signal 9 (Killed)" or "worker 1 exited with code 2", for messages.
   std::string describe_worker_exit(int member, const WorkerExit &exit);
 } // namespace anticrack

@@ -45,6 +45,11 @@ namespace anticrack::fem
     char *argv_storage[] = {name, nullptr};
     char **argv = argv_storage;
     dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    return run_snowpack_scene_in_mpi(options);
+  }
+
+  int run_snowpack_scene_in_mpi(const RunOptions &options)
+  {
     const MPI_Comm comm = MPI_COMM_WORLD;
     const bool root = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
 

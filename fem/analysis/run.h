@@ -14,6 +14,11 @@ namespace anticrack::fem
   /// failure with summary.json "status": "failed"); throws InputError before writing anything.
   int run_snowpack_scene(const RunOptions &options);
 
+  /// The same in a process whose MPI and PETSc are initialised already (one
+  /// dealii::Utilities::MPI::MPI_InitFinalize for several analyses: MPI cannot be initialised twice
+  /// in a process, so run_snowpack_scene() runs once per process).
+  int run_snowpack_scene_in_mpi(const RunOptions &options);
+
   /// Reads and checks a snowpack scene and prints what a run would do.
   void check_snowpack_scene(const std::string &scene_file);
 } // namespace anticrack::fem

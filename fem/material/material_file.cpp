@@ -2,10 +2,10 @@
 
 #include "util/format.h"
 #include "util/input_error.h"
+#include "util/parameter_files.h"
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -93,26 +93,6 @@ namespace anticrack::fem
       prm.leave_subsection();
     }
 
-    /// "Material/Density [kg/m^3]" of deal.II's "Material.Density_20_5bkg_2fm_5e3_5d": the paths of
-    /// ParameterHandler::get_entries_wrongly_not_set() are of mangled names (every character but
-    /// letters and digits as "_" and two hex digits), their subsections joined by ".".
-    std::string demangled_path(const std::string &mangled)
-    {
-      std::string path;
-      for (std::size_t k = 0; k < mangled.size(); ++k)
-      {
-        if (mangled[k] == '_' && k + 2 < mangled.size() && std::isxdigit(mangled[k + 1]) &&
-            std::isxdigit(mangled[k + 2]))
-        {
-          path += static_cast<char>(std::stoi(mangled.substr(k + 1, 2), nullptr, 16));
-          k += 2;
-        }
-        else
-          path += mangled[k] == '.' ? '/' : mangled[k];
-      }
-      return path;
-    }
-
     /// The file parsed and checked by deal.II, positioned at the root.
     void parse_material_file(ParameterHandler &prm, const std::string &text, const std::string &name)
     {
@@ -147,7 +127,7 @@ namespace anticrack::fem
       {
         std::string list;
         for (const std::string &entry : missing)
-          list += "\n  " + demangled_path(entry);
+          list += "\n  " + demangled_parameter_path(entry);
         throw InputError("material file " + name + ": entries not set (a material file gives every entry of "
                          "subsection Material but its name; there are no defaults):" + list);
       }

@@ -1632,6 +1632,67 @@ def fem_material_file(work):
           f"summary.json records {files['weak layer']}, expected {material} with sha256 {sha256}")
 
 
+def pipeline_files(work):
+    """A tiny pipeline: the small SHS campaign (5 angles) as its weak layer, two tiny dynamic PSTs."""
+    weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
+                 "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
+    flat = write(os.path.join(work, "flat.prm"), "set Scene = snowpack\n" + pst_scene())
+    steep = write(os.path.join(work, "steep.prm"), "set Scene = snowpack\n" + pst_scene(insert={"Snowpack": ["set Slope angle [deg] = 30"]}))
+    pipeline = write(os.path.join(work, "pipeline.prm"), "\n".join([
+        "set Scene = pipeline",
+        "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm", "end",
+        "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
+    return pipeline, weak, flat, steep
+
+
+@case
+def pipeline_small(work):
+    """`run` of a pipeline scene: the weak layer's campaign and calibration, its material in snow units
+    (E and p0 times 2e5/1e6 = 0.2, the density phi 917 kg/m^3), both PSTs run from a scene.prm that
+    names it, summary.json with every stage's input hash and results, report.md and report.png, the
+    short report printed. --resume reruns nothing when nothing changed, only the changed PST when its
+    scene changes, and everything after the weak layer when the snow units change (the campaign
+    itself resumed test by test)."""
+    pipeline, weak, flat, steep = pipeline_files(work)
+    out = os.path.join(work, "out")
+    stdout, _ = anticrack("run", pipeline, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    check(summary["status"] == "completed", f"pipeline status {summary['status']}")
+    check([s["name"] for s in summary["stages"]] == ["weak layer", "flat", "steep"], f"stages {summary['stages']}")
+    check(all(s["status"] == "completed" and len(s["inputs_sha256"]) == 64 for s in summary["stages"]),
+          f"stages {summary['stages']}")
+    dem = read_material(os.path.join(out, "weak_layer", "material.prm"))
+    snow = read_material(os.path.join(out, "weak_layer", "material_snow.prm"))
+    for name in ["Compressive strength p0 [Pa]", "Young's modulus [Pa]"]:
+        check(abs(float(snow[name]) / float(dem[name]) - 0.2) < 1e-5, f"{name}: {snow[name]} against {dem[name]}")
+    for name in ["Tensile strength ratio beta", "Critical state slope M", "Poisson's ratio", "Hardening factor xi"]:
+        check(snow[name] == dem[name], f"{name}: {snow[name]} in snow units, {dem[name]} in the DEM's")
+    phi = json.load(open(os.path.join(out, "weak_layer", "summary.json")))["calibration"]["microstructures"][0]["solid_fraction"]
+    check(abs(float(snow["Density [kg/m^3]"]) / (phi * 917) - 1) < 1e-5, f"density {snow['Density [kg/m^3]']}, phi {phi}")
+    for stage in ["flat", "steep"]:
+        text = open(os.path.join(out, stage, "scene.prm")).read()
+        check(f"set Material file = {os.path.join(out, 'weak_layer', 'material_snow.prm')}" in text, f"{stage}/scene.prm")
+        fem = fem_summary(os.path.join(out, stage))
+        check(fem["status"] == "completed", f"{stage}: {fem['status']}")
+        check(list(fem["scene"]["material_files"]) == ["weak layer"], f"{stage}: material files {fem['scene']}")
+    for name in ["report.md", "report.png"]:
+        check(os.path.getsize(os.path.join(out, name)) > 1000, f"{name} missing or empty")
+    check("anticrack pipeline:" in stdout and "weak layer (material_snow.prm" in stdout and "flat: completed" in stdout,
+          f"no short report:\n{stdout[-2000:]}")
+
+    stdout, _ = anticrack("run", pipeline, "-o", out, expect=2)
+    stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
+    check(stdout.count("completed earlier, inputs unchanged") == 3, f"an unchanged stage was rerun:\n{stdout}")
+    write(steep, open(steep).read().replace("set Slope angle [deg] = 30", "set Slope angle [deg] = 25"))
+    stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
+    check(stdout.count("completed earlier, inputs unchanged") == 2 and "steep: completed" in stdout,
+          f"only the changed PST should have run:\n{stdout}")
+    write(pipeline, open(pipeline).read().replace("2e5", "3e5"))
+    stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
+    check("completed earlier, inputs unchanged" not in stdout and stdout.count("completed earlier, skipped") == 5,
+          f"new snow units: every stage reruns, the campaign resumes:\n{stdout}")
+
+
 @case
 def fem_resume(work):
     """A dynamic PST stopped at 0.03 s (with checkpoints every 300 steps and at its end) and resumed

@@ -42,6 +42,7 @@ namespace
     m.elastic.continuum_youngs_modulus = 1.2345e6;
     m.elastic.continuum_poisson_ratio = 0.21;
     m.elastic.youngs_modulus.mean_ci = {1.1e6, 1.3e6};
+    m.elastic.youngs_modulus.n = 3;
     m.elastic.poisson_ratio.mean = 0.21;
     m.elastic.poisson_ratio.mean_ci = {0.19, 0.23};
     m.softening.hardening_factor.mean = 42.5;
@@ -181,6 +182,9 @@ TEST(MaterialHandoff, TheFilesSurfaceIsTheFitOnTheTestsPathsNeverAnotherPlanes)
   EXPECT_EQ(back.material.name, "weak_layer m0");
   EXPECT_NEAR(back.uncertainty.p0.lower, 0.9 * 3456.7, 0.01);
   EXPECT_NEAR(back.uncertainty.M.upper, 1.25 * 1.05, 1e-5);
+  EXPECT_EQ(back.uncertainty.youngs_modulus.lower, 1.1e6); // over 3 realizations
+  // One realization gives no spread: no interval rather than a zero-width one.
+  EXPECT_TRUE(std::isnan(back.uncertainty.hardening_factor.lower));
   // nu = 0.2 under periodic sides: k = nu/(1 - nu) = 0.25.
   EXPECT_EQ(back.provenance.fit_plane, std::string(fem::path_fit_plane) + ", lateral stress ratio 0.25 (periodic sides)");
   EXPECT_EQ(back.provenance.campaign_sha256, std::string(64, 'a'));

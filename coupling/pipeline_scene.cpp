@@ -1,0 +1,148 @@
+#include "coupling/pipeline_scene.h"
+
+#include "coupling/calibration_scene.h"
+#include "fem/scene/snowpack_scene.h"
+#include "util/input_error.h"
+#include "util/parameter_files.h"
+#include "util/problems.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace anticrack::coupling
+{
+  namespace fs = std::filesystem;
+  namespace Patterns = dealii::Patterns;
+
+  namespace
+  {
+    constexpr const char *weak_layer_entry = "Weak layer scene";
+    constexpr const char *snowpack_entry = "Snowpack scenes";
+    constexpr const char *bond_strength_entry = "Bond tensile strength [Pa]";
+    constexpr const char *particle_density_entry = "Particle density [kg/m^3]";
+
+    /// "a scene of kind `campaign`" or "a scene that does not say its kind".
+    std::string kind_text(const std::string &file)
+    {
+      const std::string kind = scene_kind_in_file(file);
+      return kind.empty() ? "a scene that does not say its kind" : "a scene of kind `" + kind + "`";
+    }
+
+    std::string resolved(const std::string &path, const std::string &scene_file)
+    {
+      const fs::path p(path);
+      return (p.is_absolute() ? p : fs::absolute(fs::path(scene_file).parent_path() / p)).lexically_normal().string();
+    }
+  } // namespace
+
+  void declare_pipeline_scene(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry("Scene", "pipeline", Patterns::Selection("pipeline"),
+                      "What this scene is: the chain DEM weak layer -> calibration -> FE analyses.");
+    prm.enter_subsection("Pipeline");
+    prm.declare_entry(weak_layer_entry, "", Patterns::Anything(),
+                      "A scene of kind `calibration` (DEM sample, campaign and the options of its calibration), "
+                      "relative to this file: the weak layer of every snowpack scene below.",
+                      /*has_to_be_set=*/true);
+    prm.declare_entry(snowpack_entry, "", Patterns::List(Patterns::Anything()),
+                      "Scenes of kind `snowpack`, comma-separated, relative to this file: each runs with the "
+                      "calibrated material as its weak layer (Snowpack/Weak layer/Material file), the rest of "
+                      "the scene as it is.",
+                      /*has_to_be_set=*/true);
+    prm.leave_subsection();
+    prm.enter_subsection("Snow units");
+    prm.declare_entry(bond_strength_entry, "0", Patterns::Double(0),
+                      "sigma_c: tensile strength of the snow's bonds. Every modulus and strength of the DEM scales by "
+                      "it over the DEM's bond tensile strength (coupling/snow_units.h). Units: Pa.",
+                      /*has_to_be_set=*/true);
+    prm.declare_entry(particle_density_entry, "0", Patterns::Double(0),
+                      "rho: density of the snow's grains (ice: 917); the layer's density is the DEM's solid "
+                      "fraction times it. Units: kg/m^3.",
+                      /*has_to_be_set=*/true);
+    prm.leave_subsection();
+  }
+
+  PipelineScene read_pipeline_scene(const std::string &file)
+  {
+    std::ifstream in(file);
+    if (!in)
+      throw InputError("The scene file <" + file + "> cannot be read.");
+    dealii::ParameterHandler prm;
+    declare_pipeline_scene(prm);
+    try
+    {
+      prm.parse_input(in, file);
+    }
+    catch (const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
+    }
+    Problems problems("scene file <" + file + ">");
+    for (const std::string &missing : prm.get_entries_wrongly_not_set())
+      problems.add(demangled_parameter_path(missing), "must be set (a pipeline has no defaults for it)");
+    problems.throw_if_any();
+
+    PipelineScene scene;
+    scene.file = file;
+    prm.enter_subsection("Pipeline");
+    scene.weak_layer_scene = resolved(dealii::Utilities::trim(prm.get(weak_layer_entry)), file);
+    for (const std::string &s : dealii::Utilities::split_string_list(prm.get(snowpack_entry)))
+      scene.snowpack_scenes.push_back(resolved(s, file));
+    prm.leave_subsection();
+    prm.enter_subsection("Snow units");
+    scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
+    scene.snow.particle_density = prm.get_double(particle_density_entry);
+    prm.leave_subsection();
+
+    if (scene.snowpack_scenes.empty())
+      problems.add(std::string("Pipeline/") + snowpack_entry, "names no scene (at least one snowpack scene)");
+    // Each stage's scene by its own reader: every problem is found before anything runs.
+    const auto check_exists = [&](const std::string &path, const std::string &entry) {
+      if (!fs::exists(path))
+        problems.add(entry, "names " + path + ", which does not exist");
+      return fs::exists(path);
+    };
+    if (!(scene.snow.bond_tensile_strength > 0))
+      problems.add(std::string("Snow units/") + bond_strength_entry, scene.snow.bond_tensile_strength, "must be > 0");
+    if (!(scene.snow.particle_density > 0))
+      problems.add(std::string("Snow units/") + particle_density_entry, scene.snow.particle_density, "must be > 0");
+    const std::string weak_entry = std::string("Pipeline/") + weak_layer_entry;
+    if (check_exists(scene.weak_layer_scene, weak_entry))
+    {
+      if (scene_kind_in_file(scene.weak_layer_scene) != "calibration")
+        problems.add(weak_entry, "names " + scene.weak_layer_scene + ", " + kind_text(scene.weak_layer_scene) +
+                                   "; it must be of kind `calibration` (set Scene = calibration)");
+    }
+    for (const std::string &s : scene.snowpack_scenes)
+    {
+      const std::string entry = std::string("Pipeline/") + snowpack_entry;
+      if (!check_exists(s, entry))
+        continue;
+      if (scene_kind_in_file(s) != "snowpack")
+      {
+        problems.add(entry, "names " + s + ", " + kind_text(s) + "; it must be of kind `snowpack` (set Scene = snowpack)");
+        continue;
+      }
+      // The pipeline runs a copy of the scene from its stage folder: a material file of another
+      // layer named relative to the scene's folder would not be found there.
+      for (const ParameterSetting &setting : scan_parameter_settings(read_scene_file(s)))
+        if (setting.path.back() == "Material file" && !setting.value.empty() &&
+            setting.path != std::vector<std::string>{"Snowpack", "Weak layer", "Material file"} &&
+            !fs::path(setting.value).is_absolute())
+          problems.add(entry, "names " + s + ", whose " + setting.path_text() + " = " + setting.value +
+                                " (line " + std::to_string(setting.line) + ") is relative; in a pipeline it must be "
+                                "absolute (the stage runs a copy of the scene from its own folder)");
+      const fem::SnowpackScene snowpack = fem::read_snowpack_scene(s);
+      if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay)
+        problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model)");
+    }
+    problems.throw_if_any();
+    read_calibration_scene(scene.weak_layer_scene);
+    return scene;
+  }
+} // namespace anticrack::coupling

@@ -1,0 +1,45 @@
+// Scenes of kind `pipeline` (`set Scene = pipeline`): the chain from a DEM weak layer to the FE
+// answers, by reference to the scenes of its stages, so that each stage stays a scene a user can
+// run alone:
+//
+//   subsection Pipeline
+//     set Weak layer scene = weak_layer.prm          # kind calibration: DEM sample, campaign, fit
+//     set Snowpack scenes  = pst_flat.prm, pst_slope.prm   # kind snowpack: their weak layer gets
+//   end                                                    # the calibrated material
+//   subsection Snow units                                  # coupling/snow_units.h
+//     set Bond tensile strength [Pa] = 3e5
+//     set Particle density [kg/m^3]  = 917
+//   end
+//
+// Paths are relative to the pipeline scene's directory. What the stages do, their outputs and
+// their resumption: coupling/pipeline.h.
+#pragma once
+
+#include "coupling/snow_units.h"
+
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace anticrack::coupling
+{
+  struct PipelineScene
+  {
+    std::string file;                         ///< the pipeline scene itself
+    std::string weak_layer_scene;             ///< a calibration scene (absolute, normalised)
+    std::vector<std::string> snowpack_scenes; ///< snowpack scenes (absolute, normalised)
+    SnowUnits snow;
+  };
+
+  /// Declares the entries of a pipeline scene.
+  void declare_pipeline_scene(dealii::ParameterHandler &prm);
+
+  /// Reads and checks `file` and every scene it names (each by its own reader); throws InputError
+  /// naming the file and the entry (a missing entry, a scene of another kind, a file that does not
+  /// exist, a snowpack scene whose weak layer is not a cohesive Cam-Clay layer).
+  PipelineScene read_pipeline_scene(const std::string &file);
+} // namespace anticrack::coupling

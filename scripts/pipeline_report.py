@@ -1,0 +1,186 @@
+#!/usr/bin/python3
+"""The report of a pipeline run (`anticrack run PIPELINE.prm -o DIR`, coupling/pipeline.h).
+
+Usage: scripts/pipeline_report.py DIR
+
+Reads DIR/summary.json, DIR/weak_layer/{calibration.h5, summary.json, material.prm,
+material_snow.prm} and DIR/<stage>/{summary.json, series.h5}; writes
+  DIR/report.md   the calibrated weak layer (snow units, with intervals), how well the FE point
+                  repeats the DEM tests, each snowpack stage's answers, the wall time of every stage
+  DIR/report.png  the DEM failure points with the fitted surface and its band in both planes (snow
+                  units), the crack tip against time of every dynamic PST, the stage wall times
+"""
+import argparse
+import json
+import os
+import re
+import sys
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+
+KPA = 1e-3
+MATERIAL_ROWS = [  # entry of subsection Material, label, scale, unit
+    ("Compressive strength p0 [Pa]", "compressive strength p0", KPA, "kPa"),
+    ("Tensile strength ratio beta", "tensile strength ratio β", 1, ""),
+    ("Critical state slope M", "critical state slope M", 1, ""),
+    ("Young's modulus [Pa]", "Young's modulus E", 1e-6, "MPa"),
+    ("Poisson's ratio", "Poisson's ratio ν", 1, ""),
+    ("Density [kg/m^3]", "density ρ", 1, "kg/m³"),
+    ("Hardening factor xi", "softening factor ξ", 1, ""),
+    ("Residual strength ratio", "residual strength ratio", 1, ""),
+    ("Reference thickness [m]", "reference thickness h_ref", 1e3, "mm"),
+]
+
+
+def material_entries(path):
+    """`set NAME = VALUE` lines of a material file, by name (Uncertainty's intervals included)."""
+    entries = {}
+    with open(path) as f:
+        for line in f:
+            m = re.match(r"\s*set (.+?) = (.*)$", line)
+            if m:
+                entries[m.group(1)] = m.group(2).strip()
+    return entries
+
+
+def interval(entries, name):
+    key = name.replace(" [", " interval [") if "[" in name else name + " interval"
+    if key not in entries:
+        return None
+    low, high = (float(v) for v in entries[key].split(","))
+    return None if np.isnan(low) else (low, high)
+
+
+def fmt(value, digits=3):
+    return "—" if value is None else f"{value:.{digits}g}"
+
+
+def weak_layer_section(run_dir, summary):
+    weak = os.path.join(run_dir, "weak_layer")
+    snow = material_entries(os.path.join(weak, "material_snow.prm"))
+    dem = material_entries(os.path.join(weak, "material.prm"))
+    calibration = json.load(open(os.path.join(weak, "summary.json")))["calibration"]
+    confidence = float(snow.get("Confidence", 0.95))
+    lines = ["## Weak layer", "",
+             f"From `{summary['stages'][0]['scene']}`: material `weak_layer/material_snow.prm` "
+             f"(snow units; `material.prm` is the same in the DEM's units). Intervals: "
+             f"{100 * confidence:g} % (surface: covariance of its fit; elasticity and softening: over the "
+             f"realizations).", "",
+             "| parameter | value | interval |", "|---|---|---|"]
+    for name, label, scale, unit in MATERIAL_ROWS:
+        value = float(snow[name]) * scale
+        i = interval(snow, name)
+        lines.append(f"| {label} | {fmt(value, 4)} {unit} | "
+                     f"{'—' if i is None else f'{fmt(i[0] * scale)} – {fmt(i[1] * scale)} {unit}'} |")
+    m0 = calibration["microstructures"][0]
+    replay = m0["material_point_replay"]
+    lines += ["", "The FE material point of this file, driven along every DEM test's path, against the DEM "
+              f"(fit RMSE {100 * replay['fit_relative_rmse']:.2f} %):", "",
+              "| ψ [°] | " + " | ".join(f"{a['loading_angle_deg']:g}" for a in replay["angles"]) + " |",
+              "|---|" + "---|" * len(replay["angles"]),
+              "| ln(r_FE/r_DEM) [%] | " + " | ".join(f"{100 * a['relative_error']:+.1f}" for a in replay["angles"]) + " |",
+              "", f"Normal stiffness: FE {replay['normal_stiffness_Pa']['fe'] / 1e6:.4g} MPa, DEM "
+              f"{replay['normal_stiffness_Pa']['dem'] / 1e6:.4g} MPa; shear stiffness: FE "
+              f"{replay['shear_stiffness_Pa']['fe'] / 1e6:.4g} MPa, DEM {replay['shear_stiffness_Pa']['dem'] / 1e6:.4g} MPa "
+              "(DEM units)."]
+    scale = float(snow["Compressive strength p0 [Pa]"]) / float(dem["Compressive strength p0 [Pa]"])
+    return lines, scale
+
+
+def stage_section(run_dir, summary):
+    lines = ["## Snowpack analyses", "",
+             "| stage | analysis | status | crack | critical cut [m] | speed [m/s] | touchdown distance [m] |",
+             "|---|---|---|---|---|---|---|"]
+    for s in summary["stages"][1:]:
+        r = s.get("results", {})
+        lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('crack', '—')} | "
+                     f"{fmt(r.get('critical_cut_length_m'))} | {fmt(r.get('propagation_speed_m_per_s'))} | "
+                     f"{fmt(r.get('touchdown_distance_m'))} |")
+    lines += ["", "## Wall time", "", "| stage | status | wall time [s] |", "|---|---|---|"]
+    for s in summary["stages"]:
+        lines.append(f"| {s['name']} | {s['status']} | {s['wall_s']:.1f} |")
+    lines.append(f"| whole run | {summary['status']} | {summary['timing']['wall_s']:.1f} |")
+    return lines
+
+
+def plane(ax, points, fits, x, y, scale, title, xlabel, ylabel):
+    band = fits["cohesive_cam_clay"]["band"]
+    angle = band["angle"][()]
+    for key, style in (("radius", dict(color="C0", lw=1.6)),):
+        r = band[key][()] * scale * KPA
+        ax.plot(r * np.cos(angle), r * np.sin(angle), **style, label="cohesive Cam-Clay fit")
+    lo, hi = band["radius_lower"][()] * scale * KPA, band["radius_upper"][()] * scale * KPA
+    ax.fill(np.concatenate([lo * np.cos(angle), (hi * np.cos(angle))[::-1]]),
+            np.concatenate([lo * np.sin(angle), (hi * np.sin(angle))[::-1]]), color="C0", alpha=0.2, lw=0,
+            label="95 % band")
+    ax.scatter(points[x][()] * scale * KPA, points[y][()] * scale * KPA, s=22, color="k", zorder=3,
+               label="DEM failure points")
+    ax.axhline(0, color="0.7", lw=0.6)
+    ax.axvline(0, color="0.7", lw=0.6)
+    ax.set_title(title, fontsize=10)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower center")
+
+
+def plot(run_dir, summary, scale, path):
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    with h5py.File(os.path.join(run_dir, "weak_layer", "calibration.h5"), "r") as f:
+        m = f["microstructures/m0"]
+        plane(axes[0, 0], m["points"], m["fits/p_q_path"], "p_path", "q_path", scale,
+              "(p, q) of the FE point on the tests' paths: the FE's surface", "p [kPa] (compression +)", "q [kPa]")
+        plane(axes[0, 1], m["points"], m["fits/sigma_tau"], "sigma", "tau", scale,
+              "(σ, τ) base stresses (Ritter et al. 2020)", "σ [kPa] (compression +)", "τ [kPa]")
+    ax = axes[1, 0]
+    for k, s in enumerate(summary["stages"][1:]):
+        series = os.path.join(run_dir, s["directory"], "series.h5")
+        if not os.path.exists(series):
+            continue
+        with h5py.File(series, "r") as f:
+            if "crack_tip" not in f:
+                continue
+            ax.plot(f["time"][()], f["crack_tip"][()], color=f"C{k}", lw=1.5, label=f"{s['name']}: crack tip")
+            ax.plot(f["time"][()], f["cut_length"][()], color=f"C{k}", lw=0.8, ls="--", label=f"{s['name']}: saw")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("position along the column [m]")
+    ax.set_title("dynamic PSTs: crack tip and saw", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax = axes[1, 1]
+    names = [s["name"] for s in summary["stages"]]
+    walls = [s["wall_s"] for s in summary["stages"]]
+    ax.barh(names, walls, color=["C2" if s["status"] == "completed" else "0.6" for s in summary["stages"]])
+    ax.set_xlabel("wall time [s] (grey: completed in an earlier run)")
+    ax.set_title("stages", fontsize=10)
+    ax.invert_yaxis()
+    fig.suptitle(f"anticrack pipeline {summary['scene']['file']}", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("directory")
+    args = parser.parse_args()
+    run_dir = args.directory
+    summary = json.load(open(os.path.join(run_dir, "summary.json")))
+    weak_lines, scale = weak_layer_section(run_dir, summary)
+    lines = [f"# Pipeline report: `{summary['scene']['file']}`", "",
+             f"Status: {summary['status']}; {len(summary['stages'])} stages; outputs in `{run_dir}`.", "",
+             "![report](report.png)", ""] + weak_lines + [""] + stage_section(run_dir, summary)
+    with open(os.path.join(run_dir, "report.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    plot(run_dir, summary, scale, os.path.join(run_dir, "report.png"))
+    print(f"wrote {os.path.join(run_dir, 'report.md')} and report.png")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
