@@ -273,11 +273,17 @@ namespace anticrack::coupling
     if (options.resume)
       for (const Json &s : read_json(dir / "summary.json").value("stages", Json::array()))
         before[s.value("name", "")] = s;
+    const std::vector<std::string> names = stage_names(scene.snowpack_scenes);
     if (root)
     {
+      // --overwrite starts again: every stage's folder goes too (the campaign's tests included).
       if (options.overwrite && !options.resume)
-        for (const char *name : {"summary.json", "report.md", "report.png"})
-          fs::remove(dir / name, error);
+      {
+        for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory})
+          fs::remove_all(dir / name, error);
+        for (const std::string &name : names)
+          fs::remove_all(dir / name, error);
+      }
       fs::create_directories(dir);
     }
     barrier();
@@ -295,7 +301,6 @@ namespace anticrack::coupling
       s.inputs_sha256 = util::sha256_hex(text_of(scene.weak_layer_scene) + snow.str());
       stages.push_back(s);
     }
-    const std::vector<std::string> names = stage_names(scene.snowpack_scenes);
     for (std::size_t k = 0; k < names.size(); ++k)
     {
       Stage s;
@@ -434,7 +439,9 @@ namespace anticrack::coupling
           static_cast<int>(to_run.size()), std::min<int>(cores(options), static_cast<int>(to_run.size())),
           [&](int job, std::string &) {
             dealii::MultithreadInfo::set_thread_limit(1);
-            return fem::run_snowpack_scene(run_options_of(stages[to_run[static_cast<std::size_t>(job)]]));
+            const Stage &s = stages[to_run[static_cast<std::size_t>(job)]];
+            const LineLabel out(std::cout, "[" + s.name + "] "), err(std::cerr, "[" + s.name + "] ");
+            return fem::run_snowpack_scene(run_options_of(s));
           },
           [&](int job, const WorkerExit &exit) {
             Stage &s = stages[to_run[static_cast<std::size_t>(job)]];

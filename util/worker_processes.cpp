@@ -181,6 +181,42 @@ namespace anticrack
     return run_jobs_in_worker_processes(members, members, job);
   }
 
+  class LineLabel::Buffer : public std::streambuf
+  {
+  public:
+    Buffer(std::streambuf *target, std::string label) : target_(target), label_(std::move(label)) {}
+
+  protected:
+    int overflow(int c) override
+    {
+      if (c == traits_type::eof())
+        return traits_type::not_eof(c);
+      if (at_line_start_ && target_->sputn(label_.data(), static_cast<std::streamsize>(label_.size())) !=
+                              static_cast<std::streamsize>(label_.size()))
+        return traits_type::eof();
+      at_line_start_ = c == '\n';
+      return target_->sputc(static_cast<char>(c));
+    }
+    int sync() override { return target_->pubsync(); }
+
+  private:
+    std::streambuf *target_;
+    std::string label_;
+    bool at_line_start_ = true;
+  };
+
+  LineLabel::LineLabel(std::ostream &stream, std::string label)
+    : stream_(stream), original_(stream.rdbuf()), buffer_(std::make_unique<Buffer>(original_, std::move(label)))
+  {
+    stream_.rdbuf(buffer_.get());
+  }
+
+  LineLabel::~LineLabel()
+  {
+    stream_.flush();
+    stream_.rdbuf(original_);
+  }
+
   std::string describe_worker_exit(int member, const WorkerExit &exit)
   {
     if (exit.signal != 0)

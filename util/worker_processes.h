@@ -15,6 +15,9 @@
 #pragma once
 
 #include <functional>
+#include <memory>
+#include <ostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -48,6 +51,23 @@ namespace anticrack
   std::vector<WorkerExit> run_jobs_in_worker_processes(int jobs, int concurrent,
                                                        const std::function<int(int job, std::string &report)> &job,
                                                        const std::function<void(int job, const WorkerExit &exit)> &on_exit = {});
+
+  /// Prefixes every line written to a stream with a label while it lives (e.g. "[pst_flat] " on a
+  /// worker's std::cout, so that the lines of workers side by side can be told apart).
+  class LineLabel
+  {
+  public:
+    LineLabel(std::ostream &stream, std::string label);
+    ~LineLabel();
+    LineLabel(const LineLabel &) = delete;
+    LineLabel &operator=(const LineLabel &) = delete;
+
+  private:
+    class Buffer;
+    std::ostream &stream_;
+    std::streambuf *original_;
+    std::unique_ptr<Buffer> buffer_;
+  };
 
   /// "worker 1 ended by signal 9 (Killed)" or "worker 1 exited with code 2", for messages.
   std::string describe_worker_exit(int member, const WorkerExit &exit);

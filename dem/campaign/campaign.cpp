@@ -438,6 +438,8 @@ namespace anticrack::dem
       const auto [first, last] = block_of(tests, member, members);
       std::pair<Index, Index> cached_sample{-1, -1};
       std::unique_ptr<DemModel> sample;
+      const auto share_start = std::chrono::steady_clock::now();
+      std::size_t run_in_share = 0; // tests this member ran (not those completed earlier)
       for (std::size_t k = first; k < last; ++k)
       {
         const CampaignTest &t = tests[k];
@@ -498,7 +500,15 @@ namespace anticrack::dem
                << " Pa, q = " << outcome.row.q << " Pa";
         else if (!outcome.analysis_error.empty())
           line << " (" << outcome.analysis_error << ")";
-        line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s) << "\n";
+        line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s);
+        // The time left of this member's share, from its tests so far (their costs differ by angle).
+        ++run_in_share;
+        if (k + 1 < last)
+          line << "; " << last - k - 1 << " more here, about "
+               << format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - share_start).count() /
+                                  static_cast<double>(run_in_share) * static_cast<double>(last - k - 1))
+               << " left";
+        line << "\n";
         std::cout << line.str() << std::flush;
         if (share.interrupted)
           break;
