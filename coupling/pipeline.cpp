@@ -3,6 +3,7 @@
 #include "coupling/calibrate.h"
 #include "coupling/calibration_scene.h"
 #include "coupling/pipeline_scene.h"
+#include "coupling/pipeline_uncertainty.h"
 #include "coupling/python_script.h"
 #include "fem/analysis/run.h"
 #include "fem/material/material_file.h"
@@ -18,8 +19,10 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -69,16 +72,6 @@ namespace anticrack::coupling
       {
         return Json();
       }
-    }
-
-    /// The snowpack scene with its weak layer's material set to `material` (the last setting of an
-    /// entry wins in a parameter file, so the original text stays as it was, above).
-    std::string scene_with_material(const std::string &scene_file, const fs::path &material)
-    {
-      return text_of(scene_file) + "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
-                                   "# weak-layer material entries above are replaced by it).\n"
-                                   "subsection Snowpack\n  subsection Weak layer\n    set Material file = " +
-             fs::absolute(material).lexically_normal().string() + "\n  end\nend\n";
     }
 
     /// Stage directories: the scene's stem, numbered if two scenes share one.
@@ -132,6 +125,8 @@ namespace anticrack::coupling
       if (summary.is_null())
         return Json(); // the stage did not get as far as its summary
       Json h{{"status", summary["status"]}};
+      if (summary["results"].contains("mesh"))
+        h["element_length_m"] = summary["results"]["mesh"].value("element_length_m", 0.0);
       for (const char *key : {"analysis", "critical_cut_length_m", "crack", "arrest_position_m",
                               "propagation_speed_m_per_s", "touchdown_distance_m", "fracture_energy_J_per_m2"})
         if (summary["results"].contains(key))
@@ -180,7 +175,7 @@ namespace anticrack::coupling
         const auto with_interval = [&](const char *entry, double scale, const char *unit) {
           const Json &e = w["material"][entry];
           std::string text = number(e["value"].get<double>() * scale) + unit;
-          if (e.contains("interval") && e["interval"][0].is_number())
+          if (e.contains("interval") && e["interval"][0].is_number() && std::isfinite(e["interval"][0].get<double>()))
             text += " [" + number(e["interval"][0].get<double>() * scale) + ", " +
                     number(e["interval"][1].get<double>() * scale) + "]";
           return text;
@@ -196,21 +191,30 @@ namespace anticrack::coupling
             << "    the FE point repeats the DEM tests to " << number(100 * w["material_point_replay"]["largest_angle_error"].get<double>(), 2)
             << " % at worst per angle (fit RMSE " << number(100 * w["material_point_replay"]["fit_relative_rmse"].get<double>(), 2) << " %)\n";
       }
-      for (std::size_t k = 1; k < stages.size(); ++k)
+      const Json &uncertainty = stages.back().results;
+      for (std::size_t k = 1; k + 1 < stages.size(); ++k)
       {
         const Json &r = stages[k].results;
+        const Json intervals = uncertainty.contains(stages[k].name) ? uncertainty[stages[k].name]["answers"] : Json();
         out << "  " << stages[k].name << ": " << stages[k].status;
-        const auto metres = [&](const char *key, const char *what) {
-          if (r.contains(key) && r[key].is_number())
-            out << ", " << what << " " << number(r[key].get<double>()) << " m";
+        // The value, with its interval and dominant parameter when the uncertainty stage has them.
+        const auto answer = [&](const char *key, const char *what, const char *unit) {
+          if (!r.contains(key) || !r[key].is_number())
+            return;
+          out << ", " << what << " " << number(r[key].get<double>()) << unit;
+          if (intervals.contains(key) && intervals[key].contains("interval"))
+            out << " [" << number(intervals[key]["interval"][0].get<double>()) << ", "
+                << number(intervals[key]["interval"][1].get<double>()) << "] (mostly "
+                << intervals[key]["dominant_parameter"].get<std::string>() << ")";
+          else if (intervals.contains(key))
+            out << " (" << intervals[key].value("status", std::string()) << ")";
         };
         if (r.contains("crack"))
           out << ", crack " << r["crack"].get<std::string>();
-        metres("critical_cut_length_m", "critical cut");
-        if (r.contains("propagation_speed_m_per_s") && r["propagation_speed_m_per_s"].is_number())
-          out << ", speed " << number(r["propagation_speed_m_per_s"].get<double>()) << " m/s";
-        metres("touchdown_distance_m", "touchdown distance");
-        metres("arrest_position_m", "arrested at");
+        answer("critical_cut_length_m", "critical cut", " m");
+        answer("propagation_speed_m_per_s", "speed", " m/s");
+        answer("touchdown_distance_m", "touchdown distance", " m");
+        answer("arrest_position_m", "arrested at", " m");
         out << "\n";
       }
       out << "  wall time per stage:";
@@ -224,6 +228,63 @@ namespace anticrack::coupling
     {
       return options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     }
+
+    /// An FE analysis of the pipeline: a label for its lines and the run.
+    struct FeJob
+    {
+      std::string label;
+      RunOptions options;
+    };
+
+    /// Runs `jobs`: without mpirun side by side, one process per analysis (each initialises MPI
+    /// for itself) on one core each, `cores` at a time; under mpirun one after another on all
+    /// ranks. `done(k, exit code, wall time)` after each (in the parent).
+    void run_fe_jobs(const std::vector<FeJob> &jobs, bool under_mpirun, int cores,
+                     const std::function<void(std::size_t, int, double)> &done)
+    {
+      if (jobs.empty())
+        return;
+      if (under_mpirun)
+      {
+        for (std::size_t k = 0; k < jobs.size(); ++k)
+        {
+          const auto start = Clock::now();
+          const int code = fem::run_snowpack_scene_in_mpi(jobs[k].options);
+          done(k, code, std::chrono::duration<double>(Clock::now() - start).count());
+        }
+        return;
+      }
+      const int n = static_cast<int>(jobs.size());
+      run_jobs_in_worker_processes(
+        n, std::min(cores, n),
+        [&](int job, std::string &) {
+          dealii::MultithreadInfo::set_thread_limit(1);
+          const FeJob &j = jobs[static_cast<std::size_t>(job)];
+          const LineLabel out(std::cout, "[" + j.label + "] "), err(std::cerr, "[" + j.label + "] ");
+          return fem::run_snowpack_scene(j.options);
+        },
+        [&](int job, const WorkerExit &exit) {
+          const auto k = static_cast<std::size_t>(job);
+          if (exit.signal != 0)
+            std::cerr << jobs[k].label << ": " << describe_worker_exit(job, exit) << "\n";
+          done(k, exit.exit_code, exit.wall_s);
+        });
+    }
+
+    RunOptions fe_run_options(const std::string &scene_file, const fs::path &directory, const RunOptions &options)
+    {
+      RunOptions o;
+      o.scene_file = scene_file;
+      o.output_directory = directory.string();
+      o.overwrite = true;
+      o.command_line = options.command_line;
+      return o;
+    }
+
+    std::string status_of(int code)
+    {
+      return code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
+    }
   } // namespace
 
   void declare_pipeline(dealii::ParameterHandler &prm, const std::string &, bool) { declare_pipeline_scene(prm); }
@@ -236,6 +297,11 @@ namespace anticrack::coupling
               << scene.snow.bond_tensile_strength << " Pa, grain density " << scene.snow.particle_density << " kg/m^3)\n";
     for (std::size_t k = 0; k < scene.snowpack_scenes.size(); ++k)
       std::cout << "  " << k + 2 << ". " << scene.snowpack_scenes[k] << " with the calibrated weak layer\n";
+    for (const auto &[path, value] : scene.snowpack_changes)
+      std::cout << "     (every snowpack scene with " << path << " = " << value << ")\n";
+    if (scene.uncertainty)
+      std::cout << "  " << scene.snowpack_scenes.size() + 2
+                << ". uncertainty: every snowpack scene again per calibrated parameter raised by one standard error\n";
     std::cout << "  then report.md, report.png and summary.json\n";
   }
 
@@ -279,7 +345,7 @@ namespace anticrack::coupling
       // --overwrite starts again: every stage's folder goes too (the campaign's tests included).
       if (options.overwrite && !options.resume)
       {
-        for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory})
+        for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory, "uncertainty"})
           fs::remove_all(dir / name, error);
         for (const std::string &name : names)
           fs::remove_all(dir / name, error);
@@ -310,6 +376,13 @@ namespace anticrack::coupling
       s.scene_file = (s.directory / "scene.prm").string();
       stages.push_back(s);
     }
+    {
+      Stage s;
+      s.name = "uncertainty";
+      s.kind = "uncertainty";
+      s.directory = dir / "uncertainty";
+      stages.push_back(s);
+    }
 
     Json summary;
     summary["command"] = options.command_line;
@@ -329,7 +402,7 @@ namespace anticrack::coupling
       const auto it = before.find(s.name);
       return it != before.end() && it->second.value("inputs_sha256", "") == s.inputs_sha256 &&
              (it->second.value("status", "") == "completed" || it->second.value("status", "") == "completed earlier") &&
-             fs::exists(s.directory / "summary.json");
+             fs::exists(s.kind == "uncertainty" ? s.directory : s.directory / "summary.json");
     };
     const auto announce = [&](std::size_t k) {
       if (root)
@@ -352,7 +425,7 @@ namespace anticrack::coupling
     else
     {
       announce(0);
-      CalibrateOptions calibration = read_calibration_scene(scene.weak_layer_scene);
+      CalibrateOptions calibration = weak_layer_calibration(scene);
       calibration.output_directory = weak.directory.string();
       calibration.overwrite = true;
       calibration.threads = options.threads;
@@ -380,10 +453,11 @@ namespace anticrack::coupling
     // --- 2. the snowpack scenes with the calibrated weak layer
     const std::string material_sha256 = util::sha256_of_file(material.string());
     std::vector<std::size_t> to_run;
-    for (std::size_t k = 1; k < stages.size(); ++k)
+    for (std::size_t k = 1; k + 1 < stages.size(); ++k)
     {
       Stage &s = stages[k];
-      const std::string text = scene_with_material(scene.snowpack_scenes[k - 1], material);
+      const std::string text =
+        snowpack_scene_text(scene, scene.snowpack_scenes[k - 1], fs::absolute(material).lexically_normal().string());
       s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + material_sha256);
       if (unchanged(s))
       {
@@ -403,66 +477,117 @@ namespace anticrack::coupling
       to_run.push_back(k);
     }
     barrier();
-    const auto run_options_of = [&](const Stage &s) {
-      RunOptions o;
-      o.scene_file = s.scene_file;
-      o.output_directory = s.directory.string();
-      o.overwrite = true;
-      o.command_line = options.command_line;
-      return o;
-    };
-    const auto finish = [&](Stage &s, int code, double wall) {
-      s.wall_s = wall;
-      s.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
-      s.results = snowpack_headline(s.directory);
-      if (root)
-        std::cout << "pipeline stage " << s.name << ": " << s.status << " in " << format_duration(wall) << "\n"
-                  << std::flush;
-    };
     bool interrupted = false, failed = false;
+    const auto note = [&](const Stage &st) {
+      interrupted = interrupted || st.status == "interrupted";
+      failed = failed || st.status == "failed";
+    };
     if (!to_run.empty())
     {
       announce(to_run.front());
-      if (under_mpirun)
-        for (const std::size_t k : to_run)
-        {
-          const auto stage_start = Clock::now();
-          const int code = fem::run_snowpack_scene_in_mpi(run_options_of(stages[k]));
-          finish(stages[k], code, std::chrono::duration<double>(Clock::now() - stage_start).count());
-          write_summary("running");
-        }
-      else
-      {
-        // Side by side, one process per analysis (each initialises MPI for itself), one core each.
-        std::vector<Clock::time_point> started(to_run.size(), Clock::now());
-        run_jobs_in_worker_processes(
-          static_cast<int>(to_run.size()), std::min<int>(cores(options), static_cast<int>(to_run.size())),
-          [&](int job, std::string &) {
-            dealii::MultithreadInfo::set_thread_limit(1);
-            const Stage &s = stages[to_run[static_cast<std::size_t>(job)]];
-            const LineLabel out(std::cout, "[" + s.name + "] "), err(std::cerr, "[" + s.name + "] ");
-            return fem::run_snowpack_scene(run_options_of(s));
-          },
-          [&](int job, const WorkerExit &exit) {
-            Stage &s = stages[to_run[static_cast<std::size_t>(job)]];
-            finish(s, exit.exit_code, std::chrono::duration<double>(Clock::now() - started[static_cast<std::size_t>(job)]).count());
-            if (exit.signal != 0)
-              std::cerr << "pipeline stage " << s.name << ": " << describe_worker_exit(job, exit) << "\n";
-            write_summary("running");
-          });
-      }
+      std::vector<FeJob> jobs;
       for (const std::size_t k : to_run)
+        jobs.push_back({stages[k].name, fe_run_options(stages[k].scene_file, stages[k].directory, options)});
+      run_fe_jobs(jobs, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
+        Stage &st = stages[to_run[j]];
+        st.wall_s = wall;
+        st.status = status_of(code);
+        st.results = snowpack_headline(st.directory);
+        if (root)
+          std::cout << "pipeline stage " << st.name << ": " << st.status << " in " << format_duration(wall) << "\n"
+                    << std::flush;
+        note(st);
+        write_summary("running");
+      });
+    }
+
+    // --- 3. the calibration's uncertainty carried to the answers (coupling/pipeline_uncertainty.h)
+    Stage &uncertainty = stages.back();
+    if (scene.uncertainty)
+    {
+      std::string hashes = material_sha256;
+      for (std::size_t k = 1; k + 1 < stages.size(); ++k)
+        hashes += stages[k].inputs_sha256;
+      uncertainty.inputs_sha256 = util::sha256_hex(hashes);
+      if (unchanged(uncertainty))
       {
-        interrupted = interrupted || stages[k].status == "interrupted";
-        failed = failed || stages[k].status == "failed";
+        uncertainty.status = "completed earlier";
+        uncertainty.wall_s = before[uncertainty.name].value("wall_s", 0.0);
+        uncertainty.results = before[uncertainty.name].value("results", Json());
+        if (root)
+          std::cout << "pipeline stage " << stages.size() << "/" << stages.size()
+                    << ", uncertainty: completed earlier, inputs unchanged\n";
+      }
+      else if (!failed && !interrupted)
+      {
+        announce(stages.size() - 1);
+        const auto stage_start = Clock::now();
+        const UncertainParameters u = uncertain_parameters(weak.directory);
+        const fem::MaterialFile calibrated = fem::read_material_file_text(text_of(material), material.string());
+        std::vector<FeJob> jobs;
+        std::vector<std::pair<std::size_t, std::size_t>> job_of; // (snowpack stage, parameter)
+        for (std::size_t k = 0; k < u.names.size(); ++k)
+        {
+          const fs::path file = uncertainty.directory / ("material_" + u.names[k] + ".prm");
+          if (root)
+          {
+            fs::create_directories(uncertainty.directory);
+            std::ofstream(file) << fem::material_file_text(perturbed_material(calibrated, u, k));
+          }
+          for (std::size_t j = 1; j + 1 < stages.size(); ++j)
+          {
+            const std::string name = stages[j].name + "_" + u.names[k];
+            const fs::path run = uncertainty.directory / name;
+            if (root)
+            {
+              fs::create_directories(run);
+              std::ofstream(run / "scene.prm")
+                << snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string());
+            }
+            jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options)});
+            job_of.emplace_back(j, k);
+          }
+        }
+        barrier();
+        bool all_completed = true;
+        run_fe_jobs(jobs, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
+          all_completed = all_completed && code == exit_success;
+          if (root)
+            std::cout << "pipeline uncertainty " << jobs[j].label << ": " << status_of(code) << " in "
+                      << format_duration(wall) << "\n"
+                      << std::flush;
+        });
+        Json results;
+        for (std::size_t j = 1; j + 1 < stages.size(); ++j)
+        {
+          std::vector<Json> perturbed;
+          for (std::size_t n = 0; n < jobs.size(); ++n)
+            if (job_of[n].first == j)
+              perturbed.push_back(snowpack_headline(jobs[n].options.output_directory));
+          results[stages[j].name] = linearised_intervals(u, stages[j].results, perturbed,
+                                                         stages[j].results.value("element_length_m", 0.0));
+        }
+        Json parameters = Json::object();
+        for (std::size_t k = 0; k < u.names.size(); ++k)
+          parameters[u.names[k]] = {{"value", u.value(static_cast<Eigen::Index>(k))},
+                                    {"standard_error", std::sqrt(u.covariance(static_cast<Eigen::Index>(k),
+                                                                              static_cast<Eigen::Index>(k)))}};
+        results["parameters"] = parameters;
+        uncertainty.results = results;
+        uncertainty.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+        uncertainty.status = all_completed ? "completed" : "failed";
+        note(uncertainty);
       }
     }
+    else
+      uncertainty.status = "not requested";
 
     // --- 3. the report
     Json results;
     results["weak_layer"] = weak.results;
-    for (std::size_t k = 1; k < stages.size(); ++k)
+    for (std::size_t k = 1; k + 1 < stages.size(); ++k)
       results["analyses"][stages[k].name] = stages[k].results;
+    results["uncertainty"] = uncertainty.results;
     summary["results"] = results;
     write_summary(interrupted ? "interrupted" : failed ? "failed" : "completed");
     if (!root)

@@ -1,6 +1,7 @@
 #include "coupling/pipeline_scene.h"
 
 #include "coupling/calibration_scene.h"
+#include "dem/scene/parameters.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
@@ -44,7 +45,7 @@ namespace anticrack::coupling
                       "What this scene is: the chain DEM weak layer -> calibration -> FE analyses.");
     prm.enter_subsection("Pipeline");
     prm.declare_entry(weak_layer_entry, "", Patterns::Anything(),
-                      "A scene of kind `calibration` (DEM sample, campaign and the options of its calibration), "
+                      "A scene of kind `calibration` (DEM sample, campaign and the options of its calibration) or `campaign` (calibrated with the default options), "
                       "relative to this file: the weak layer of every snowpack scene below.",
                       /*has_to_be_set=*/true);
     prm.declare_entry(snowpack_entry, "", Patterns::List(Patterns::Anything()),
@@ -52,6 +53,14 @@ namespace anticrack::coupling
                       "calibrated material as its weak layer (Snowpack/Weak layer/Material file), the rest of "
                       "the scene as it is.",
                       /*has_to_be_set=*/true);
+    prm.declare_entry("Snowpack scene changes", "", Patterns::Anything(),
+                      "Entries set in every snowpack scene as the pipeline runs it, a comma-separated list of "
+                      "`path = value` (e.g. `Mesh/Element length [m] = 0.02, Mesh/Weak layer elements = 2` for a "
+                      "coarser, faster mesh); each stage's scene.prm shows them. Empty: the scenes as they are.");
+    prm.declare_entry("Uncertainty", "sensitivities", Patterns::Selection("sensitivities|none"),
+                      "sensitivities: every snowpack scene again with each calibrated parameter raised by one "
+                      "standard error, for intervals on its answers (coupling/pipeline_uncertainty.h); none: the "
+                      "answers without intervals.");
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
     prm.declare_entry(bond_strength_entry, "0", Patterns::Double(0),
@@ -63,6 +72,44 @@ namespace anticrack::coupling
                       "fraction times it. Units: kg/m^3.",
                       /*has_to_be_set=*/true);
     prm.leave_subsection();
+  }
+
+  CalibrateOptions weak_layer_calibration(const PipelineScene &scene)
+  {
+    if (scene_kind_in_file(scene.weak_layer_scene) == "calibration")
+      return read_calibration_scene(scene.weak_layer_scene);
+    const dem::SceneParameters campaign = dem::read_scene(scene.weak_layer_scene, dem::SceneKind::campaign);
+    dem::require_dem_component(campaign);
+    if (!campaign.campaign.enabled())
+      throw InputError(scene.file + ": Pipeline/Weak layer scene names " + scene.weak_layer_scene +
+                       ", which has no campaign (Campaign/Loading angles [deg] is empty)");
+    CalibrateOptions options;
+    options.input = scene.weak_layer_scene;
+    return options;
+  }
+
+  std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file)
+  {
+    std::string text = read_scene_file(file);
+    if (!scene.snowpack_changes.empty())
+    {
+      text += "\n# Added by the pipeline " + scene.file + ": Pipeline/Snowpack scene changes.\n";
+      for (const auto &[path, value] : scene.snowpack_changes)
+      {
+        const std::vector<std::string> parts = dem::split_parameter_path(path);
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          text += std::string(2 * k, ' ') + "subsection " + parts[k] + "\n";
+        text += std::string(2 * (parts.size() - 1), ' ') + "set " + parts.back() + " = " + value + "\n";
+        for (std::size_t k = parts.size() - 1; k-- > 0;)
+          text += std::string(2 * k, ' ') + "end\n";
+      }
+    }
+    if (!material_file.empty())
+      text += "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
+              "# weak-layer material entries above are replaced by it).\n"
+              "subsection Snowpack\n  subsection Weak layer\n    set Material file = " +
+              material_file + "\n  end\nend\n";
+    return text;
   }
 
   PipelineScene read_pipeline_scene(const std::string &file)
@@ -93,6 +140,16 @@ namespace anticrack::coupling
     scene.weak_layer_scene = resolved(dealii::Utilities::trim(prm.get(weak_layer_entry)), file);
     for (const std::string &s : dealii::Utilities::split_string_list(prm.get(snowpack_entry)))
       scene.snowpack_scenes.push_back(resolved(s, file));
+    scene.uncertainty = prm.get("Uncertainty") == "sensitivities";
+    for (const std::string &item : dealii::Utilities::split_string_list(prm.get("Snowpack scene changes"), ','))
+    {
+      const auto equal = item.find('=');
+      if (equal == std::string::npos)
+        problems.add("Pipeline/Snowpack scene changes", "'" + item + "' is not of the form `path = value`");
+      else
+        scene.snowpack_changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
+                                            dealii::Utilities::trim(item.substr(equal + 1)));
+    }
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
     scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
@@ -114,9 +171,11 @@ namespace anticrack::coupling
     const std::string weak_entry = std::string("Pipeline/") + weak_layer_entry;
     if (check_exists(scene.weak_layer_scene, weak_entry))
     {
-      if (scene_kind_in_file(scene.weak_layer_scene) != "calibration")
+      const std::string kind = scene_kind_in_file(scene.weak_layer_scene);
+      if (kind != "calibration" && kind != "campaign")
         problems.add(weak_entry, "names " + scene.weak_layer_scene + ", " + kind_text(scene.weak_layer_scene) +
-                                   "; it must be of kind `calibration` (set Scene = calibration)");
+                                   "; it must be of kind `calibration` or `campaign` (calibrated with the "
+                                   "default options)");
     }
     for (const std::string &s : scene.snowpack_scenes)
     {
@@ -137,12 +196,13 @@ namespace anticrack::coupling
           problems.add(entry, "names " + s + ", whose " + setting.path_text() + " = " + setting.value +
                                 " (line " + std::to_string(setting.line) + ") is relative; in a pipeline it must be "
                                 "absolute (the stage runs a copy of the scene from its own folder)");
-      const fem::SnowpackScene snowpack = fem::read_snowpack_scene(s);
+      // As the pipeline runs it: with the changes (an unknown entry or value is refused here).
+      const fem::SnowpackScene snowpack = fem::read_snowpack_scene_text(snowpack_scene_text(scene, s, ""), s);
       if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay)
         problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model)");
     }
     problems.throw_if_any();
-    read_calibration_scene(scene.weak_layer_scene);
+    weak_layer_calibration(scene);
     return scene;
   }
 } // namespace anticrack::coupling

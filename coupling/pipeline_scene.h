@@ -15,6 +15,7 @@
 // their resumption: coupling/pipeline.h.
 #pragma once
 
+#include "coupling/calibrate.h"
 #include "coupling/snow_units.h"
 
 #include <string>
@@ -33,7 +34,20 @@ namespace anticrack::coupling
     std::string weak_layer_scene;             ///< a calibration scene (absolute, normalised)
     std::vector<std::string> snowpack_scenes; ///< snowpack scenes (absolute, normalised)
     SnowUnits snow;
+    bool uncertainty = true;                  ///< carry the calibration's intervals to the answers
+    /// Pipeline/Snowpack scene changes: (path, value) applied to every snowpack scene, e.g.
+    /// ("Mesh/Weak layer elements", "2").
+    std::vector<std::pair<std::string, std::string>> snowpack_changes;
   };
+
+  /// The options of the weak layer's calibration: those of a calibration scene, or the defaults for
+  /// a campaign scene (read and checked either way); throws InputError.
+  CalibrateOptions weak_layer_calibration(const PipelineScene &scene);
+
+  /// The text of snowpack scene `file` as the pipeline runs it: the file, then a block setting each
+  /// of scene.snowpack_changes (the last setting of an entry wins), then, if `material_file` is not
+  /// empty, the weak layer's Material file.
+  std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file);
 
   /// Declares the entries of a pipeline scene.
   void declare_pipeline_scene(dealii::ParameterHandler &prm);

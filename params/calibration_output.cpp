@@ -47,7 +47,18 @@ namespace anticrack::params
           p["bootstrap_interval"] = interval_json(f.bootstrap_lower[i], f.bootstrap_upper[i]);
         parameters[f.parameter_names[k]] = p;
       }
+      // The covariance of the physical parameters (delta method), for propagating the fit's
+      // uncertainty (coupling/pipeline_uncertainty.h): rows and columns in parameter order.
+      Json covariance = Json::array();
+      for (Eigen::Index r = 0; r < f.covariance.rows(); ++r)
+      {
+        Json row = Json::array();
+        for (Eigen::Index c = 0; c < f.covariance.cols(); ++c)
+          row.push_back(finite_or_null(f.covariance(r, c)));
+        covariance.push_back(row);
+      }
       return Json{{"parameters", parameters},
+                  {"covariance", covariance},
                   {"r_squared", finite_or_null(f.r_squared)},
                   {"relative_rmse", f.rmse},
                   {"aicc", finite_or_null(f.aicc)},

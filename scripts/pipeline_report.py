@@ -6,7 +6,8 @@ Usage: scripts/pipeline_report.py DIR
 Reads DIR/summary.json, DIR/weak_layer/{calibration.h5, summary.json, material.prm,
 material_snow.prm} and DIR/<stage>/{summary.json, series.h5}; writes
   DIR/report.md   the calibrated weak layer (snow units, with intervals), how well the FE point
-                  repeats the DEM tests, each snowpack stage's answers, the wall time of every stage
+                  repeats the DEM tests, each snowpack stage's answers with their intervals and
+                  dominant parameters (the uncertainty stage), the wall time of every stage
   DIR/report.png  the DEM failure points with the fitted surface and its band in both planes (snow
                   units), the crack tip against time of every dynamic PST, the stage wall times
 """
@@ -92,15 +93,41 @@ def weak_layer_section(run_dir, summary):
     return lines, scale
 
 
+def snowpack_stages(summary):
+    return [s for s in summary["stages"] if s["kind"] == "snowpack"]
+
+
 def stage_section(run_dir, summary):
     lines = ["## Snowpack analyses", "",
              "| stage | analysis | status | crack | critical cut [m] | speed [m/s] | touchdown distance [m] |",
              "|---|---|---|---|---|---|---|"]
-    for s in summary["stages"][1:]:
+    for s in snowpack_stages(summary):
         r = s.get("results", {})
         lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('crack', '—')} | "
                      f"{fmt(r.get('critical_cut_length_m'))} | {fmt(r.get('propagation_speed_m_per_s'))} | "
                      f"{fmt(r.get('touchdown_distance_m'))} |")
+    uncertainty = summary.get("results", {}).get("uncertainty") or {}
+    if uncertainty.get("parameters"):
+        confidence = next((u["confidence"] for u in uncertainty.values() if isinstance(u, dict) and "confidence" in u), 0.95)
+        lines += ["", "## The calibration's uncertainty in the answers", "",
+                  f"First-order sensitivities: every snowpack scene again with each parameter raised by one "
+                  f"standard error (coupling/pipeline_uncertainty.h); {100 * confidence:g} % intervals.", "",
+                  "| parameter | value | standard error |", "|---|---|---|"]
+        for name, p in uncertainty["parameters"].items():
+            lines.append(f"| {name} | {fmt(p['value'], 4)} | {fmt(p['standard_error'], 3)} |")
+        lines += ["", "| stage | answer | value | interval | dominant parameter | change per standard error |",
+                  "|---|---|---|---|---|---|"]
+        for s in snowpack_stages(summary):
+            for key, a in (uncertainty.get(s["name"], {}).get("answers") or {}).items():
+                if "interval" in a:
+                    changes = ", ".join(f"{n} {v['change_per_standard_error']:+.3g}" for n, v in a["parameters"].items())
+                    lines.append(f"| {s['name']} | {a['label']} | {fmt(a['value'])} | {fmt(a['interval'][0])} – "
+                                 f"{fmt(a['interval'][1])} | {a['dominant_parameter']} | {changes} |")
+                else:
+                    lines.append(f"| {s['name']} | {a['label']} | {fmt(a.get('value'))} | {a['status']} | — | — |")
+        lengths = {uncertainty[s['name']].get("element_length_m") for s in snowpack_stages(summary) if s["name"] in uncertainty}
+        lines += ["", f"Element length along the column: {', '.join(f'{v:g} m' for v in lengths if v)} "
+                  "(changes in the critical cut or the touchdown distance below it are not resolved)."]
     lines += ["", "## Wall time", "", "| stage | status | wall time [s] |", "|---|---|---|"]
     for s in summary["stages"]:
         lines.append(f"| {s['name']} | {s['status']} | {s['wall_s']:.1f} |")
@@ -138,7 +165,7 @@ def plot(run_dir, summary, scale, path):
         plane(axes[0, 1], m["points"], m["fits/sigma_tau"], "sigma", "tau", scale,
               "(σ, τ) base stresses (Ritter et al. 2020)", "σ [kPa] (compression +)", "τ [kPa]")
     ax = axes[1, 0]
-    for k, s in enumerate(summary["stages"][1:]):
+    for k, s in enumerate(snowpack_stages(summary)):
         series = os.path.join(run_dir, s["directory"], "series.h5")
         if not os.path.exists(series):
             continue

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -39,6 +40,7 @@ namespace anticrack
     {
       pid_t pid = -1;
       int report_pipe = -1;
+      std::chrono::steady_clock::time_point at;
     };
 
     /// Forks the worker of `member`; returns pid -1 (and sets `error`) if the pipe or the fork fails.
@@ -89,16 +91,17 @@ namespace anticrack
         std::_Exit(code); // not exit(): the parent's atexit handlers and static objects are the parent's
       }
       close(channel[1]);
-      return {pid, channel[0]};
+      return {pid, channel[0], std::chrono::steady_clock::now()};
     }
 
     WorkerExit collect(const Started &worker, int status)
     {
       WorkerExit exit;
       if (WIFSIGNALED(status))
-        exit = {128 + WTERMSIG(status), WTERMSIG(status), ""};
+        exit = {128 + WTERMSIG(status), WTERMSIG(status), "", 0};
       else
-        exit = {WEXITSTATUS(status), 0, ""};
+        exit = {WEXITSTATUS(status), 0, "", 0};
+      exit.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - worker.at).count();
       char buffer[max_worker_report];
       ssize_t n;
       while ((n = read(worker.report_pipe, buffer, sizeof buffer)) > 0 || (n < 0 && errno == EINTR))

@@ -29,6 +29,7 @@ namespace anticrack
     int exit_code = 0; ///< its return value, or 128 + signal if a signal ended it
     int signal = 0;    ///< the signal that ended it (0: it returned)
     std::string report; ///< what the job put in its `report` (empty if it did not return)
+    double wall_s = 0;  ///< from its fork to its end, as the parent saw it [s]
   };
 
   /// The largest report a worker can send back [bytes] (a pipe's atomic write; longer ones are cut).

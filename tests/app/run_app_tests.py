@@ -1658,7 +1658,8 @@ def pipeline_small(work):
     stdout, _ = anticrack("run", pipeline, "-o", out)
     summary = json.load(open(os.path.join(out, "summary.json")))
     check(summary["status"] == "completed", f"pipeline status {summary['status']}")
-    check([s["name"] for s in summary["stages"]] == ["weak layer", "flat", "steep"], f"stages {summary['stages']}")
+    check([s["name"] for s in summary["stages"]] == ["weak layer", "flat", "steep", "uncertainty"],
+          f"stages {summary['stages']}")
     check(all(s["status"] == "completed" and len(s["inputs_sha256"]) == 64 for s in summary["stages"]),
           f"stages {summary['stages']}")
     dem = read_material(os.path.join(out, "weak_layer", "material.prm"))
@@ -1677,12 +1678,21 @@ def pipeline_small(work):
         check(list(fem["scene"]["material_files"]) == ["weak layer"], f"{stage}: material files {fem['scene']}")
     for name in ["report.md", "report.png"]:
         check(os.path.getsize(os.path.join(out, name)) > 1000, f"{name} missing or empty")
+    # One realization: only the surface's parameters have a spread, each rerun once per PST.
+    uncertainty = summary["results"]["uncertainty"]
+    check(sorted(uncertainty["parameters"]) == ["M", "beta", "p0"], f"uncertain parameters {uncertainty['parameters']}")
+    for stage in ["flat", "steep"]:
+        cut = uncertainty[stage]["answers"]["critical_cut_length_m"]
+        check("interval" in cut and cut["interval"][0] <= cut["value"] <= cut["interval"][1] or
+              cut["status"].startswith("not linear"), f"{stage}: critical cut {cut}")
+        for p in uncertainty["parameters"]:
+            check(os.path.exists(os.path.join(out, "uncertainty", f"{stage}_{p}", "summary.json")), f"{stage}_{p} run")
     check("anticrack pipeline:" in stdout and "weak layer (material_snow.prm" in stdout and "flat: completed" in stdout,
           f"no short report:\n{stdout[-2000:]}")
 
     stdout, _ = anticrack("run", pipeline, "-o", out, expect=2)
     stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
-    check(stdout.count("completed earlier, inputs unchanged") == 3, f"an unchanged stage was rerun:\n{stdout}")
+    check(stdout.count("completed earlier, inputs unchanged") == 4, f"an unchanged stage was rerun:\n{stdout}")
     write(steep, open(steep).read().replace("set Slope angle [deg] = 30", "set Slope angle [deg] = 25"))
     stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
     check(stdout.count("completed earlier, inputs unchanged") == 2 and "steep: completed" in stdout,

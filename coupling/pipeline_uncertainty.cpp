@@ -1,0 +1,195 @@
+#include "coupling/pipeline_uncertainty.h"
+
+#include "coupling/calibrate.h"
+#include "util/input_error.h"
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/normal.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace anticrack::coupling
+{
+  namespace fs = std::filesystem;
+  using Json = nlohmann::ordered_json;
+
+  namespace
+  {
+    std::string text_of(const fs::path &file)
+    {
+      std::ifstream in(file);
+      if (!in)
+        throw InputError("cannot read " + file.string());
+      std::ostringstream text;
+      text << in.rdbuf();
+      return text.str();
+    }
+
+    /// The standard error of a mean over realizations from its summary.json statistics, 0 if none.
+    double standard_error(const Json &statistics)
+    {
+      if (!statistics.is_object() || !statistics["standard_deviation"].is_number() || statistics.value("samples", 0) < 2)
+        return 0;
+      return statistics["standard_deviation"].get<double>() / std::sqrt(statistics["samples"].get<double>());
+    }
+
+    const fem::MaterialEntry &entry_named(const std::string &name)
+    {
+      for (const fem::MaterialEntry &e : fem::material_entries())
+        if (e.name() == name)
+          return e;
+      throw std::logic_error("no material entry " + name);
+    }
+
+    /// The answers whose intervals the pipeline reports: summary.json results key and label.
+    const std::vector<std::pair<const char *, const char *>> &answers()
+    {
+      static const std::vector<std::pair<const char *, const char *>> list = {
+        {"critical_cut_length_m", "critical cut length [m]"},
+        {"propagation_speed_m_per_s", "propagation speed [m/s]"},
+        {"touchdown_distance_m", "touchdown distance [m]"}};
+      return list;
+    }
+  } // namespace
+
+  UncertainParameters uncertain_parameters(const fs::path &weak_layer_directory)
+  {
+    const Json summary = Json::parse(text_of(weak_layer_directory / "summary.json"));
+    const Json &m = summary["calibration"]["microstructures"][0];
+    const fem::MaterialFile snow = fem::read_material_file_text(text_of(weak_layer_directory / material_file_name(0, 1, true)), "material_snow.prm");
+    const fem::MaterialFile dem = fem::read_material_file_text(text_of(weak_layer_directory / material_file_name(0, 1)), "material.prm");
+    const double S = snow.material.p0 / dem.material.p0; // the stress scale of the conversion
+
+    // p0, beta, M from the fit's covariance; p0 in snow units.
+    const Json &covariance = m["p_q_path_plane"]["models"]["cohesive_cam_clay"]["covariance"];
+    Eigen::Matrix3d surface;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        surface(r, c) = covariance.at(r).at(c).is_number() ? covariance[r][c].get<double>() : std::nan("");
+    const Eigen::Vector3d scale(S, 1, 1);
+    surface = scale.asDiagonal() * surface * scale.asDiagonal();
+
+    struct Candidate
+    {
+      const char *name, *entry;
+      double value, variance;
+    };
+    std::vector<Candidate> candidates = {
+      {"p0", "Compressive strength p0 [Pa]", snow.material.p0, surface(0, 0)},
+      {"beta", "Tensile strength ratio beta", snow.material.beta, surface(1, 1)},
+      {"M", "Critical state slope M", snow.material.M, surface(2, 2)},
+      {"E", "Young's modulus [Pa]", snow.material.youngs_modulus,
+       std::pow(S * standard_error(m["elastic"]["youngs_modulus_Pa"]), 2)},
+      {"xi", "Hardening factor xi", snow.material.hardening_factor,
+       std::pow(standard_error(m["softening"]["hardening_factor_xi"]), 2)}};
+    std::vector<int> kept;
+    UncertainParameters u;
+    u.confidence = snow.uncertainty.confidence;
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      if (std::isfinite(candidates[k].variance) && candidates[k].variance > 0)
+      {
+        kept.push_back(static_cast<int>(k));
+        u.names.push_back(candidates[k].name);
+        u.entries.push_back(candidates[k].entry);
+      }
+    const auto n = static_cast<Eigen::Index>(kept.size());
+    u.value.resize(n);
+    u.covariance = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index a = 0; a < n; ++a)
+    {
+      const auto ka = static_cast<std::size_t>(kept[static_cast<std::size_t>(a)]);
+      u.value(a) = candidates[ka].value;
+      for (Eigen::Index b = 0; b < n; ++b)
+      {
+        const auto kb = static_cast<std::size_t>(kept[static_cast<std::size_t>(b)]);
+        if (ka < 3 && kb < 3)
+          u.covariance(a, b) = surface(static_cast<Eigen::Index>(ka), static_cast<Eigen::Index>(kb));
+        else if (ka == kb)
+          u.covariance(a, b) = candidates[ka].variance;
+      }
+    }
+    return u;
+  }
+
+  fem::MaterialFile perturbed_material(const fem::MaterialFile &material, const UncertainParameters &u, std::size_t k)
+  {
+    fem::MaterialFile file = material;
+    const auto i = static_cast<Eigen::Index>(k);
+    const double step = std::sqrt(u.covariance(i, i));
+    file.material.*entry_named(u.entries[k]).number += step;
+    file.material.name += ", " + u.names[k] + " + 1 standard error";
+    file.comment.push_back("");
+    file.comment.push_back("Sensitivity run of the pipeline: " + u.names[k] + " raised by one standard error, " +
+                           fem::material_file_number(step) + " (coupling/pipeline_uncertainty.h).");
+    return file;
+  }
+
+  Json linearised_intervals(const UncertainParameters &u, const Json &base, const std::vector<Json> &perturbed,
+                            double element_length)
+  {
+    const double z = boost::math::quantile(boost::math::normal(), 0.5 + 0.5 * u.confidence);
+    const auto n = static_cast<Eigen::Index>(u.names.size());
+    Json out;
+    out["confidence"] = u.confidence;
+    out["method"] = "first-order sensitivities, one FE run per parameter raised by one standard error "
+                    "(coupling/pipeline_uncertainty.h)";
+    out["element_length_m"] = element_length;
+    for (const auto &[key, label] : answers())
+    {
+      Json a;
+      a["label"] = label;
+      if (!base.contains(key) || !base[key].is_number())
+      {
+        a["status"] = "no value in the base run";
+        out["answers"][key] = a;
+        continue;
+      }
+      const double y0 = base[key].get<double>();
+      a["value"] = y0;
+      Eigen::VectorXd g(n);
+      bool linear = true;
+      std::string why;
+      for (Eigen::Index k = 0; k < n; ++k)
+      {
+        const Json &r = perturbed[static_cast<std::size_t>(k)];
+        if (!r.contains(key) || !r[key].is_number() || r.value("crack", "") != base.value("crack", ""))
+        {
+          linear = false;
+          why = u.names[static_cast<std::size_t>(k)] + " + 1 standard error changes the outcome (crack " +
+                r.value("crack", std::string("?")) + ")";
+          g(k) = 0;
+          continue;
+        }
+        g(k) = (r[key].get<double>() - y0) / std::sqrt(u.covariance(k, k));
+      }
+      if (!linear)
+      {
+        a["status"] = "not linear: " + why;
+        out["answers"][key] = a;
+        continue;
+      }
+      const Eigen::VectorXd sigma_g = u.covariance * g;
+      const double variance = g.dot(sigma_g), sd = std::sqrt(std::max(variance, 0.0));
+      a["status"] = "linearised";
+      a["standard_deviation"] = sd;
+      a["interval"] = {y0 - z * sd, y0 + z * sd};
+      Json shares = Json::object();
+      std::string dominant;
+      double largest = -1;
+      for (Eigen::Index k = 0; k < n; ++k)
+      {
+        const double share = variance > 0 ? g(k) * sigma_g(k) / variance : 0;
+        const double change = g(k) * std::sqrt(u.covariance(k, k));
+        shares[u.names[static_cast<std::size_t>(k)]] = {{"change_per_standard_error", change}, {"variance_share", share}};
+        if (std::abs(change) > largest)
+          largest = std::abs(change), dominant = u.names[static_cast<std::size_t>(k)];
+      }
+      a["parameters"] = shares;
+      a["dominant_parameter"] = variance > 0 ? dominant : "none (no parameter moves it)";
+      out["answers"][key] = a;
+    }
+    return out;
+  }
+} // namespace anticrack::coupling

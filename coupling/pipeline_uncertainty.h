@@ -1,0 +1,54 @@
+// The calibration's uncertainty carried to the PST answers (critical cut length, propagation speed,
+// touchdown distance) by first-order sensitivities from FE runs.
+//
+// The uncertain parameters, in snow units, and their covariance Σ:
+//   - p0, β, M: the covariance of the surface's fit (delta method, params/envelope_fit.h), p0's
+//     rows and columns scaled by the stress scale S (coupling/snow_units.h);
+//   - E and ξ: the standard errors of their means over the realizations, sd/√n, independent of the
+//     surface and of each other (separate estimates from separate curves).
+// For each snowpack scene the FE runs once more per parameter i with θ_i raised by one standard
+// error h_i = √Σ_ii, everything else as calibrated. The sensitivity of an answer y is
+// g_i = (y_i − y_0)/h_i, its variance g^T Σ g, its interval y_0 ± z σ_y with z the normal quantile of
+// the material file's confidence. The dominant parameter is the one whose standard error moves the
+// answer most, |g_i| h_i. Each parameter's share of the variance, g_i (Σ g)_i / g^T Σ g, is reported
+// beside it (the shares add up to 1; p0, β and M are correlated in the fit, so a share can be small or
+// negative where a correlated parameter's change cancels part of its own). Linearisation: one-sided differences of one standard error, justified where y varies
+// smoothly over ±1 standard error; a perturbed run whose answer is missing (the crack did not run,
+// or arrested where the base run reached the end) makes the answer's interval "not linear", which
+// the report says instead of a number. The mesh resolves y to about one element length: a
+// sensitivity below (element length)/h_i is not resolved, and the report gives the element length.
+#pragma once
+
+#include "fem/material/material_file.h"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace anticrack::coupling
+{
+  struct UncertainParameters
+  {
+    std::vector<std::string> names;   ///< p0, beta, M, E, xi
+    std::vector<std::string> entries; ///< their entries of subsection Material
+    Eigen::VectorXd value;            ///< calibrated, snow units
+    Eigen::MatrixXd covariance;       ///< Σ, snow units
+    double confidence = 0.95;
+  };
+
+  /// From a pipeline's weak-layer folder (summary.json, material.prm, material_snow.prm). Parameters
+  /// without a spread (one realization) are left out.
+  UncertainParameters uncertain_parameters(const std::filesystem::path &weak_layer_directory);
+
+  /// `material` with parameter k raised by one standard error.
+  fem::MaterialFile perturbed_material(const fem::MaterialFile &material, const UncertainParameters &u, std::size_t k);
+
+  /// The answers' intervals of one scene: `base` and `perturbed[k]` are the results of its
+  /// summary.json (base run and run k), `element_length` [m] its mesh's.
+  nlohmann::ordered_json linearised_intervals(const UncertainParameters &u, const nlohmann::ordered_json &base,
+                                              const std::vector<nlohmann::ordered_json> &perturbed,
+                                              double element_length);
+} // namespace anticrack::coupling
