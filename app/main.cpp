@@ -37,8 +37,9 @@ namespace
 
   void print_framed_error(const std::string &title, const std::string &message)
   {
-    // Under mpirun every rank finds the same bad input: rank 0 reports it.
-    if (launcher_rank() != 0)
+    // Under mpirun every rank finds the same bad input: rank 0 reports it (ANTICRACK_DEBUG_RANKS set:
+    // every rank does, for an error that only another rank meets).
+    if (launcher_rank() != 0 && !std::getenv("ANTICRACK_DEBUG_RANKS"))
       return;
     const std::string rule(78, '-');
     std::cerr << "\n" << rule << "\n" << title << "\n\n" << message << "\n" << rule << "\n";

@@ -123,7 +123,7 @@ namespace anticrack::coupling
     {
       const Json summary = read_json(directory / "summary.json");
       if (summary.is_null())
-        return Json(); // the stage did not get as far as its summary
+        return Json::object(); // the stage did not get as far as its summary
       Json h{{"status", summary["status"]}};
       if (summary["results"].contains("mesh"))
         h["element_length_m"] = summary["results"]["mesh"].value("element_length_m", 0.0);
@@ -250,6 +250,7 @@ namespace anticrack::coupling
         {
           const auto start = Clock::now();
           const int code = fem::run_snowpack_scene_in_mpi(jobs[k].options);
+          MPI_Barrier(MPI_COMM_WORLD); // rank 0 writes the run's summary.json, which `done` reads
           done(k, code, std::chrono::duration<double>(Clock::now() - start).count());
         }
         return;

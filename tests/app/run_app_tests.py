@@ -1702,6 +1702,23 @@ def pipeline_small(work):
     check("completed earlier, inputs unchanged" not in stdout and stdout.count("completed earlier, skipped") == 5,
           f"new snow units: every stage reruns, the campaign resumes:\n{stdout}")
 
+    # Under mpirun every stage runs on both ranks (MPI initialised once): the same material to the
+    # bit, the same crack outcomes and critical cuts, speeds within 1e-6 (the FE on 2 ranks).
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    parallel = os.path.join(work, "mpi")
+    result = subprocess.run(["mpirun", "--oversubscribe", "-np", "2", ANTICRACK, "run", pipeline, "-o", parallel],
+                            capture_output=True, text=True, env=environment, cwd=work, timeout=300)
+    check(result.returncode == 0, f"mpirun exit {result.returncode}:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}")
+    a, b = (json.load(open(os.path.join(d, "summary.json")))["results"] for d in (out, parallel))
+    ma, mb = (read_material(os.path.join(d, "weak_layer", "material_snow.prm")) for d in (out, parallel))
+    for name in WEAK_LAYER_MATERIAL:
+        check(ma[name] == mb[name], f"{name}: {ma[name]} serially, {mb[name]} under mpirun")
+    for stage in ["flat", "steep"]:
+        ra, rb = a["analyses"][stage], b["analyses"][stage]
+        check(ra["crack"] == rb["crack"] and ra["critical_cut_length_m"] == rb["critical_cut_length_m"] and
+              abs(ra["propagation_speed_m_per_s"] / rb["propagation_speed_m_per_s"] - 1) < 1e-6,
+              f"{stage}: serial {ra}, mpirun {rb}")
+
 
 @case
 def fem_resume(work):
