@@ -141,19 +141,24 @@ namespace anticrack::coupling
                   {"status", s.status},   {"wall_s", s.wall_s}, {"results", s.results}};
     }
 
-    /// "about 3 min 20 s left" from the earlier run's wall times of the stages not done yet.
-    std::string time_left(const std::vector<Stage> &stages, std::size_t from, const std::map<std::string, Json> &before)
+    /// "about 3 min 20 s left" from the earlier run's wall times of the stages not done yet, or for
+    /// stage `from` itself from `estimate` (this run's measure of it) where there is no earlier run.
+    std::string time_left(const std::vector<Stage> &stages, std::size_t from, const std::map<std::string, Json> &before,
+                          std::optional<double> estimate = std::nullopt)
     {
       double left = 0;
       for (std::size_t k = from; k < stages.size(); ++k)
       {
         const auto it = before.find(stages[k].name);
-        if (it == before.end() || !it->second.contains("wall_s") || !it->second["wall_s"].is_number() ||
-            it->second["wall_s"].get<double>() <= 0)
+        if (it != before.end() && it->second.contains("wall_s") && it->second["wall_s"].is_number() &&
+            it->second["wall_s"].get<double>() > 0)
+          left += it->second["wall_s"].get<double>();
+        else if (k == from && estimate)
+          left += *estimate;
+        else
           return "no estimate of the time left (first run of these stages)";
-        left += it->second["wall_s"].get<double>();
       }
-      return "about " + format_duration(left) + " left (the earlier run's stage times)";
+      return "about " + format_duration(left) + " left" + (estimate ? "" : " (the earlier run's stage times)");
     }
 
     std::string number(double v, int digits = 3)
@@ -405,11 +410,11 @@ namespace anticrack::coupling
              (it->second.value("status", "") == "completed" || it->second.value("status", "") == "completed earlier") &&
              fs::exists(s.kind == "uncertainty" ? s.directory : s.directory / "summary.json");
     };
-    const auto announce = [&](std::size_t k) {
+    const auto announce = [&](std::size_t k, std::optional<double> estimate = std::nullopt) {
       if (root)
         std::cout << "\npipeline stage " << k + 1 << "/" << stages.size() << ", " << stages[k].name << " ("
                   << stages[k].kind << "): elapsed " << format_duration(std::chrono::duration<double>(Clock::now() - start).count())
-                  << ", " << time_left(stages, k, before) << "\n"
+                  << ", " << time_left(stages, k, before, estimate) << "\n"
                   << std::flush;
     };
 
@@ -521,9 +526,16 @@ namespace anticrack::coupling
       }
       else if (!failed && !interrupted)
       {
-        announce(stages.size() - 1);
-        const auto stage_start = Clock::now();
         const UncertainParameters u = uncertain_parameters(weak.directory);
+        // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
+        // parameters times scenes over the cores, each as long as the longest snowpack stage.
+        double longest = 0;
+        for (std::size_t k = 1; k + 1 < stages.size(); ++k)
+          longest = std::max(longest, stages[k].wall_s);
+        const auto runs = static_cast<int>(u.names.size() * (stages.size() - 2));
+        announce(stages.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options)))
+                                                : std::nullopt);
+        const auto stage_start = Clock::now();
         const fem::MaterialFile calibrated = fem::read_material_file_text(text_of(material), material.string());
         std::vector<FeJob> jobs;
         std::vector<std::pair<std::size_t, std::size_t>> job_of; // (snowpack stage, parameter)
