@@ -8,7 +8,9 @@
 #include "fem/analysis/run.h"
 #include "fem/material/material_file.h"
 #include "util/input_error.h"
+#include "util/atomic_file.h"
 #include "util/mpi_session.h"
+#include "util/format.h"
 #include "util/progress.h"
 #include "util/run_summary.h"
 #include "util/sha256.h"
@@ -51,27 +53,11 @@ namespace anticrack::coupling
       std::string scene_file;    ///< the scene the stage runs
     };
 
-    std::string text_of(const fs::path &file)
+    /// A stage's summary.json, or null if the stage did not get as far as writing one.
+    Json summary_if_any(const fs::path &directory)
     {
-      std::ifstream in(file);
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
-    }
-
-    Json read_json(const fs::path &file)
-    {
-      std::ifstream in(file);
-      if (!in)
-        return Json();
-      try
-      {
-        return Json::parse(in);
-      }
-      catch (const std::exception &)
-      {
-        return Json();
-      }
+      std::error_code error;
+      return fs::exists(directory / "summary.json", error) ? read_json_file((directory / "summary.json").string()) : Json();
     }
 
     /// Stage directories: the scene's stem, numbered if two scenes share one.
@@ -92,14 +78,14 @@ namespace anticrack::coupling
     /// well the FE point repeats the DEM tests.
     Json calibration_headline(const fs::path &directory)
     {
-      const Json summary = read_json(directory / "summary.json");
+      const Json summary = summary_if_any(directory);
       Json h;
       if (summary.is_null())
         return h; // the stage did not get as far as its summary
       const Json &m = summary["calibration"]["microstructures"][0];
       const fs::path file = directory / material_file_name(0, 1, true);
       h["material_file"] = file.string();
-      const fem::MaterialFile material = fem::read_material_file_text(text_of(file), file.string());
+      const fem::MaterialFile material = fem::read_material_file_text(read_text_file((file).string()), file.string());
       for (const fem::MaterialEntry &e : fem::material_entries())
         if (e.number)
         {
@@ -121,14 +107,16 @@ namespace anticrack::coupling
     /// The headline of a snowpack stage (the FE's results without the bulky entries).
     Json snowpack_headline(const fs::path &directory)
     {
-      const Json summary = read_json(directory / "summary.json");
+      const Json summary = summary_if_any(directory);
       if (summary.is_null())
         return Json::object(); // the stage did not get as far as its summary
       Json h{{"status", summary["status"]}};
       if (summary["results"].contains("mesh"))
         h["element_length_m"] = summary["results"]["mesh"].value("element_length_m", 0.0);
-      for (const char *key : {"analysis", "critical_cut_length_m", "crack", "arrest_position_m",
-                              "propagation_speed_m_per_s", "touchdown_distance_m", "fracture_energy_J_per_m2"})
+      std::vector<const char *> keys = {"analysis", "crack", "arrest_position_m", "fracture_energy_J_per_m2"};
+      for (const PstAnswer &a : pst_answers())
+        keys.push_back(a.key);
+      for (const char *key : keys)
         if (summary["results"].contains(key))
           h[key] = summary["results"][key];
       return h;
@@ -161,14 +149,6 @@ namespace anticrack::coupling
       return "about " + format_duration(left) + " left" + (estimate ? "" : " (the earlier run's stage times)");
     }
 
-    std::string number(double v, int digits = 3)
-    {
-      std::ostringstream s;
-      s.precision(digits);
-      s << v;
-      return s.str();
-    }
-
     /// The short version of the report, printed at the end of the run.
     std::string short_report(const fs::path &dir, const std::vector<Stage> &stages)
     {
@@ -179,22 +159,22 @@ namespace anticrack::coupling
       {
         const auto with_interval = [&](const char *entry, double scale, const char *unit) {
           const Json &e = w["material"][entry];
-          std::string text = number(e["value"].get<double>() * scale) + unit;
+          std::string text = format_number(e["value"].get<double>() * scale, 3) + unit;
           if (e.contains("interval") && e["interval"][0].is_number() && std::isfinite(e["interval"][0].get<double>()))
-            text += " [" + number(e["interval"][0].get<double>() * scale) + ", " +
-                    number(e["interval"][1].get<double>() * scale) + "]";
+            text += " [" + format_number(e["interval"][0].get<double>() * scale, 3) + ", " +
+                    format_number(e["interval"][1].get<double>() * scale, 3) + "]";
           return text;
         };
         out << "  weak layer (" << fs::path(w["material_file"].get<std::string>()).filename().string() << ", "
-            << number(100 * w.value("confidence", 0.95)) << " % intervals): p0 = "
+            << format_number(100 * w.value("confidence", 0.95), 3) << " % intervals): p0 = "
             << with_interval("Compressive strength p0 [Pa]", 1e-3, " kPa")
             << ", beta = " << with_interval("Tensile strength ratio beta", 1, "")
             << ", M = " << with_interval("Critical state slope M", 1, "")
             << ", E = " << with_interval("Young's modulus [Pa]", 1e-6, " MPa")
             << ", xi = " << with_interval("Hardening factor xi", 1, "")
-            << ", density " << number(w["material"]["Density [kg/m^3]"]["value"].get<double>()) << " kg/m^3\n"
-            << "    the FE point repeats the DEM tests to " << number(100 * w["material_point_replay"]["largest_angle_error"].get<double>(), 2)
-            << " % at worst per angle (fit RMSE " << number(100 * w["material_point_replay"]["fit_relative_rmse"].get<double>(), 2) << " %)\n";
+            << ", density " << format_number(w["material"]["Density [kg/m^3]"]["value"].get<double>(), 3) << " kg/m^3\n"
+            << "    the FE point repeats the DEM tests to " << format_number(100 * w["material_point_replay"]["largest_angle_error"].get<double>(), 2)
+            << " % at worst per angle (fit RMSE " << format_number(100 * w["material_point_replay"]["fit_relative_rmse"].get<double>(), 2) << " %)\n";
       }
       const Json &uncertainty = stages.back().results;
       for (std::size_t k = 1; k + 1 < stages.size(); ++k)
@@ -206,20 +186,19 @@ namespace anticrack::coupling
         const auto answer = [&](const char *key, const char *what, const char *unit) {
           if (!r.contains(key) || !r[key].is_number())
             return;
-          out << ", " << what << " " << number(r[key].get<double>()) << unit;
+          out << ", " << what << " " << format_number(r[key].get<double>(), 3) << " " << unit;
           if (intervals.contains(key) && intervals[key].contains("interval"))
-            out << " [" << number(intervals[key]["interval"][0].get<double>()) << ", "
-                << number(intervals[key]["interval"][1].get<double>()) << "] (mostly "
+            out << " [" << format_number(intervals[key]["interval"][0].get<double>(), 3) << ", "
+                << format_number(intervals[key]["interval"][1].get<double>(), 3) << "] (mostly "
                 << intervals[key]["dominant_parameter"].get<std::string>() << ")";
           else if (intervals.contains(key))
             out << " (" << intervals[key].value("status", std::string()) << ")";
         };
         if (r.contains("crack"))
           out << ", crack " << r["crack"].get<std::string>();
-        answer("critical_cut_length_m", "critical cut", " m");
-        answer("propagation_speed_m_per_s", "speed", " m/s");
-        answer("touchdown_distance_m", "touchdown distance", " m");
-        answer("arrest_position_m", "arrested at", " m");
+        for (const PstAnswer &a : pst_answers())
+          answer(a.key, a.label, a.unit);
+        answer("arrest_position_m", "arrested at", "m");
         out << "\n";
       }
       out << "  wall time per stage:";
@@ -343,7 +322,7 @@ namespace anticrack::coupling
 
     std::map<std::string, Json> before; // the earlier run's stage records, by name
     if (options.resume)
-      for (const Json &s : read_json(dir / "summary.json").value("stages", Json::array()))
+      for (const Json &s : summary_if_any(dir).value("stages", Json::array()))
         before[s.value("name", "")] = s;
     const std::vector<std::string> names = stage_names(scene.snowpack_scenes);
     if (root)
@@ -370,7 +349,7 @@ namespace anticrack::coupling
       std::ostringstream snow;
       snow.precision(17);
       snow << "\nSnow units: " << scene.snow.bond_tensile_strength << " " << scene.snow.particle_density;
-      s.inputs_sha256 = util::sha256_hex(text_of(scene.weak_layer_scene) + snow.str());
+      s.inputs_sha256 = util::sha256_hex(read_text_file(scene.weak_layer_scene) + snow.str());
       stages.push_back(s);
     }
     for (std::size_t k = 0; k < names.size(); ++k)
@@ -536,7 +515,7 @@ namespace anticrack::coupling
         announce(stages.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options)))
                                                 : std::nullopt);
         const auto stage_start = Clock::now();
-        const fem::MaterialFile calibrated = fem::read_material_file_text(text_of(material), material.string());
+        const fem::MaterialFile calibrated = fem::read_material_file_text(read_text_file((material).string()), material.string());
         std::vector<FeJob> jobs;
         std::vector<std::pair<std::size_t, std::size_t>> job_of; // (snowpack stage, parameter)
         for (std::size_t k = 0; k < u.names.size(); ++k)

@@ -1,7 +1,9 @@
 #include "coupling/pipeline_uncertainty.h"
 
 #include "coupling/calibrate.h"
+#include "util/atomic_file.h"
 #include "util/input_error.h"
+#include "util/run_summary.h"
 
 #include <Eigen/Dense>
 #include <boost/math/distributions/normal.hpp>
@@ -17,16 +19,6 @@ namespace anticrack::coupling
 
   namespace
   {
-    std::string text_of(const fs::path &file)
-    {
-      std::ifstream in(file);
-      if (!in)
-        throw InputError("cannot read " + file.string());
-      std::ostringstream text;
-      text << in.rdbuf();
-      return text.str();
-    }
-
     /// The standard error of a mean over realizations from its summary.json statistics, 0 if none.
     double standard_error(const Json &statistics)
     {
@@ -43,23 +35,22 @@ namespace anticrack::coupling
       throw std::logic_error("no material entry " + name);
     }
 
-    /// The answers whose intervals the pipeline reports: summary.json results key and label.
-    const std::vector<std::pair<const char *, const char *>> &answers()
-    {
-      static const std::vector<std::pair<const char *, const char *>> list = {
-        {"critical_cut_length_m", "critical cut length [m]"},
-        {"propagation_speed_m_per_s", "propagation speed [m/s]"},
-        {"touchdown_distance_m", "touchdown distance [m]"}};
-      return list;
-    }
   } // namespace
+
+  const std::vector<PstAnswer> &pst_answers()
+  {
+    static const std::vector<PstAnswer> list = {{"critical_cut_length_m", "critical cut", "m"},
+                                                {"propagation_speed_m_per_s", "speed", "m/s"},
+                                                {"touchdown_distance_m", "touchdown distance", "m"}};
+    return list;
+  }
 
   UncertainParameters uncertain_parameters(const fs::path &weak_layer_directory)
   {
-    const Json summary = Json::parse(text_of(weak_layer_directory / "summary.json"));
+    const Json summary = read_json_file((weak_layer_directory / "summary.json").string());
     const Json &m = summary["calibration"]["microstructures"][0];
-    const fem::MaterialFile snow = fem::read_material_file_text(text_of(weak_layer_directory / material_file_name(0, 1, true)), "material_snow.prm");
-    const fem::MaterialFile dem = fem::read_material_file_text(text_of(weak_layer_directory / material_file_name(0, 1)), "material.prm");
+    const fem::MaterialFile snow = fem::read_material_file_text(read_text_file((weak_layer_directory / material_file_name(0, 1, true)).string()), "material_snow.prm");
+    const fem::MaterialFile dem = fem::read_material_file_text(read_text_file((weak_layer_directory / material_file_name(0, 1)).string()), "material.prm");
     const double S = snow.material.p0 / dem.material.p0; // the stress scale of the conversion
 
     // p0, beta, M from the fit's covariance; p0 in snow units.
@@ -136,10 +127,10 @@ namespace anticrack::coupling
     out["method"] = "first-order sensitivities, one FE run per parameter raised by one standard error "
                     "(coupling/pipeline_uncertainty.h)";
     out["element_length_m"] = element_length;
-    for (const auto &[key, label] : answers())
+    for (const auto &[key, label, unit] : pst_answers())
     {
       Json a;
-      a["label"] = label;
+      a["label"] = std::string(label) + " [" + unit + "]";
       if (!base.contains(key) || !base[key].is_number())
       {
         a["status"] = "no value in the base run";

@@ -30,6 +30,14 @@
 
 namespace anticrack::coupling
 {
+  /// The PST answers of a snowpack stage that the pipeline reports, with intervals: the key in the
+  /// FE's summary.json results, a label and the unit.
+  struct PstAnswer
+  {
+    const char *key, *label, *unit;
+  };
+  const std::vector<PstAnswer> &pst_answers();
+
   struct UncertainParameters
   {
     std::vector<std::string> names;   ///< p0, beta, M, E, xi

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
 #include <locale>
 #include <stdexcept>
 #include <unistd.h>
@@ -66,5 +67,15 @@ namespace anticrack
           throw std::runtime_error("cannot write " + temporary);
       },
       durable);
+  }
+  std::string read_text_file(const std::string &file)
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+      throw std::runtime_error("cannot read " + file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad())
+      throw std::runtime_error("error reading " + file);
+    return text;
   }
 } // namespace anticrack

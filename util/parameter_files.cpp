@@ -1,5 +1,6 @@
 #include "util/parameter_files.h"
 
+#include "util/atomic_file.h"
 #include "util/input_error.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -133,12 +134,14 @@ namespace anticrack
 
   std::string read_scene_file(const std::string &file)
   {
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
+    try
+    {
+      return read_text_file(file);
+    }
+    catch (const std::runtime_error &)
+    {
       throw InputError("Cannot read the scene file <" + file + ">.");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    }
   }
 
   std::string scene_kind_in_file(const std::string &file)

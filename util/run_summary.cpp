@@ -39,6 +39,19 @@ namespace anticrack
     return v;
   }
 
+  Json read_json_file(const std::string &file)
+  {
+    const std::string text = read_text_file(file);
+    try
+    {
+      return Json::parse(text);
+    }
+    catch (const std::exception &e)
+    {
+      throw std::runtime_error(file + " is not valid JSON: " + e.what());
+    }
+  }
+
   void write_json_atomically(const std::string &file, const Json &json)
   {
     write_text_atomically(file, [&](std::ostream &out) {

@@ -16,4 +16,8 @@ namespace anticrack
 
   /// Writes `json` (indented) to `file` via file.tmp and a rename; non-finite numbers become null.
   void write_json_atomically(const std::string &file, const Json &json);
+
+  /// The JSON of `file` (a summary, a checkpoint's info); throws std::runtime_error naming the file if
+  /// it cannot be read or parsed.
+  Json read_json_file(const std::string &file);
 } // namespace anticrack

@@ -97,14 +97,6 @@ namespace anticrack::dem
       return begin < end ? std::pair{begin, end} : std::pair{std::size_t(0), std::size_t(0)};
     }
 
-    Json read_json(const fs::path &file)
-    {
-      std::ifstream in(file);
-      if (!in)
-        throw std::runtime_error("cannot open " + file.string());
-      return Json::parse(in);
-    }
-
     /// The test's summary if it completed (a campaign resumed with --resume skips it).
     bool completed(const fs::path &directory, const Json &labels)
     {
@@ -113,7 +105,7 @@ namespace anticrack::dem
         return false;
       try
       {
-        const Json s = read_json(directory / "summary.json");
+        const Json s = read_json_file((directory / "summary.json").string());
         // A test of a clump-driven specimen completed before the Love-Weber stress was that of the
         // specimen between its platens (docs/physics.md §1.5) is run again, not mixed with new ones.
         const Json::json_pointer specimen("/dem/specimen");
@@ -271,7 +263,7 @@ namespace anticrack::dem
       std::error_code error;
       if (!fs::exists(directory / "summary.json", error))
         return outcome_of(t, Json(), std::nullopt);
-      const Json s = read_json(directory / "summary.json");
+      const Json s = read_json_file((directory / "summary.json").string());
       const Json::json_pointer analysis_pointer("/dem/failure_analysis");
       std::optional<TestFailureAnalysis> analysis;
       if (s.contains(analysis_pointer))

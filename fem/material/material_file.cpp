@@ -1,5 +1,6 @@
 #include "fem/material/material_file.h"
 
+#include "util/atomic_file.h"
 #include "util/format.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
@@ -238,12 +239,16 @@ namespace anticrack::fem
 
   ContinuumMaterial read_material_file(const std::string &file)
   {
-    std::ifstream in(file);
-    if (!in)
+    std::string text;
+    try
+    {
+      text = read_text_file(file);
+    }
+    catch (const std::runtime_error &)
+    {
       throw InputError("material file " + file + " cannot be read");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return read_material_text(text.str(), file);
+    }
+    return read_material_text(text, file);
   }
 
   ContinuumMaterial read_material_text(const std::string &text, const std::string &name)
