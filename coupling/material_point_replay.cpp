@@ -76,15 +76,16 @@ namespace anticrack::coupling
       Tensor stress;             ///< at λ_f
     };
 
-    /// The largest load factor at which the point is still elastic along `unit_strain`.
-    Failure failure_load(const fem::CamClayParameters &parameters, const Tensor &unit_strain, double guess)
+    /// The largest load factor at which the point is still elastic along `unit_strain`, searched
+    /// from `dem_load` / 32 upwards (the DEM's failure load on this ray).
+    Failure failure_load(const fem::CamClayParameters &parameters, const Tensor &unit_strain, double dem_load)
     {
       const fem::CamClayState initial = fem::CamClayState::initial(parameters);
       const auto yields = [&](double load) { return fem::update_stress(parameters, initial, load * unit_strain).plastic; };
-      double low = 0, high = guess;
-      for (int k = 0; !yields(high); ++k)
+      double low = 0, high = dem_load / 32;
+      while (!yields(high))
       {
-        if (k == 30) // 2^10 > 1e3
+        if (high > 1e3 * dem_load)
           throw std::runtime_error("the FE material point does not yield below 1e3 times the DEM's failure stress");
         low = high, high *= 2;
       }
@@ -99,7 +100,7 @@ namespace anticrack::coupling
     Failure replay_ray(const fem::CamClayParameters &parameters, bool confined, double sigma, double tau)
     {
       const double r = std::hypot(sigma, tau);
-      return failure_load(parameters, unit_load_strain(parameters, confined, sigma / r, tau / r), r / 32);
+      return failure_load(parameters, unit_load_strain(parameters, confined, sigma / r, tau / r), r);
     }
   } // namespace
 
