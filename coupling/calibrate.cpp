@@ -157,13 +157,19 @@ namespace anticrack::coupling
 
     const params::PlaneCalibration &first = calibration.microstructures.front().material_plane();
     const params::CamClaySurface surface = first.cam_clay_surface();
+    const params::SofteningEstimate &softening = calibration.microstructures.front().softening;
     std::cout << "anticrack calibrate: " << calibration.microstructures.size() << " microstructure(s) from "
               << campaign_file << "\n  microstructure 0, FE point on the tests' paths (lateral stress ratio "
               << calibration.microstructures.front().path.lateral_stress_ratio() << "): p0 = " << surface.p0 << " Pa, beta = " << surface.beta << ", M = " << surface.M
               << ", R^2 = " << first.cam_clay().r_squared
               << "\n  the FE point repeats the DEM tests: largest error of an angle's mean failure stress "
               << 100 * replays.front().largest_angle_error() << " % (fit RMSE " << 100 * replays.front().fit_rmse
-              << " %)\n  wrote " << directory.string() << "/{"
+              << " %)\n  softening from the " << softening.source << ": R = " << softening.residual_ratio.mean
+              << ", xi = " << softening.hardening_factor.mean;
+    if (softening.lock_up_strain.n > 0)
+      std::cout << ", lock-up strain " << softening.lock_up_strain.mean << ", fracture energy density "
+                << softening.fracture_energy_density.mean << " J/m^3";
+    std::cout << "\n  wrote " << directory.string() << "/{"
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines
 

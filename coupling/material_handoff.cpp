@@ -60,7 +60,14 @@ namespace anticrack::coupling
                       material_file_number(e.continuum_bulk_modulus) + " Pa (E, nu, K of the mean moduli, so that the FE layer has both).");
       lines.push_back("Softening: p0 = K sinh(xi max(-alpha, 0)), collapse law (every plastic volume change softens);");
       lines.push_back("xi from the drop to R p0 over a plastic volumetric strain of " +
-                      material_file_number(c.softening.plastic_volumetric_strain.mean) + " at psi = 0.");
+                      material_file_number(c.softening.plastic_volumetric_strain.mean) + " at psi = 0, read from the " +
+                      c.softening.source + ".");
+      if (c.compaction_tests.empty())
+        lines.push_back("(A load-controlled post-peak is an inertial run-away: add Campaign/Compaction strain rate [1/s].)");
+      else
+        lines.push_back("Collapse (subsection Collapse): the compaction tests' lock-up strain " +
+                        material_file_number(c.softening.lock_up_strain.mean) + " (collapse height = it x the layer's "
+                        "thickness), lock-up modulus, fracture and collapse energies (dem/lab/compaction_curve.h).");
       return lines;
     }
   } // namespace
@@ -111,6 +118,16 @@ namespace anticrack::coupling
                   fem::material_file_number(c.path.lateral_stress_ratio()) +
                   (c.path.laterally_confined ? " (periodic sides)" : " (open sides)");
     p.r_squared = plane.cam_clay().r_squared;
+
+    if (!c.compaction_tests.empty())
+    {
+      fem::MaterialCollapse &collapse = file.collapse;
+      collapse.lock_up_strain = soft.lock_up_strain.mean;
+      collapse.lock_up_strain_interval = interval(soft.lock_up_strain);
+      collapse.lock_up_modulus = soft.lock_up_modulus.mean;
+      collapse.fracture_energy_density = soft.fracture_energy_density.mean;
+      collapse.collapse_energy_density = soft.collapse_energy_density.mean;
+    }
     return file;
   }
 } // namespace anticrack::coupling

@@ -104,11 +104,17 @@ namespace anticrack::coupling
           text += std::string(2 * k, ' ') + "end\n";
       }
     }
-    if (!material_file.empty())
-      text += "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
-              "# weak-layer material entries above are replaced by it).\n"
-              "subsection Snowpack\n  subsection Weak layer\n    set Material file = " +
-              material_file + "\n  end\nend\n";
+    if (material_file.empty())
+      return text;
+    text += "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
+            "# weak-layer material entries above are replaced by it).\n"
+            "subsection Snowpack\n  subsection Weak layer\n    set Material file = " +
+            material_file + "\n";
+    if (fem::read_whole_material_file(material_file).collapse.given())
+      text += "    # Its Material/Collapse (the DEM compaction tests' lock-up strain and modulus) gives the\n"
+              "    # collapse height (lock-up strain x Thickness) and the densification modulus.\n"
+              "    set Collapse height [m] = 0\n    set Densification modulus [Pa] = 0\n";
+    text += "  end\nend\n";
     return text;
   }
 

@@ -33,6 +33,10 @@ namespace anticrack::coupling
     m.density = c.solid_fraction * snow.particle_density;
     for (fem::MaterialInterval *interval : {&file.uncertainty.youngs_modulus, &file.uncertainty.p0})
       interval->lower *= S, interval->upper *= S;
+    // The collapse: its modulus and energy densities (stress x strain) scale by S, its strain not.
+    for (double *collapse_value : {&file.collapse.lock_up_modulus, &file.collapse.fracture_energy_density,
+                                   &file.collapse.collapse_energy_density})
+      *collapse_value *= S;
     m.name += " in snow units";
     file.comment.push_back("");
     file.comment.push_back("In snow units (coupling/snow_units.h): every modulus and strength of the DEM scaled by");
@@ -45,7 +49,8 @@ namespace anticrack::coupling
     file.comment.push_back("phi rho = " + material_file_number(c.solid_fraction) + " x " +
                            material_file_number(snow.particle_density) + " kg/m^3 (the grains' density sets only the "
                            "time scale of the tests).");
-    file.comment.push_back("nu, beta, M, xi, the residual ratio and the reference thickness are unchanged.");
+    file.comment.push_back("nu, beta, M, xi, the residual ratio and the reference thickness are unchanged; of the");
+    file.comment.push_back("collapse, the lock-up modulus and the energy densities times S, the lock-up strain unchanged.");
     return file;
   }
 } // namespace anticrack::coupling

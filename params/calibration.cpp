@@ -298,8 +298,16 @@ namespace anticrack::params
                                fe.cam_clay_not_determined +
                                ". Add loading angles near 0 and 180 deg, or realizations");
       c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_surface(), options.confidence);
-      c.softening = collapse_softening(campaign, c.index, fe.cam_clay_surface().p0,
-                                       c.elastic.continuum_bulk_modulus, c.elastic.axial_modulus.mean, options.confidence);
+      const bool has_compaction_tests =
+        std::any_of(campaign.compaction_tests.begin(), campaign.compaction_tests.end(),
+                    [&](const CampaignTest &t) { return t.microstructure == c.index; });
+      c.softening =
+        has_compaction_tests ?
+          compaction_softening(campaign, c.index, fe.cam_clay_surface().p0, c.elastic.continuum_bulk_modulus,
+                               c.elastic.axial_modulus.mean, options.confidence, c.compaction_tests,
+                               c.compaction_rate_checks) :
+          collapse_softening(campaign, c.index, fe.cam_clay_surface().p0, c.elastic.continuum_bulk_modulus,
+                             c.elastic.axial_modulus.mean, options.confidence);
       result.microstructures.push_back(std::move(c));
     }
 

@@ -26,6 +26,7 @@
 #pragma once
 
 #include "params/campaign_data.h"
+#include "params/collapse_calibration.h"
 #include "params/elastic_calibration.h"
 #include "params/envelope_fit.h"
 #include "params/flow_rule.h"
@@ -106,6 +107,10 @@ namespace anticrack::params
     FlowRuleAnalysis flow_rule;
     ElasticConstants elastic;
     SofteningEstimate softening;
+    /// The compaction tests the softening was read from, and their rate checks (collapse_calibration.h);
+    /// empty when the campaign has none (softening.source says so).
+    std::vector<CompactionReading> compaction_tests;
+    std::vector<CompactionRateCheck> compaction_rate_checks;
 
     [[nodiscard]] const PlaneCalibration &plane(StressPlane which) const;
     /// The FE solver's surface: path_plane.

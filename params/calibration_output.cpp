@@ -216,6 +216,59 @@ namespace anticrack::params
         }
       }
     }
+
+    /// summary.json's softening of one microstructure: the law's parameters and, from compaction
+    /// tests, the energies, the lock-up and each test's reading with its rate check.
+    Json softening_json(const MicrostructureCalibration &c)
+    {
+      const SofteningEstimate &s = c.softening;
+      Json j{{"law", "collapse"},
+             {"source", s.source},
+             {"residual_ratio", statistics_json(s.residual_ratio)},
+             {"plastic_volumetric_strain", statistics_json(s.plastic_volumetric_strain)},
+             {"hardening_factor_xi", statistics_json(s.hardening_factor)},
+             {"tests_not_softening", s.excluded}};
+      if (c.compaction_tests.empty())
+        return j;
+      j["peak_stress_Pa"] = statistics_json(s.peak_stress);
+      j["fracture_energy_density_J_per_m3"] = statistics_json(s.fracture_energy_density);
+      j["collapse_energy_density_J_per_m3"] = statistics_json(s.collapse_energy_density);
+      j["fracture_energy_J_per_m2_of_the_dem_layer"] = s.fracture_energy_density.mean * c.layer_thickness;
+      j["lock_up_strain"] = statistics_json(s.lock_up_strain);
+      j["collapse_height_m_of_the_dem_layer"] = s.lock_up_strain.mean * c.layer_thickness;
+      j["lock_up_modulus_Pa"] = statistics_json(s.lock_up_modulus);
+      Json tests = Json::array();
+      for (const CompactionReading &r : c.compaction_tests)
+      {
+        const dem::CompactionCurveFit &f = r.fit;
+        tests.push_back(Json{{"test", r.test},
+                             {"peak_strain", f.peak_strain},
+                             {"peak_stress_Pa", f.peak_stress},
+                             {"axial_modulus_Pa", f.axial_modulus},
+                             {"residual_stress_Pa", f.residual_stress},
+                             {"softening_end_strain", f.softening_end_strain},
+                             {"plastic_softening_strain", f.plastic_softening_strain()},
+                             {"lock_up_strain", f.lock_up_strain},
+                             {"lock_up_modulus_Pa", f.lock_up_modulus},
+                             {"fracture_energy_density_J_per_m3", f.fracture_energy_density},
+                             {"collapse_energy_density_J_per_m3", f.collapse_energy_density},
+                             {"rms_misfit_over_peak", f.rms_misfit}});
+      }
+      j["compaction_tests"] = tests;
+      Json checks = Json::array();
+      for (const CompactionRateCheck &r : c.compaction_rate_checks)
+        checks.push_back(Json{{"test", r.test},
+                              {"reference", r.reference},
+                              {"what", "(reference - test) / reference"},
+                              {"peak_stress", r.peak_stress},
+                              {"residual_ratio", r.residual_ratio},
+                              {"plastic_softening_strain", r.plastic_strain},
+                              {"fracture_energy", r.fracture_energy},
+                              {"lock_up_strain", r.lock_up_strain},
+                              {"largest", r.largest()}});
+      j["rate_checks"] = checks;
+      return j;
+    }
   } // namespace
 
   void write_calibration_data(const Calibration &calibration, const std::string &file)
@@ -328,12 +381,7 @@ namespace anticrack::params
               {"bulk_modulus_Pa", statistics_json(c.elastic.bulk_modulus)},
               {"poisson_ratio_from_K0", c.elastic.k0_poisson_ratio.n > 0 ? statistics_json(c.elastic.k0_poisson_ratio) :
                                                                             Json(nullptr)}}},
-        {"softening",
-         Json{{"law", "collapse"},
-              {"residual_ratio", statistics_json(c.softening.residual_ratio)},
-              {"plastic_volumetric_strain", statistics_json(c.softening.plastic_volumetric_strain)},
-              {"hardening_factor_xi", statistics_json(c.softening.hardening_factor)},
-              {"tests_not_softening", c.softening.excluded}}}});
+        {"softening", softening_json(c)}});
     }
     Json s{{"confidence", calibration.options.confidence},
            {"bootstrap_samples", calibration.options.bootstrap_samples},

@@ -22,6 +22,64 @@ namespace anticrack::params
                                std::to_string(rows));
       return values;
     }
+
+    /// A table of tests (/failure_points, /compaction_tests, /quasi_static_check) by the names of the
+    /// writer's columns (dem/campaign/campaign_file.h).
+    std::vector<CampaignTest> read_test_table(hid_t parent, const std::string &table, const CampaignData &data)
+    {
+      const std::string &file = data.file;
+      using Row = dem::FailurePointRow;
+      const hdf5::Handle g = hdf5::open_group(parent, table);
+      const auto name_of = [](auto member) { return std::string(dem::failure_point_column(member).name); };
+      const auto ids = hdf5::read_strings(g.id, name_of(&Row::test));
+      const std::size_t n = ids.size();
+      const auto status = hdf5::read_strings(g.id, name_of(&Row::status));
+      if (status.size() != n)
+        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::status) + " and /" + table + "/" +
+                               name_of(&Row::test) + " differ in length");
+      std::vector<Row> rows(n);
+      std::vector<CampaignTest> tests;
+      for (double Row::*member : {&Row::microstructure, &Row::realization, &Row::loading_angle_deg, &Row::sigma,
+                                  &Row::tau, &Row::p, &Row::q, &Row::flow_angle_deg, &Row::solid_fraction,
+                                  &Row::coordination, &Row::specimen_height, &Row::layer_thickness})
+      {
+        const auto values = column(g.id, name_of(member), n, file);
+        for (std::size_t k = 0; k < n; ++k)
+          rows[k].*member = values[k];
+      }
+      const auto love = hdf5::read_doubles(g.id, name_of(&Row::love_stress));
+      if (love.size() != 9 * n)
+        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::love_stress) + " is not n x 3 x 3");
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        const Row &row = rows[k];
+        CampaignTest t;
+        t.id = ids[k];
+        t.status = status[k];
+        t.microstructure = static_cast<int>(row.microstructure);
+        t.realization = static_cast<int>(row.realization);
+        if (t.microstructure < 0 || t.microstructure >= static_cast<int>(data.microstructures.size()))
+          throw CalibrationError(file + ": test " + t.id + " refers to microstructure " +
+                                 std::to_string(t.microstructure) + ", the file describes " +
+                                 std::to_string(data.microstructures.size()));
+        t.loading_angle_deg = row.loading_angle_deg;
+        t.sigma = row.sigma, t.tau = row.tau, t.p = row.p, t.q = row.q;
+        for (int c = 0; c < 9; ++c)
+          t.love_stress[c] = love[9 * k + c];
+        t.flow_angle_deg = row.flow_angle_deg;
+        t.solid_fraction = row.solid_fraction;
+        t.coordination = row.coordination;
+        t.specimen_height = row.specimen_height;
+        t.layer_thickness = row.layer_thickness;
+        if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
+          throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
+                                 "run by an anticrack "
+                                 "older than campaign format 2); delete its directory tests/" + t.id +
+                                 " and resume the campaign to run it again");
+        tests.push_back(t);
+      }
+      return tests;
+    }
   } // namespace
 
   CampaignData read_campaign(const std::string &file)
@@ -66,56 +124,18 @@ namespace anticrack::params
           data.microstructures.push_back({labels[m], modulus[m], tensile[m], cohesion[m], density[m], periodic[m] > 0.5});
       }
 
-      // The columns the calibration uses, by the names of the writer's table (dem/campaign/campaign_file.h).
-      using Row = dem::FailurePointRow;
-      const std::string table = dem::failure_points_group;
-      const hdf5::Handle g = hdf5::open_group(f.id, table);
-      const auto name_of = [](auto member) { return std::string(dem::failure_point_column(member).name); };
-      const auto ids = hdf5::read_strings(g.id, name_of(&Row::test));
-      const std::size_t n = ids.size();
-      const auto status = hdf5::read_strings(g.id, name_of(&Row::status));
-      if (status.size() != n)
-        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::status) + " and /" + table + "/" +
-                               name_of(&Row::test) + " differ in length");
-      std::vector<Row> rows(n);
-      for (double Row::*member : {&Row::microstructure, &Row::realization, &Row::loading_angle_deg, &Row::sigma,
-                                  &Row::tau, &Row::p, &Row::q, &Row::flow_angle_deg, &Row::solid_fraction,
-                                  &Row::coordination, &Row::specimen_height, &Row::layer_thickness})
+      data.tests = read_test_table(f.id, dem::failure_points_group, data);
+      if (hdf5::exists(f.id, dem::compaction_tests_group))
+        data.compaction_tests = read_test_table(f.id, dem::compaction_tests_group, data);
+      if (hdf5::exists(f.id, "quasi_static_check"))
       {
-        const auto values = column(g.id, name_of(member), n, file);
-        for (std::size_t k = 0; k < n; ++k)
-          rows[k].*member = values[k];
-      }
-      const auto love = hdf5::read_doubles(g.id, name_of(&Row::love_stress));
-      if (love.size() != 9 * n)
-        throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::love_stress) + " is not n x 3 x 3");
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        const Row &row = rows[k];
-        CampaignTest t;
-        t.id = ids[k];
-        t.status = status[k];
-        t.microstructure = static_cast<int>(row.microstructure);
-        t.realization = static_cast<int>(row.realization);
-        if (t.microstructure < 0 || t.microstructure >= static_cast<int>(data.microstructures.size()))
-          throw CalibrationError(file + ": test " + t.id + " refers to microstructure " +
-                                 std::to_string(t.microstructure) + ", the file describes " +
-                                 std::to_string(data.microstructures.size()));
-        t.loading_angle_deg = row.loading_angle_deg;
-        t.sigma = row.sigma, t.tau = row.tau, t.p = row.p, t.q = row.q;
-        for (int c = 0; c < 9; ++c)
-          t.love_stress[c] = love[9 * k + c];
-        t.flow_angle_deg = row.flow_angle_deg;
-        t.solid_fraction = row.solid_fraction;
-        t.coordination = row.coordination;
-        t.specimen_height = row.specimen_height;
-        t.layer_thickness = row.layer_thickness;
-        if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
-          throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
-                                 "run by an anticrack "
-                                 "older than campaign format 2); delete its directory tests/" + t.id +
-                                 " and resume the campaign to run it again");
-        data.tests.push_back(t);
+        data.reference_tests = read_test_table(f.id, "quasi_static_check", data);
+        const hdf5::Handle g = hdf5::open_group(f.id, "quasi_static_check");
+        const auto checks = hdf5::read_strings(g.id, "checks");
+        if (checks.size() != data.reference_tests.size())
+          throw CalibrationError(file + ": /quasi_static_check/checks and its table differ in length");
+        for (std::size_t k = 0; k < checks.size(); ++k)
+          data.reference_tests[k].reference_for = checks[k];
       }
     }
     catch (const CalibrationError &)

@@ -25,6 +25,7 @@ namespace anticrack::params
     double solid_fraction = 0, coordination = 0;
     double specimen_height = 0;     ///< H0 [m], the whole specimen (rigid base and clump included)
     double layer_thickness = 0;     ///< h [m], the deformable layer between base and clump
+    std::string reference_for;      ///< a quasi-static reference run: the test it checks
 
     [[nodiscard]] bool completed() const { return status == "completed"; }
   };
@@ -59,6 +60,10 @@ namespace anticrack::params
     std::string scene_file, scene_file_sha256, parameters_sha256, anticrack_version;
     std::vector<MicrostructureMaterial> microstructures;
     std::vector<CampaignTest> tests;  ///< the campaign proper (quasi-static references apart)
+    /// The displacement-controlled compaction tests (/compaction_tests; psi = 0), one per realization.
+    std::vector<CampaignTest> compaction_tests;
+    /// The quasi-static reference runs (/quasi_static_check), of either kind, reference_for set.
+    std::vector<CampaignTest> reference_tests;
 
     /// The history of `test` from /tests/<id>/history, strains per layer thickness; throws
     /// CalibrationError naming the file and test if it is missing or lacks a column.

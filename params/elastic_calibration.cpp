@@ -52,20 +52,19 @@ namespace anticrack::params
       return {axial, nu, axial / (3.0 * (1.0 - 2.0 * nu))};
     }
 
-    /// Statistics of per-realization values; with one realization the interval is the value itself
-    /// (no spread can be estimated, and the caller reports n = 1).
-    SampleStatistics statistics(const std::vector<double> &values, double confidence, const std::string &what)
-    {
-      if (values.size() >= 2)
-        return describe(values, confidence, what);
-      SampleStatistics s;
-      s.mean = s.minimum = s.maximum = values.at(0);
-      s.mean_ci = {values[0], values[0]};
-      s.confidence = confidence;
-      s.n = 1;
-      return s;
-    }
   } // namespace
+
+  SampleStatistics realization_statistics(const std::vector<double> &values, double confidence, const std::string &what)
+  {
+    if (values.size() >= 2)
+      return describe(values, confidence, what);
+    SampleStatistics s;
+    s.mean = s.minimum = s.maximum = values.at(0);
+    s.mean_ci = {values[0], values[0]};
+    s.confidence = confidence;
+    s.n = 1;
+    return s;
+  }
 
   ElasticConstants elastic_constants(const CampaignData &campaign, int m, double confidence,
                                      std::optional<double> given_poisson_ratio)
@@ -115,13 +114,13 @@ namespace anticrack::params
     }
     if (axial.empty())
       throw CalibrationError(where + ": no realization has completed tests at both 0 and 90 deg");
-    c.axial_modulus = statistics(axial, confidence, where + " axial modulus");
-    c.shear_modulus = statistics(shear_moduli, confidence, where + " shear modulus");
-    c.youngs_modulus = statistics(young, confidence, where + " Young's modulus");
-    c.poisson_ratio = statistics(poisson, confidence, where + " Poisson's ratio");
-    c.bulk_modulus = statistics(bulk, confidence, where + " bulk modulus");
+    c.axial_modulus = realization_statistics(axial, confidence, where + " axial modulus");
+    c.shear_modulus = realization_statistics(shear_moduli, confidence, where + " shear modulus");
+    c.youngs_modulus = realization_statistics(young, confidence, where + " Young's modulus");
+    c.poisson_ratio = realization_statistics(poisson, confidence, where + " Poisson's ratio");
+    c.bulk_modulus = realization_statistics(bulk, confidence, where + " bulk modulus");
     if (!k0.empty())
-      c.k0_poisson_ratio = statistics(k0, confidence, where + " K0 Poisson's ratio");
+      c.k0_poisson_ratio = realization_statistics(k0, confidence, where + " K0 Poisson's ratio");
     const auto [E, nu, K] =
       isotropic_constants(c.axial_modulus.mean, c.shear_modulus.mean, c.laterally_confined, given_poisson_ratio);
     if (!(K > 0) || !(nu > -1.0 && nu < 0.5))
@@ -159,7 +158,9 @@ namespace anticrack::params
       std::size_t k = peak;
       while (k < h.sigma.size() && h.sigma[k] > residual + 1e-9 * h.sigma[peak]) // round-off of R times the peak
         ++k;
-      const double plastic = k < h.sigma.size() ? (h.normal_strain[k] - h.normal_strain[peak]) -
+      // The falling stress gives back elastic strain (σ_peak − σ_res)/M: the plastic strain is the
+      // total strain plus it.
+      const double plastic = k < h.sigma.size() ? (h.normal_strain[k] - h.normal_strain[peak]) +
                                                     (h.sigma[peak] - residual) / axial_modulus :
                                                   0.0;
       if (!(R > 0 && R < 1) || !(plastic > 0))
@@ -181,9 +182,10 @@ namespace anticrack::params
                              "; run the tests further past the peak (DEM/Loading/Stop strain)");
     }
     SofteningEstimate s;
-    s.residual_ratio = statistics(ratio, confidence, where + " residual ratio");
-    s.plastic_volumetric_strain = statistics(strain, confidence, where + " plastic volumetric strain");
-    s.hardening_factor = statistics(xi, confidence, where + " hardening factor");
+    s.source = "load-controlled post-peak";
+    s.residual_ratio = realization_statistics(ratio, confidence, where + " residual ratio");
+    s.plastic_volumetric_strain = realization_statistics(strain, confidence, where + " plastic volumetric strain");
+    s.hardening_factor = realization_statistics(xi, confidence, where + " hardening factor");
     s.excluded = excluded;
     return s;
   }

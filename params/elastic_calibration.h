@@ -12,13 +12,16 @@
 // Confined specimens also give ν from the lateral stress ratio K0 = σ_xx/σ_zz of the Love stress in
 // the elastic range, ν = K0/(1 + K0) (uniaxial strain), reported as a cross-check.
 //
-// Softening (docs/physics.md §2). p0 = K sinh(ξ max(−α, 0)) with α the accumulated volumetric plastic
+// Softening (docs/physics.md §2), read here from the post-peak of the load-controlled ψ = 0 tests: a
+// fallback for campaigns without compaction tests, whose post-peak is an inertial run-away that
+// depends on the loading rate. params/collapse_calibration.h reads it from the displacement-
+// controlled compaction tests instead, with the same formula for ξ. p0 = K sinh(ξ max(−α, 0)) with α the accumulated volumetric plastic
 // strain, starting at α0 = −asinh(p0_init/K)/ξ; under "collapse softening" every plastic volume
 // change, either sign, moves α towards 0, so p0 falls from p0_init to R p0_init after a plastic
 // volumetric strain Δε_p when ξ = [asinh(p0/K) − asinh(R p0/K)] / Δε_p. The compression test gives
 // R (softening ratio, Bobillier et al. 2020: residual over peak base stress, the residual being the mean over the
 // last half of the post-peak samples) and Δε_p: the normal strain from the peak to the first sample
-// at the residual stress, less the elastic recovery (σ_peak − σ_res)/M_axial. Under
+// at the residual stress, plus the elastic strain the falling stress gives back, (σ_peak − σ_res)/M_axial. Under
 // uniaxial strain (confined) the volumetric strain is the normal strain; with open sides the collapse
 // is still a compaction band of zero lateral strain (Ritter et al. 2020, Fig. 1), so the same holds for its
 // plastic part.
@@ -61,9 +64,18 @@ namespace anticrack::params
 
   struct SofteningEstimate
   {
+    /// "compaction tests" (params/collapse_calibration.h) or "load-controlled post-peak" (below:
+    /// rate-dependent, what a campaign without compaction tests has).
+    std::string source;
     SampleStatistics residual_ratio;            ///< R = σ_residual/σ_peak
     SampleStatistics plastic_volumetric_strain; ///< Δε_p from the peak to the residual stress
     SampleStatistics hardening_factor;          ///< ξ of p0 = K sinh(ξ max(−α, 0))
+    // From compaction tests only (n = 0 otherwise):
+    SampleStatistics fracture_energy_density;   ///< w_f [J/m³] (dem/lab/compaction_curve.h)
+    SampleStatistics collapse_energy_density;   ///< w_c [J/m³]
+    SampleStatistics lock_up_strain;            ///< ε_d, the collapse height over the layer thickness
+    SampleStatistics lock_up_modulus;           ///< K_d [Pa]
+    SampleStatistics peak_stress;               ///< σ_p of the compaction tests [Pa]
     std::vector<std::string> excluded;          ///< ψ = 0 tests that did not soften, with the reason
   };
 
@@ -72,6 +84,11 @@ namespace anticrack::params
   /// ψ = 0 test softens (no sample after the peak at the residual stress, or Δε_p <= 0).
   SofteningEstimate collapse_softening(const CampaignData &campaign, int m, double p0, double bulk_modulus,
                                        double axial_modulus, double confidence);
+
+  /// Statistics of per-realization values; with one realization the interval is the value itself
+  /// (no spread can be estimated, and the caller reports n = 1).
+  SampleStatistics realization_statistics(const std::vector<double> &values, double confidence,
+                                          const std::string &what);
 
   /// ξ of the relation above (the one formula, shared with tests).
   double hardening_factor(double p0, double bulk_modulus, double residual_ratio, double plastic_volumetric_strain);

@@ -35,6 +35,11 @@ MATERIAL_ROWS = [  # entry of subsection Material, label, scale, unit
     ("Hardening factor xi", "softening factor ξ", 1, ""),
     ("Residual strength ratio", "residual strength ratio", 1, ""),
     ("Reference thickness [m]", "reference thickness h_ref", 1e3, "mm"),
+    # subsection Material/Collapse, from the DEM compaction tests (absent without them)
+    ("Lock-up strain", "lock-up strain ε_d (collapse height / thickness)", 1, ""),
+    ("Lock-up modulus [Pa]", "lock-up modulus K_d", 1e-6, "MPa"),
+    ("Fracture energy density [J/m^3]", "fracture energy density w_f", 1, "J/m³"),
+    ("Collapse energy density [J/m^3]", "collapse energy density w_c", 1, "J/m³"),
 ]
 
 
@@ -74,6 +79,8 @@ def weak_layer_section(run_dir, summary):
              f"realizations).", "",
              "| parameter | value | interval |", "|---|---|---|"]
     for name, label, scale, unit in MATERIAL_ROWS:
+        if name not in snow:
+            continue
         value = float(snow[name]) * scale
         i = interval(snow, name)
         lines.append(f"| {label} | {fmt(value, 4)} {unit} | "

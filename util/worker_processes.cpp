@@ -1,10 +1,12 @@
 #include "util/worker_processes.h"
 
+#include <sys/mman.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -227,4 +229,16 @@ namespace anticrack
              strsignal(exit.signal) + ")";
     return "worker " + std::to_string(member) + " exited with code " + std::to_string(exit.exit_code);
   }
+  SharedCounter::SharedCounter()
+    : memory_(mmap(nullptr, sizeof(std::atomic<long>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0))
+  {
+    if (memory_ == MAP_FAILED)
+      throw std::runtime_error(std::string("SharedCounter: mmap failed: ") + std::strerror(errno));
+    static_assert(std::atomic<long>::is_always_lock_free, "a counter shared across processes must be lock-free");
+    new (memory_) std::atomic<long>(0);
+  }
+
+  SharedCounter::~SharedCounter() { munmap(memory_, sizeof(std::atomic<long>)); }
+
+  long SharedCounter::next() { return static_cast<std::atomic<long> *>(memory_)->fetch_add(1); }
 } // namespace anticrack

@@ -70,6 +70,23 @@ namespace anticrack
     std::unique_ptr<Buffer> buffer_;
   };
 
+  /// A counter that the workers forked after it share (anonymous shared memory): next() hands out
+  /// 0, 1, 2, ... once each across all of them, so that workers pull jobs from one queue as they
+  /// become free instead of running fixed shares.
+  class SharedCounter
+  {
+  public:
+    SharedCounter();
+    ~SharedCounter();
+    SharedCounter(const SharedCounter &) = delete;
+    SharedCounter &operator=(const SharedCounter &) = delete;
+    /// The next value (atomic across processes).
+    long next();
+
+  private:
+    void *memory_;
+  };
+
   /// "worker 1 ended by signal 9 (Killed)" or "worker 1 exited with code 2", for messages.
   std::string describe_worker_exit(int member, const WorkerExit &exit);
 } // namespace anticrack

@@ -3,6 +3,7 @@
 #include "dem/campaign/campaign_file.h"
 #include "dem/core/force_history.h"
 #include "dem/scene/history_columns.h"
+#include "dem/scene/lab_tests.h"
 #include "dem/scene/model.h"
 #include "dem/scene/parameters.h"
 #include "util/console.h"
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -43,7 +45,22 @@ namespace anticrack::dem
       double angle_deg = 0;
       double slowdown = 1;       ///< > 1: a quasi-static reference run
       std::string reference_for; ///< the test a reference run checks
+      bool compaction = false;   ///< the displacement-controlled compaction test (psi = 0)
+
+      /// Expected cost in units of a load-controlled test at the campaign's rate (block_of).
+      [[nodiscard]] double cost(const parameters::Campaign &c) const
+      {
+        return slowdown * (compaction ? compaction_cost_factor * c.compaction_final_strain : 1.0);
+      }
+      /// A compaction test to strain 1 costs about this many load-controlled tests (measured on the SHS
+      /// weak layer of scenes/shs_weak_layer.prm; only the balance of the ranks' shares depends on it).
+      static constexpr double compaction_cost_factor = 10;
     };
+
+    std::string compaction_test_id(Index m, Index r)
+    {
+      return "m" + std::to_string(m) + "_r" + std::to_string(r) + "_compaction";
+    }
 
     std::string test_id(Index m, Index r, double angle)
     {
@@ -54,7 +71,7 @@ namespace anticrack::dem
     }
 
     /// Every test of the campaign, grouped by sample (microstructure, realization): first the
-    /// angles, then the sample's quasi-static references.
+    /// angles, then the compaction test, then the sample's quasi-static references (of both).
     std::vector<CampaignTest> enumerate_tests(const parameters::Campaign &c, Index microstructures)
     {
       using Check = parameters::Campaign::QuasiStaticCheck;
@@ -63,7 +80,9 @@ namespace anticrack::dem
         for (Index r = 0; r < c.realizations; ++r)
         {
           for (const double angle : c.loading_angles_deg)
-            tests.push_back({test_id(m, r, angle), m, r, angle, 1.0, ""});
+            tests.push_back({test_id(m, r, angle), m, r, angle, 1.0, "", false});
+          if (c.has_compaction_tests())
+            tests.push_back({compaction_test_id(m, r), m, r, 0.0, 1.0, "", true});
           const bool checked = c.quasi_static_check == Check::all ||
                                (c.quasi_static_check == Check::first_realization && r == 0);
           if (!checked)
@@ -72,27 +91,31 @@ namespace anticrack::dem
           std::snprintf(suffix, sizeof suffix, "_slow%g", c.quasi_static_slowdown);
           for (const double angle : c.loading_angles_deg)
             tests.push_back(
-              {test_id(m, r, angle) + suffix, m, r, angle, c.quasi_static_slowdown, test_id(m, r, angle)});
+              {test_id(m, r, angle) + suffix, m, r, angle, c.quasi_static_slowdown, test_id(m, r, angle), false});
+          if (c.has_compaction_tests())
+            tests.push_back({compaction_test_id(m, r) + suffix, m, r, 0.0, c.quasi_static_slowdown,
+                             compaction_test_id(m, r), true});
         }
       return tests;
     }
 
-    /// Contiguous block [begin, end) of `tests` for `rank`, balanced by the expected cost (a
-    /// reference run costs `slowdown` tests).
-    std::pair<std::size_t, std::size_t> block_of(const std::vector<CampaignTest> &tests, int rank, int size)
+    /// Contiguous block [begin, end) of `tests` for `rank`, balanced by the expected cost
+    /// (CampaignTest::cost).
+    std::pair<std::size_t, std::size_t> block_of(const std::vector<CampaignTest> &tests, const parameters::Campaign &c,
+                                                 int rank, int size)
     {
       double total = 0;
       for (const auto &t : tests)
-        total += t.slowdown;
+        total += t.cost(c);
       std::size_t begin = tests.size(), end = 0;
       double before = 0;
       for (std::size_t k = 0; k < tests.size(); ++k)
       {
-        const double middle = before + 0.5 * tests[k].slowdown;
+        const double middle = before + 0.5 * tests[k].cost(c);
         const int owner = std::min(size - 1, static_cast<int>(middle / total * size));
         if (owner == rank)
           begin = std::min(begin, k), end = k + 1;
-        before += tests[k].slowdown;
+        before += tests[k].cost(c);
       }
       return begin < end ? std::pair{begin, end} : std::pair{std::size_t(0), std::size_t(0)};
     }
@@ -248,7 +271,7 @@ namespace anticrack::dem
       row.flow_angle_deg = as_recorded(a.flow_angle_deg.value_or(nan));
       // The column is the secant modulus of the base normal stress; a shear-controlled test's
       // secant modulus is of the shear stress.
-      row.secant_modulus = a.shear_controlled ? nan : as_recorded(a.secant_modulus.value_or(nan));
+      row.secant_modulus = a.control == ActuatorControl::shear_displacement ? nan : as_recorded(a.secant_modulus.value_or(nan));
       row.softening_ratio = as_recorded(a.softening_ratio.value_or(nan));
       row.peak_q = as_recorded(a.peak_q.q);
       row.max_inertial_number = a.max_inertial_number;
@@ -352,8 +375,14 @@ namespace anticrack::dem
       for (const auto &[entry, value] : c.microstructures[m])
         s << " " << entry << " = " << value << ";";
     }
-    s << "\n  tests               " << tests.size() << " (" << tests.size() - c.loading_angles_deg.size() * c.realizations * scenes.size()
-      << " of them quasi-static references, " << c.quasi_static_slowdown << "x slower)\n"
+    const auto references = std::count_if(tests.begin(), tests.end(), [](const CampaignTest &t) { return !t.reference_for.empty(); });
+    const auto compactions = std::count_if(tests.begin(), tests.end(),
+                                           [](const CampaignTest &t) { return t.compaction && t.reference_for.empty(); });
+    s << "\n  tests               " << tests.size() << " (" << references << " of them quasi-static references, "
+      << c.quasi_static_slowdown << "x slower; " << compactions << " compaction test(s)";
+    if (c.has_compaction_tests())
+      s << " at " << c.compaction_strain_rate << " 1/s to strain " << c.compaction_final_strain;
+    s << ")\n"
       << "  outputs             summary.json, campaign.h5, tests/<id>/{summary.json, history.h5}\n";
     out << s.str();
   }
@@ -413,7 +442,7 @@ namespace anticrack::dem
     root_console() << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
                 << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
                 << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
-                << " (quasi-static references included) on " << members
+                << " (compaction tests and quasi-static references included) on " << members
                 << (workers ? " worker process(es)" : " rank(s)") << " x " << dem::DemSystem::threads()
                 << " thread(s)\n"
                 << std::flush;
@@ -425,14 +454,16 @@ namespace anticrack::dem
       bool interrupted = false; // Ctrl-C or SIGTERM: the test stopped, the rest of the share is not run
       std::map<std::string, TestOutcome> outcomes; // as they ran (or from their files)
     };
-    const auto run_share = [&](int member, const std::string &who) {
+    // `next()`: the index of the member's next test, or tests.size() when there is none; `left()`:
+    // how many tests it has left (for the estimate of the time left), NaN when unknown.
+    const auto run_share = [&](const std::string &who, const std::function<std::size_t()> &next,
+                               const std::function<double()> &left) {
       Share share;
-      const auto [first, last] = block_of(tests, member, members);
-      std::pair<Index, Index> cached_sample{-1, -1};
-      std::unique_ptr<DemModel> sample;
+      // Each sample (microstructure, realization) this member needs, built once and kept.
+      std::map<std::pair<Index, Index>, std::unique_ptr<DemModel>> samples;
       const auto share_start = std::chrono::steady_clock::now();
       std::size_t run_in_share = 0; // tests this member ran (not those completed earlier)
-      for (std::size_t k = first; k < last; ++k)
+      for (std::size_t k = next(); k < tests.size(); k = next())
       {
         const CampaignTest &t = tests[k];
         SceneParameters test_scene = microstructure_scenes[t.microstructure];
@@ -443,6 +474,15 @@ namespace anticrack::dem
         test_scene.dem.boundary.clump_force_rate /= t.slowdown;
         test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
         test_scene.output.progress_interval = 0;
+        if (t.compaction)
+        {
+          // The displacement-controlled compaction test (dem/lab/compaction_test.h) of this sample.
+          auto &loading = test_scene.dem.loading;
+          loading.test = &lab_test("compaction");
+          loading.adaptive = false; // a force ramp's; the compaction test's rate is constant
+          loading.compaction_strain_rate = c.compaction_strain_rate / t.slowdown;
+          loading.stop_strain = c.compaction_final_strain;
+        }
 
         RunOptions o;
         o.output_directory = (directory / "tests" / t.id).string();
@@ -458,18 +498,21 @@ namespace anticrack::dem
                     {"seed", test_scene.dem.seed},
                     {"rate_divisor", t.slowdown},
                     {"reference_for", t.reference_for}};
+        if (t.compaction)
+        {
+          o.labels["compaction_strain_rate_per_s"] = test_scene.dem.loading.compaction_strain_rate;
+          o.labels["compaction_final_strain"] = test_scene.dem.loading.stop_strain;
+        }
         if (options.resume && completed(o.output_directory, o.labels))
         {
           std::cout << who << " " << t.id << ": completed earlier, skipped\n" << std::flush;
           share.outcomes[t.id] = read_outcome(t, o.output_directory);
           continue;
         }
-        const bool build = cached_sample != std::pair{t.microstructure, t.realization};
+        std::unique_ptr<DemModel> &sample = samples[{t.microstructure, t.realization}];
+        const bool build = !sample;
         if (build)
-        {
           sample = build_dem_model(test_scene, threads);
-          cached_sample = {t.microstructure, t.realization};
-        }
         auto model = std::make_unique<DemModel>(*sample);
         if (!build)
           model->build_seconds = 0; // the sample was built (and timed) for an earlier test
@@ -495,10 +538,11 @@ namespace anticrack::dem
         line << "; " << outcome.steps << " steps in " << format_duration(outcome.wall_s);
         // The time left of this member's share, from its tests so far (their costs differ by angle).
         ++run_in_share;
-        if (k + 1 < last)
-          line << "; " << last - k - 1 << " more here, about "
+        const double more = left();
+        if (more > 0)
+          line << "; " << more << " more here, about "
                << format_duration(std::chrono::duration<double>(std::chrono::steady_clock::now() - share_start).count() /
-                                  static_cast<double>(run_in_share) * static_cast<double>(last - k - 1))
+                                  static_cast<double>(run_in_share) * more)
                << " left";
         line << "\n";
         std::cout << line.str() << std::flush;
@@ -515,8 +559,22 @@ namespace anticrack::dem
       // Each worker reports its phase times; the parent's phases are their means, so that they
       // still add up to no more than the campaign's wall time.
       const auto wait_start = std::chrono::steady_clock::now();
+      // The workers pull tests from one queue as they become free, the longest first (the compaction
+      // tests, then the others in the order of their samples, which keeps each worker on few samples):
+      // fixed shares leave one worker idle while the other runs a long test.
+      std::vector<std::size_t> queue(tests.size());
+      for (std::size_t k = 0; k < tests.size(); ++k)
+        queue[k] = k;
+      std::stable_sort(queue.begin(), queue.end(),
+                       [&](std::size_t a, std::size_t b) { return tests[a].cost(c) > tests[b].cost(c); });
+      SharedCounter taken;
       const std::vector<WorkerExit> exits = run_in_worker_processes(members, [&](int member, std::string &report) {
-        const Share share = run_share(member, "[worker " + std::to_string(member) + "]");
+        const auto next = [&] {
+          const auto k = static_cast<std::size_t>(taken.next());
+          return k < queue.size() ? queue[k] : tests.size();
+        };
+        const Share share = run_share("[worker " + std::to_string(member) + "]", next,
+                                      [] { return std::numeric_limits<double>::quiet_NaN(); });
         report = std::to_string(timer.seconds("samples"));
         return share.interrupted ? exit_interrupted : share.any_failed ? exit_numerical_failure : exit_success;
       });
@@ -538,7 +596,11 @@ namespace anticrack::dem
     }
     else
     {
-      Share share = run_share(mpi.rank(), "[rank " + std::to_string(mpi.rank()) + "]");
+      const auto [first, last] = block_of(tests, c, mpi.rank(), members);
+      std::size_t cursor = first;
+      Share share = run_share(
+        "[rank " + std::to_string(mpi.rank()) + "]", [&, last = last] { return cursor < last ? cursor++ : tests.size(); },
+        [&, last = last] { return static_cast<double>(last - cursor); });
       any_failed = share.any_failed;
       interrupted = share.interrupted;
       outcomes = std::move(share.outcomes);
@@ -582,6 +644,7 @@ namespace anticrack::dem
         hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
         hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
         hdf5::write_string_attribute(group.id, "rate_divisor", format_angle(t.slowdown));
+        hdf5::write_string_attribute(group.id, "loading", t.compaction ? "compaction" : "load-controlled");
         if (fs::exists(history, error))
           copy_history(history, group.id, "history");
       }
@@ -621,9 +684,9 @@ namespace anticrack::dem
       }
 
       // The failure-point table: one row per test of the campaign proper (references apart).
-      std::vector<const CampaignTest *> main_tests, references;
+      std::vector<const CampaignTest *> main_tests, compaction_tests, references;
       for (const auto &t : tests)
-        (t.reference_for.empty() ? main_tests : references).push_back(&t);
+        (!t.reference_for.empty() ? references : t.compaction ? compaction_tests : main_tests).push_back(&t);
       auto table = [&](hid_t group, const std::vector<const CampaignTest *> &tests_of_table) {
         std::vector<FailurePointRow> rows;
         for (const auto *t : tests_of_table)
@@ -634,6 +697,15 @@ namespace anticrack::dem
         const Handle g(H5Gcreate2(f.id, failure_points_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                        "create /" + std::string(failure_points_group));
         table(g.id, main_tests);
+      }
+      if (!compaction_tests.empty())
+      {
+        // The compaction tests: their failure point is the first peak (dem/scene/failure_analysis.h);
+        // the calibration reads their curves from /tests/<id>/history.
+        const Handle g = hdf5::create_group(f.id, compaction_tests_group);
+        table(g.id, compaction_tests);
+        hdf5::write_doubles(g.id, "strain_rate", std::vector<double>(compaction_tests.size(), c.compaction_strain_rate),
+                            "1/s", "the platen's speed over the specimen height (Campaign/Compaction strain rate)");
       }
       if (!references.empty())
       {
@@ -667,6 +739,8 @@ namespace anticrack::dem
     spec["microstructures"] = c.microstructures_text;
     spec["quasi_static_slowdown"] = c.quasi_static_slowdown;
     spec["quasi_static_tolerance"] = c.quasi_static_tolerance;
+    spec["compaction_strain_rate_per_s"] = c.compaction_strain_rate;
+    spec["compaction_final_strain"] = c.compaction_final_strain;
     s["campaign"] = spec;
     Json rows = Json::array();
     double test_wall = 0, largest_inertial = 0;
@@ -680,6 +754,7 @@ namespace anticrack::dem
       r["microstructure"] = t.microstructure;
       r["realization"] = t.realization;
       r["rate_divisor"] = t.slowdown;
+      r["loading"] = t.compaction ? "compaction" : "load-controlled";
       auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
       r["sigma_Pa"] = finite(o.row.sigma);
       r["tau_Pa"] = finite(o.row.tau);
@@ -695,7 +770,7 @@ namespace anticrack::dem
         r["message"] = o.message;
       rows.push_back(r);
       test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
-      if (t.reference_for.empty() && std::isfinite(o.row.max_inertial_number))
+      if (t.reference_for.empty() && !t.compaction && std::isfinite(o.row.max_inertial_number))
         largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
     }
     s["tests"] = rows;

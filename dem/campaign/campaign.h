@@ -12,7 +12,9 @@
 // Test ids read m<microstructure>_r<realization>_psi<angle>, e.g. m0_r2_psi067.5; a quasi-static
 // reference run of that test is m0_r2_psi067.5_slow4.
 //
-// Under mpirun every rank runs whole tests (threads inside each test); the tests are dealt out in
+// Without mpirun, one worker process per core pulls the tests from one queue, the longest first
+// (util/worker_processes.h SharedCounter). Under mpirun every rank runs whole tests (threads inside
+// each test); the tests are dealt out in
 // contiguous blocks so that a rank builds few samples (the sample of a microstructure and
 // realization is generated once per rank and copied for every angle). A test does not depend on
 // the rank or thread count that runs it (the engine is bit-reproducible), so a campaign on any

@@ -17,6 +17,8 @@ namespace anticrack::dem
 {
   /// The group of campaign.h5 that holds the failure points of the campaign proper.
   inline constexpr const char *failure_points_group = "failure_points";
+  /// The group of the displacement-controlled compaction tests (one per realization), same columns.
+  inline constexpr const char *compaction_tests_group = "compaction_tests";
 
   /// One row of /failure_points: a test at one loading angle of one realization of one
   /// microstructure. Stresses tension positive except sigma and p (compression positive).

@@ -1,6 +1,8 @@
 // Failure-point analysis of a test history; see failure_point.h for the definitions and sources.
 #include "dem/lab/failure_point.h"
 
+#include "dem/lab/compaction_curve.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -267,6 +269,12 @@ namespace anticrack::dem
     {
       a.peak_loading = failure_by_peak(h, options.loading_measure);
       const std::vector<double> s = measure_series(h, options.loading_measure);
+      if (options.peak_before_lock_up)
+      {
+        if (options.loading_measure != Measure::base_normal || h.strain.empty())
+          throw std::invalid_argument("analyse_failure: peak_before_lock_up needs the base normal stress and the strain");
+        a.peak_loading = point_at(h, fit_compaction_curve(h.strain, s).peak_index, 0, static_cast<Index>(s.size()) - 1);
+      }
       const Index peak = a.peak_loading->index;
       if (!h.strain.empty())
         a.secant_modulus = secant_modulus(h.strain, s, peak, options.secant_fraction);

@@ -69,6 +69,17 @@ namespace anticrack::dem
   /// never moves (max |v_c| = 0), if zeta is not in (0, 1] or if no sample before the maximum is quiet.
   FailurePoint failure_by_kinetic_energy_window(const TestHistory &history, double zeta = 0.3);
 
+  /// How a test's actuator is driven, which decides how its failure point is found
+  /// (dem/scene/failure_analysis.h): a load-controlled actuator runs away at failure (Ritter et al.'s
+  /// (2020) kinetic-energy window); a displacement-controlled one cannot, its failure is the peak of
+  /// the base stress it drives.
+  enum class ActuatorControl
+  {
+    force,               ///< clump force ramp, tilted gravity
+    shear_displacement,  ///< simple shear: the peak of the base shear stress, strain u_x / h
+    normal_displacement  ///< compaction: the first peak of the base normal stress, strain -u_z / h
+  };
+
   /// Stress measure whose peak defines failure.
   enum class Measure
   {
@@ -128,6 +139,10 @@ namespace anticrack::dem
     /// actuator is displacement-controlled, e.g. simple shear with base_shear: its velocity is
     /// prescribed, so its kinetic energy says nothing about failure).
     bool failure_at_loading_peak = false;
+    /// With the loading measure base_normal: the peak is sought only up to the lock-up of a
+    /// compaction test (compaction_lock_up_index), whose densified layer may carry more than the
+    /// peak that broke it.
+    bool peak_before_lock_up = false;
   };
 
   /// Everything for one test. Quantities whose input series is missing stay empty.

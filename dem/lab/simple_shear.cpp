@@ -56,7 +56,10 @@ namespace anticrack::dem
     const double ramp = settings_.acceleration_time > 0 ?
                           std::min(1.0, (system.time - shear_start_time_) / settings_.acceleration_time) :
                           1.0;
+    const double before = platen.velocity[0];
     platen.velocity[0] = ramp * settings_.shear_velocity;
+    // The driving agent's work on the platen's kinetic energy (as in dem/lab/compaction_test.cpp).
+    system.ledger.external_work += 0.5 * platen.mass * (platen.velocity[0] * platen.velocity[0] - before * before);
   }
 
   double SimpleShear::shear_strain(const DemSystem &system) const

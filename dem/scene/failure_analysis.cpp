@@ -26,6 +26,22 @@ namespace anticrack::dem
       constexpr const char *love_stress = "love_stress_Pa";
     } // namespace key
 
+    /// summary.json's criterion of each control (also how a resumed campaign reads the control back).
+    const char *criterion_text(const ActuatorControl control)
+    {
+      switch (control)
+      {
+        case ActuatorControl::shear_displacement:
+          return "peak of the base shear stress tau (displacement-controlled simple shear)";
+        case ActuatorControl::normal_displacement:
+          return "first peak of the base normal stress sigma before the lock-up (displacement-controlled "
+                 "compaction, dem/lab/compaction_curve.h)";
+        case ActuatorControl::force:
+          break;
+      }
+      return "Ritter et al. (2020): max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
+    }
+
     const std::vector<double> &column(const TimeSeries &history, const std::string &name)
     {
       const TimeSeries::Column *c = history.find(name);
@@ -86,10 +102,12 @@ namespace anticrack::dem
     }
   } // namespace
 
-  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness, const bool shear_controlled)
+  TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness,
+                                           const ActuatorControl control)
   {
     TestFailureAnalysis result;
-    result.shear_controlled = shear_controlled;
+    result.control = control;
+    const bool shear_controlled = control == ActuatorControl::shear_displacement;
     try
     {
       dem::TestHistory h;
@@ -115,7 +133,7 @@ namespace anticrack::dem
                  &uz = column(history, clump_displacement('z'));
       for (std::size_t i = 0; i < n; ++i)
       {
-        if (!shear_controlled)
+        if (control == ActuatorControl::force)
           h.clump_velocity.emplace_back(vx[i], vy[i], vz[i]);
         h.clump_displacement.emplace_back(ux[i], uy[i], uz[i]);
         // Compression positive like sigma; shear strain along +x like tau.
@@ -131,6 +149,12 @@ namespace anticrack::dem
       {
         options.loading_measure = dem::Measure::base_shear;
         options.failure_at_loading_peak = true;
+      }
+      else if (control == ActuatorControl::normal_displacement)
+      {
+        options.loading_measure = dem::Measure::base_normal;
+        options.failure_at_loading_peak = true;
+        options.peak_before_lock_up = true;
       }
       const dem::FailureAnalysis a = dem::analyse_failure(h, options);
       const auto &steps = column(history, history_column::step);
@@ -150,7 +174,7 @@ namespace anticrack::dem
     catch (const std::exception &e)
     {
       result = TestFailureAnalysis{};
-      result.shear_controlled = shear_controlled;
+      result.control = control;
       result.error = e.what();
     }
     return result;
@@ -175,15 +199,14 @@ namespace anticrack::dem
       result[key::error] = a.error;
       return result;
     }
-    result[key::criterion] = a.shear_controlled ?
-                               "peak of the base shear stress tau (displacement-controlled simple shear)" :
-                               "Ritter et al. (2020): max q inside the window where E_k* = |v_c|^2/max|v_c|^2 < 0.3";
+    const bool shear_controlled = a.control == ActuatorControl::shear_displacement;
+    result[key::criterion] = criterion_text(a.control);
     result[key::failure] = point_json(a.failure);
     result[key::peak_q] = point_json(a.peak_q);
     if (a.peak_loading)
-      result[a.shear_controlled ? key::peak_base_shear : key::peak_base_normal] = point_json(*a.peak_loading);
+      result[shear_controlled ? key::peak_base_shear : key::peak_base_normal] = point_json(*a.peak_loading);
     if (a.secant_modulus)
-      result[a.shear_controlled ? key::secant_shear : key::secant] = *a.secant_modulus;
+      result[shear_controlled ? key::secant_shear : key::secant] = *a.secant_modulus;
     if (a.softening_ratio)
       result[key::softening_ratio] = *a.softening_ratio;
     if (a.flow_angle_deg)
@@ -199,15 +222,19 @@ namespace anticrack::dem
       a.error = j[key::error].get<std::string>();
       return a;
     }
-    a.shear_controlled = j.contains(key::peak_base_shear) || j.contains(key::secant_shear);
+    a.control = ActuatorControl::force;
+    for (const ActuatorControl c : {ActuatorControl::shear_displacement, ActuatorControl::normal_displacement})
+      if (j.contains(key::criterion) && j[key::criterion] == criterion_text(c))
+        a.control = c;
+    const bool shear_controlled = a.control == ActuatorControl::shear_displacement;
     // A point the file lacks reads as NaN throughout.
     const auto member = [&](const char *name) { return j.contains(name) ? j[name] : nlohmann::ordered_json::object(); };
     a.failure = point_from_json(member(key::failure));
     a.peak_q = point_from_json(member(key::peak_q));
-    const char *peak_loading = a.shear_controlled ? key::peak_base_shear : key::peak_base_normal;
+    const char *peak_loading = shear_controlled ? key::peak_base_shear : key::peak_base_normal;
     if (j.contains(peak_loading))
       a.peak_loading = point_from_json(j[peak_loading]);
-    a.secant_modulus = optional_number(j, a.shear_controlled ? key::secant_shear : key::secant);
+    a.secant_modulus = optional_number(j, shear_controlled ? key::secant_shear : key::secant);
     a.softening_ratio = optional_number(j, key::softening_ratio);
     a.flow_angle_deg = optional_number(j, key::flow_angle);
     return a;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "dem/core/types.h"
+#include "dem/lab/failure_point.h"
 #include "util/time_series.h"
 
 #include <nlohmann/json.hpp>
@@ -36,7 +37,7 @@ namespace anticrack::dem
   struct TestFailureAnalysis
   {
     std::string error;             ///< why the history allows no analysis; empty: the rest holds
-    bool shear_controlled = false; ///< simple shear: failure at the peak of tau, strain u_x / H
+    ActuatorControl control = ActuatorControl::force; ///< decides the criterion (analyse_test_history)
     RecordedFailurePoint failure;
     RecordedFailurePoint peak_q;
     std::optional<RecordedFailurePoint> peak_loading; ///< of sigma (tau when shear-controlled)
@@ -53,10 +54,11 @@ namespace anticrack::dem
   /// turns the clump's displacement into the loading strain u/h of the deformable layer between
   /// the rigid base and clump, as the calibration does (params/elastic_calibration.h). If the
   /// history does not allow the analysis (no clump, no run-away yet) `error` says why.
-  /// `shear_controlled`: a displacement-controlled simple shear test; failure is the peak of the
-  /// base shear stress, the strain is the shear strain u_x / h.
+  /// `control`: force, Ritter et al.'s criterion; shear_displacement (simple shear), failure at the
+  /// peak of the base shear stress, strain u_x / h; normal_displacement (compaction), failure at the
+  /// first peak of the base normal stress, before the lock-up (dem/lab/compaction_curve.h).
   TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness,
-                                           bool shear_controlled = false);
+                                           ActuatorControl control = ActuatorControl::force);
 
   /// Was the loading quasi-static as failure approached? The largest inertial number over the
   /// samples up to `failure_step` whose q is at least half the failure q (earlier, I ~ 1/sqrt(p)

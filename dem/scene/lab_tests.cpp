@@ -12,6 +12,7 @@ namespace anticrack::dem
   LabTest simple_shear_test();
   LabTest triaxial_test();
   LabTest platen_compression_test();
+  LabTest compaction_test();
 
   const std::vector<LabTest> &lab_tests()
   {
@@ -21,8 +22,17 @@ namespace anticrack::dem
       simple_shear_test(),
       triaxial_test(),
       platen_compression_test(),
+      compaction_test(),
     };
     return tests;
+  }
+
+  const LabTest &lab_test(const std::string &name)
+  {
+    for (const LabTest &t : lab_tests())
+      if (name == t.name)
+        return t;
+    throw std::logic_error("lab_test: no DEM/Loading/Test named '" + name + "'");
   }
 
   std::string lab_test_documentation()

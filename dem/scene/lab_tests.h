@@ -5,6 +5,7 @@
 // the table.
 #pragma once
 
+#include "dem/lab/failure_point.h"
 #include "dem/scene/variant.h"
 
 #include <initializer_list>
@@ -33,13 +34,15 @@ namespace anticrack::dem
     std::unique_ptr<LabProtocol> (*make_protocol)(const SceneParameters &scene, DemModel &model);
     /// Why a campaign (Campaign/Loading angles [deg]) cannot run this test; null if it can.
     const char *why_no_campaign;
-    /// Failure is the peak of the base shear stress under a driven shear displacement (see
-    /// analyse_test_history), not the run-away of a load-controlled test.
-    bool shear_controlled;
+    /// How the clump is driven, which decides how analyse_test_history finds failure: the run-away
+    /// of a load-controlled test, or the peak of the base stress of a displacement-controlled one.
+    ActuatorControl control;
   };
 
   /// Every lab test; the first is the default.
   const std::vector<LabTest> &lab_tests();
+  /// The test of that DEM/Loading/Test name; std::logic_error if there is none.
+  const LabTest &lab_test(const std::string &name);
   /// The documentation of DEM/Loading/Test: every test's paragraph.
   std::string lab_test_documentation();
   /// The entries of DEM/Loading that several tests read (their declare_parameters name them).

@@ -636,6 +636,16 @@ namespace anticrack::dem
                         "s = (p, q) of the Love-Weber stress between a test and its slow reference; "
                         "summary.json reports every difference (and that of the base stresses "
                         "(sigma, tau)) and whether it is within. Dimensionless.");
+      prm.declare_entry("Compaction strain rate [1/s]", "0", Patterns::Double(0),
+                        "Besides the tests at the loading angles, every realization of every microstructure "
+                        "gets a displacement-controlled compaction test (DEM/Loading/Test = compaction, "
+                        "psi = 0) at this strain rate, to Compaction final strain: the calibration reads "
+                        "the softening, the residual strength, the fracture energy and the collapse height "
+                        "from it (docs/calibration.md). Quasi-static check repeats it at the slower rate like "
+                        "the others. 0 = no compaction tests. Units: 1/s.");
+      prm.declare_entry("Compaction final strain", "0", Patterns::Double(0, 1),
+                        "-u_z / H0 at which the compaction tests end: past the lock-up of the collapsed layer "
+                        "(the calibration refuses a test that ends before it). Dimensionless.");
       prm.leave_subsection();
     }
 
@@ -665,6 +675,8 @@ namespace anticrack::dem
       quasi_static_check = check_names().value(prm.get("Quasi-static check"));
       quasi_static_slowdown = prm.get_double("Quasi-static slowdown");
       quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
+      compaction_strain_rate = prm.get_double("Compaction strain rate [1/s]");
+      compaction_final_strain = prm.get_double("Compaction final strain");
       prm.leave_subsection();
     }
 
@@ -690,6 +702,9 @@ namespace anticrack::dem
         problems.add("DEM/Loading/Stop strain", dem.loading.stop_strain,
                      "must be positive in a campaign (allowed: > 0, e.g. 0.02), or every test runs all "
                      "DEM/Steps after its failure");
+      if (has_compaction_tests() && !(compaction_final_strain > 0 && compaction_final_strain < 1))
+        problems.add("Campaign/Compaction final strain", compaction_final_strain,
+                     "must lie in (0, 1) when Compaction strain rate [1/s] is set: the compaction tests end there");
     }
   } // namespace parameters
 

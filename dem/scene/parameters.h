@@ -264,6 +264,8 @@ namespace anticrack::dem
       double max_servo_speed = 0;        ///< [m/s], 0 = 10 x strain rate x box length
       double platen_speed = 1e-2;        ///< [m/s]
       double post_peak_fraction = 0.5;
+      // compaction (dem/lab/compaction_test.h)
+      double compaction_strain_rate = 0; ///< [1/s]
       /// The values of a test that no other module reads (see Sample::settings).
       std::any settings;
 
@@ -337,6 +339,11 @@ namespace anticrack::dem
       QuasiStaticCheck quasi_static_check = QuasiStaticCheck::none;
       double quasi_static_slowdown = 4;       ///< rate divisor of the reference runs
       double quasi_static_tolerance = 0.02;   ///< allowed relative difference of the failure stress
+      /// Displacement-controlled compaction test per realization (dem/lab/compaction_test.h), 0 = none.
+      double compaction_strain_rate = 0;      ///< [1/s]
+      double compaction_final_strain = 0;     ///< -u_z / H0 at which it ends
+
+      [[nodiscard]] bool has_compaction_tests() const { return compaction_strain_rate > 0; }
 
       [[nodiscard]] bool enabled() const { return !loading_angles_deg.empty(); }
 

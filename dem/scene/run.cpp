@@ -674,7 +674,7 @@ namespace anticrack::dem
         // Strains of the deformable layer between the rigid base and clump (u / h), as the
         // calibration reads them (params/campaign_data.cpp): one secant modulus for both.
         failure_analysis_ = analyse_test_history(history_, initial_layer_thickness_,
-                                                 scene_.dem.loading.test->shear_controlled);
+                                                 scene_.dem.loading.test->control);
       }
       summary_ = summary(status, message);
       write_json_atomically(files_.summary().string(), summary_);

@@ -71,6 +71,31 @@ namespace anticrack::fem
 
     constexpr const char *confidence_entry = "Confidence";
 
+    /// subsection Material/Collapse: one entry per member of MaterialCollapse (its interval apart).
+    struct CollapseEntry
+    {
+      const char *name, *meaning;
+      double MaterialCollapse::*number;
+      double upper;
+    };
+    const std::vector<CollapseEntry> &collapse_entries()
+    {
+      using C = MaterialCollapse;
+      static const std::vector<CollapseEntry> entries = {
+        {"Lock-up strain", "eps_d: compaction of the layer at the onset of its lock-up (the collapse height over the "
+                           "thickness); 0 = not given (the scene's layer gives the collapse height). Dimensionless.",
+         &C::lock_up_strain, 0.999},
+        {"Lock-up modulus [Pa]", "K_d: modulus of the lock-up (the layer's densification modulus). Units: Pa.",
+         &C::lock_up_modulus, std::numeric_limits<double>::max()},
+        {"Fracture energy density [J/m^3]", "w_f: energy dissipated by the strength drop beyond the residual, per "
+                                             "unit volume; times a thickness, per unit layer area. Units: J/m^3.",
+         &C::fracture_energy_density, std::numeric_limits<double>::max()},
+        {"Collapse energy density [J/m^3]", "w_c: energy dissipated up to the lock-up, per unit volume. Units: J/m^3.",
+         &C::collapse_energy_density, std::numeric_limits<double>::max()}};
+      return entries;
+    }
+    constexpr const char *lock_up_interval_entry = "Lock-up strain interval";
+
     void declare_material_file(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
@@ -79,6 +104,11 @@ namespace anticrack::fem
       prm.declare_entry(confidence_entry, "0.95", Double(0, 1), "level of the intervals");
       for (const MaterialEntry *e : material_interval_entries())
         prm.declare_entry(e->interval_name(), "", Anything(), "lower, upper");
+      prm.leave_subsection();
+      prm.enter_subsection("Collapse");
+      for (const CollapseEntry &e : collapse_entries())
+        prm.declare_entry(e.name, "0", Double(0, e.upper), e.meaning);
+      prm.declare_entry(lock_up_interval_entry, "", Anything(), "lower, upper");
       prm.leave_subsection();
       prm.enter_subsection("Provenance");
       for (const ProvenanceEntry &e : provenance_entries())
@@ -237,19 +267,7 @@ namespace anticrack::fem
     return m;
   }
 
-  ContinuumMaterial read_material_file(const std::string &file)
-  {
-    std::string text;
-    try
-    {
-      text = read_text_file(file);
-    }
-    catch (const std::runtime_error &)
-    {
-      throw InputError("material file " + file + " cannot be read");
-    }
-    return read_material_text(text, file);
-  }
+  ContinuumMaterial read_material_file(const std::string &file) { return read_whole_material_file(file).material; }
 
   ContinuumMaterial read_material_text(const std::string &text, const std::string &name)
   {
@@ -273,6 +291,13 @@ namespace anticrack::fem
     for (const MaterialEntry *e : material_interval_entries())
       file.uncertainty.*e->interval = parse_interval(prm.get(e->interval_name()), e->interval_name(), name);
     prm.leave_subsection();
+    prm.enter_subsection("Collapse");
+    for (const CollapseEntry &e : collapse_entries())
+      file.collapse.*e.number = prm.get_double(e.name);
+    if (!prm.get(lock_up_interval_entry).empty())
+      file.collapse.lock_up_strain_interval =
+        parse_interval(prm.get(lock_up_interval_entry), lock_up_interval_entry, name);
+    prm.leave_subsection();
     prm.enter_subsection("Provenance");
     for (const ProvenanceEntry &e : provenance_entries())
     {
@@ -286,6 +311,20 @@ namespace anticrack::fem
     prm.leave_subsection();
     prm.leave_subsection();
     return file;
+  }
+
+  MaterialFile read_whole_material_file(const std::string &file)
+  {
+    std::string text;
+    try
+    {
+      text = read_text_file(file);
+    }
+    catch (const std::runtime_error &)
+    {
+      throw InputError("material file " + file + " cannot be read");
+    }
+    return read_material_file_text(text, file);
   }
 
   std::string material_file_number(double value) { return format_number(value, 6); }
@@ -307,8 +346,18 @@ namespace anticrack::fem
       out << "    set " << e->interval_name() << " = " << material_file_number(interval.lower) << ", "
           << material_file_number(interval.upper) << "\n";
     }
-    out << "  end\n"
-        << "  subsection Provenance\n";
+    out << "  end\n";
+    if (file.collapse.given())
+    {
+      out << "  subsection Collapse\n";
+      for (const CollapseEntry &e : collapse_entries())
+        out << "    set " << e.name << " = " << material_file_number(file.collapse.*e.number) << "\n";
+      out << "    set " << lock_up_interval_entry << " = "
+          << material_file_number(file.collapse.lock_up_strain_interval.lower) << ", "
+          << material_file_number(file.collapse.lock_up_strain_interval.upper) << "\n"
+          << "  end\n";
+    }
+    out << "  subsection Provenance\n";
     for (const ProvenanceEntry &e : provenance_entries())
     {
       out << "    set " << e.name << " = ";

@@ -66,13 +66,31 @@ namespace anticrack::fem
     double r_squared = 0;       ///< of the yield-surface fit
   };
 
-  /// A whole material file: a comment block, the material, its uncertainty and its provenance.
+  /// The collapse of a calibrated weak layer (subsection Material/Collapse), measured in the DEM's
+  /// displacement-controlled compaction tests (dem/lab/compaction_curve.h). A strain, not a height:
+  /// the collapse height of a layer that uses the file is lock_up_strain times its thickness
+  /// (fem/scene/snowpack_scene.h). A file without it (lock_up_strain = 0) leaves the collapse height
+  /// and densification modulus to the scene's layer.
+  struct MaterialCollapse
+  {
+    double lock_up_strain = 0;          ///< ε_d: compaction at the onset of the lock-up, in [0, 1)
+    MaterialInterval lock_up_strain_interval;
+    double lock_up_modulus = 0;         ///< K_d [Pa]
+    double fracture_energy_density = 0; ///< w_f [J/m³], dissipated by the strength drop beyond the residual
+    double collapse_energy_density = 0; ///< w_c [J/m³], dissipated up to the lock-up
+
+    [[nodiscard]] bool given() const { return lock_up_strain > 0; }
+  };
+
+  /// A whole material file: a comment block, the material, its uncertainty, its provenance and
+  /// (optional) its collapse.
   struct MaterialFile
   {
     std::vector<std::string> comment; ///< lines of the header, written after "# "
     ContinuumMaterial material;
     MaterialUncertainty uncertainty;
     MaterialProvenance provenance;
+    MaterialCollapse collapse;
   };
 
   /// One entry of `subsection Material`: its label and unit (the name in the file is
@@ -123,9 +141,12 @@ namespace anticrack::fem
   /// The same for the text of a material file; `name` is used in messages.
   ContinuumMaterial read_material_text(const std::string &text, const std::string &name);
 
-  /// The whole file (material, uncertainty, provenance; not the comment) from its text; throws like
-  /// read_material_text().
+  /// The whole file (material, uncertainty, provenance, collapse; not the comment) from its text;
+  /// throws like read_material_text().
   MaterialFile read_material_file_text(const std::string &text, const std::string &name);
+
+  /// The same from a file.
+  MaterialFile read_whole_material_file(const std::string &file);
 
   /// The text of a material file: the comment, then subsection Material with every entry of
   /// material_entries(), Uncertainty and Provenance. Numbers are written with 6 significant digits.

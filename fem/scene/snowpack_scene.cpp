@@ -47,7 +47,8 @@ namespace anticrack::fem
       prm.declare_entry("Collapse height [m]", "0", Double(0),
                         "h_c: collapse height, how far the faces of a collapsing layer approach before its grains "
                         "lock up (0: no lock-up); weak layers collapse by 3-5 mm of 10-30 mm (docs/physics.md "
-                        "§2). Units: m.");
+                        "§2). A material file with subsection Collapse gives it instead (its lock-up strain times "
+                        "Thickness); this entry must then be 0. Units: m.");
       prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
                         "K_d: bulk modulus of the lock-up once the collapse height is used up. Units: Pa.");
       declare_material_entries(prm);
@@ -71,7 +72,23 @@ namespace anticrack::fem
         layer.material_file = path.lexically_normal().string();
         try
         {
-          layer.material = read_material_file(layer.material_file);
+          const MaterialFile whole = read_whole_material_file(layer.material_file);
+          layer.material = whole.material;
+          if (whole.collapse.given())
+          {
+            // The calibrated layer's collapse is a strain (its compaction tests): its height here
+            // is that strain times this layer's thickness.
+            if (layer.collapse_height > 0 || layer.densification_modulus > 0)
+              throw InputError("the material file gives the collapse (Material/Collapse/Lock-up strain = " +
+                               format_number(whole.collapse.lock_up_strain) + ", Lock-up modulus [Pa] = " +
+                               format_number(whole.collapse.lock_up_modulus) + "), and " + section +
+                               "/Collapse height [m] and Densification modulus [Pa] must then be 0 (are " +
+                               format_number(layer.collapse_height) + " and " +
+                               format_number(layer.densification_modulus) + "): give it once");
+            layer.collapse_height = whole.collapse.lock_up_strain * layer.thickness;
+            layer.densification_modulus = whole.collapse.lock_up_modulus;
+            layer.collapse_from_material_file = true;
+          }
         }
         catch (const InputError &e)
         {

@@ -48,6 +48,9 @@ namespace anticrack::fem
     /// [m] (how far its faces approach before the grains lock up; 0: no lock-up) and the lock-up's
     /// bulk modulus [Pa].
     double collapse_height = 0;
+    /// collapse_height and densification_modulus come from the material file's Material/Collapse
+    /// (its lock-up strain times thickness, its lock-up modulus), not from the scene.
+    bool collapse_from_material_file = false;
     double densification_modulus = 0;
   };
 

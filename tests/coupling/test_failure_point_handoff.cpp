@@ -38,16 +38,17 @@ namespace
 
 TEST(FailureAnalysisRecord, SummaryJsonGivesBackWhatTheRunHandedOver)
 {
-  for (const bool shear_controlled : {false, true})
+  for (const ActuatorControl control :
+       {ActuatorControl::force, ActuatorControl::shear_displacement, ActuatorControl::normal_displacement})
   {
     TestFailureAnalysis a;
-    a.shear_controlled = shear_controlled;
+    a.control = control;
     a.failure = point(1), a.peak_q = point(1.1), a.peak_loading = point(1.2);
     a.secant_modulus = 1.23456789e6, a.softening_ratio = 0.3141592653589793, a.flow_angle_deg = -87.654321;
     const nlohmann::ordered_json file = nlohmann::ordered_json::parse(failure_analysis_json(a).dump());
     const TestFailureAnalysis b = failure_analysis_from_json(file);
     EXPECT_TRUE(b.error.empty());
-    EXPECT_EQ(b.shear_controlled, shear_controlled);
+    EXPECT_EQ(b.control, control);
     expect_same(a.failure, b.failure);
     expect_same(a.peak_q, b.peak_q);
     ASSERT_TRUE(b.peak_loading);

@@ -190,3 +190,26 @@ TEST(MaterialHandoff, TheFilesSurfaceIsTheFitOnTheTestsPathsNeverAnotherPlanes)
   EXPECT_EQ(back.provenance.campaign_sha256, std::string(64, 'a'));
   EXPECT_EQ(back.provenance.r_squared, 0.987);
 }
+
+TEST(MaterialFile, TheCollapseIsWrittenOnlyWhenGivenAndReadBack)
+{
+  fem::MaterialFile file;
+  file.material = {"layer", "invariants", 275.1, 1.2345e6, 0.21, 3456.7, 0.45, 1.05, "collapse", 42.5, 0.35, 0.008};
+  file.provenance.fit_plane = std::string(fem::path_fit_plane) + ", lateral stress ratio 0 (open sides)";
+  EXPECT_EQ(fem::material_file_text(file).find("subsection Collapse"), std::string::npos);
+  EXPECT_FALSE(fem::read_material_file_text(fem::material_file_text(file), "no collapse").collapse.given());
+
+  file.collapse.lock_up_strain = 0.2416;
+  file.collapse.lock_up_strain_interval = {0.1565, 0.3267};
+  file.collapse.lock_up_modulus = 1.7e5;
+  file.collapse.fracture_energy_density = 1.608;
+  file.collapse.collapse_energy_density = 651.5;
+  const fem::MaterialFile back = fem::read_material_file_text(fem::material_file_text(file), "collapse");
+  ASSERT_TRUE(back.collapse.given());
+  EXPECT_EQ(back.collapse.lock_up_strain, 0.2416);
+  EXPECT_EQ(back.collapse.lock_up_strain_interval.lower, 0.1565);
+  EXPECT_EQ(back.collapse.lock_up_strain_interval.upper, 0.3267);
+  EXPECT_EQ(back.collapse.lock_up_modulus, 1.7e5);
+  EXPECT_EQ(back.collapse.fracture_energy_density, 1.608);
+  EXPECT_EQ(back.collapse.collapse_energy_density, 651.5);
+}

@@ -71,7 +71,7 @@ namespace anticrack::dem
   {
     return {{"clump force", "the force F(t) = Fdot t d at its centre of mass (Ritter et al.'s (2020) mixed-mode test).",
              declare},
-            parse, check_clump_force, nullptr, make_clump_force, nullptr, false};
+            parse, check_clump_force, nullptr, make_clump_force, nullptr, ActuatorControl::force};
   }
 
   LabTest tilted_gravity_test()
@@ -81,6 +81,6 @@ namespace anticrack::dem
              "|DEM/Integration/Gravity| along d = Clump force direction (tilted by psi), acting on every sphere; "
              "Clump force rate [N/s] is the growth rate of the actuator's weight.",
              declare},
-            parse, check_tilted_gravity, nullptr, make_tilted_gravity, nullptr, false};
+            parse, check_tilted_gravity, nullptr, make_tilted_gravity, nullptr, ActuatorControl::force};
   }
 } // namespace anticrack::dem

@@ -73,6 +73,6 @@ namespace anticrack::dem
             nullptr,
             make_protocol,
             wall_tests_have_no_loading_angles,
-            false};
+            ActuatorControl::force};
   }
 } // namespace anticrack::dem

@@ -84,6 +84,6 @@ namespace anticrack::dem
             nullptr,
             make_protocol,
             "campaigns run load-controlled tests at loading angles; simple shear has none",
-            true};
+            ActuatorControl::shear_displacement};
   }
 } // namespace anticrack::dem

@@ -85,6 +85,6 @@ namespace anticrack::dem
             add_to_model,
             make_protocol,
             wall_tests_have_no_loading_angles,
-            false};
+            ActuatorControl::force};
   }
 } // namespace anticrack::dem

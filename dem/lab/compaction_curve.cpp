@@ -1,0 +1,234 @@
+#include "dem/lab/compaction_curve.h"
+
+#include "dem/lab/failure_point.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace anticrack::dem
+{
+  namespace
+  {
+    [[noreturn]] void fail(const std::string &what)
+    {
+      throw std::invalid_argument("compaction curve: " + what);
+    }
+
+    /// ∫ σ dε by the trapezoidal rule over the samples [first, last], plus the partial interval up
+    /// to strain `end` (end between the strains of samples last and last + 1, or at last).
+    double integral_to(const std::vector<double> &e, const std::vector<double> &s, std::size_t first, double end)
+    {
+      double w = 0;
+      for (std::size_t i = first; i + 1 < e.size() && e[i] < end; ++i)
+      {
+        const double right = std::min(e[i + 1], end);
+        const double s_right = s[i] + (s[i + 1] - s[i]) * (right - e[i]) / (e[i + 1] - e[i]);
+        w += 0.5 * (s[i] + s_right) * (right - e[i]);
+      }
+      return w;
+    }
+
+    struct Candidate
+    {
+      double misfit = std::numeric_limits<double>::infinity();
+      double softening_end = 0, lock_up = 0, residual = 0, modulus = 0;
+    };
+
+    /// The best (σ_r, K_d) for given ε_s, ε_d over the samples after the peak, by least squares with
+    /// the bounds of the header; its sum of squared misfits.
+    Candidate fit_linear_part(const std::vector<double> &e, const std::vector<double> &s,
+                              const std::vector<double> &w, std::size_t peak, std::size_t end, double peak_stress,
+                              double softening_end, double lock_up)
+    {
+      // model_i = c_i + a_i σ_r + b_i K_d
+      double aa = 0, ab = 0, bb = 0, ar = 0, br = 0;
+      const double e_p = e[peak];
+      auto coefficients = [&](std::size_t i, double &a, double &b, double &c) {
+        if (e[i] < softening_end)
+        {
+          const double t = (e[i] - e_p) / (softening_end - e_p);
+          a = t, b = 0, c = peak_stress * (1 - t);
+        }
+        else
+          a = 1, b = e[i] > lock_up ? e[i] - lock_up : 0.0, c = 0;
+      };
+      for (std::size_t i = peak + 1; i <= end; ++i)
+      {
+        double a, b, c;
+        coefficients(i, a, b, c);
+        const double r = s[i] - c;
+        aa += w[i] * a * a, ab += w[i] * a * b, bb += w[i] * b * b, ar += w[i] * a * r, br += w[i] * b * r;
+      }
+      auto misfit_of = [&](double residual, double modulus) {
+        double sum = 0;
+        for (std::size_t i = peak + 1; i <= end; ++i)
+        {
+          double a, b, c;
+          coefficients(i, a, b, c);
+          const double d = s[i] - (c + a * residual + b * modulus);
+          sum += w[i] * d * d;
+        }
+        return sum;
+      };
+      auto clamp_residual = [&](double r) { return std::clamp(r, 0.0, peak_stress); };
+      Candidate best;
+      best.softening_end = softening_end, best.lock_up = lock_up;
+      const double det = aa * bb - ab * ab;
+      if (bb > 0 && det > 1e-14 * aa * bb)
+      {
+        const double residual = (ar * bb - ab * br) / det, modulus = (aa * br - ab * ar) / det;
+        if (modulus >= 0 && residual >= 0 && residual <= peak_stress)
+        {
+          best.residual = residual, best.modulus = modulus, best.misfit = misfit_of(residual, modulus);
+          return best;
+        }
+      }
+      // On a bound: K_d = 0 (no lock-up), or σ_r on its bound with the best K_d >= 0 for it.
+      if (aa > 0)
+      {
+        const double r = clamp_residual(ar / aa);
+        const double m = misfit_of(r, 0.0);
+        if (m < best.misfit)
+          best.residual = r, best.modulus = 0, best.misfit = m;
+      }
+      if (bb > 0)
+        for (const double r : {0.0, peak_stress})
+        {
+          const double k = std::max(0.0, (br - ab * r) / bb);
+          const double m = misfit_of(r, k);
+          if (m < best.misfit)
+            best.residual = r, best.modulus = k, best.misfit = m;
+        }
+      return best;
+    }
+  } // namespace
+
+  double CompactionCurveFit::model_stress(const double e) const
+  {
+    if (e < softening_end_strain)
+      return peak_stress - (peak_stress - residual_stress) * (e - peak_strain) / (softening_end_strain - peak_strain);
+    return residual_stress + (e > lock_up_strain ? lock_up_modulus * (e - lock_up_strain) : 0.0);
+  }
+
+  CompactionCurveFit fit_compaction_curve(const std::vector<double> &strain, const std::vector<double> &stress,
+                                          const double axial_modulus)
+  {
+    if (stress.size() != strain.size())
+      fail("the stress has " + std::to_string(stress.size()) + " samples, the strain " +
+           std::to_string(strain.size()));
+    // Samples at the strain of the one before (the history's rows before the platen moves) carry
+    // no strain: they are left out. A strain that decreases is not a compaction test.
+    std::vector<double> e, s;
+    std::vector<std::size_t> sample; // of each kept sample in the input
+    for (std::size_t i = 0; i < strain.size(); ++i)
+    {
+      if (!e.empty() && strain[i] < e.back())
+        fail("the strain decreases at sample " + std::to_string(i) + " (" + std::to_string(e.back()) + " then " +
+             std::to_string(strain[i]) + ")");
+      if (e.empty() || strain[i] > e.back())
+        e.push_back(strain[i]), s.push_back(stress[i]), sample.push_back(i);
+    }
+    const std::size_t n = e.size();
+    if (n < 20)
+      fail("fewer than 20 samples of increasing strain (" + std::to_string(n) + ")");
+
+    // The first peak: the running maximum when the stress first falls below collapse_fraction of it.
+    std::size_t peak = 0, collapse = n, above_cap = n;
+    CompactionStages stages;
+    for (std::size_t i = 0; i < n && above_cap == n; ++i)
+    {
+      if (stages.add(s[i]))
+        peak = i;
+      if (stages.collapsed && collapse == n)
+        collapse = i;
+      if (stages.locked_up)
+        above_cap = i;
+    }
+    if (!(s[peak] > 0))
+      fail("no positive (compressive) stress");
+    if (collapse == n)
+      fail("the stress never falls below " + std::to_string(compaction_collapse_fraction) +
+           " of its running maximum: no collapse (the layer hardens under compaction; largest stress " +
+           std::to_string(s[peak]) + " Pa at strain " + std::to_string(e[peak]) + ")");
+    if (peak < compaction_elastic_samples)
+      fail("the peak (" + std::to_string(s[peak]) + " Pa at strain " + std::to_string(e[peak]) + ") is sample " +
+           std::to_string(peak) + ": fewer than " + std::to_string(compaction_elastic_samples) +
+           " samples resolve the rise to it; record the history more often (Output/History interval [steps])");
+    const double peak_stress = s[peak];
+    // Lock-up: the locked-up layer carries the peak again, for good, before it reaches
+    // lock_up_stress_ratio times it.
+    const double cap = compaction_lock_up_stress_ratio * peak_stress;
+    if (above_cap == n)
+      fail("the curve ends (strain " + std::to_string(e[n - 1]) + ", stress " + std::to_string(s[n - 1]) +
+           " Pa) before the collapsed layer locks up and carries " + std::to_string(compaction_lock_up_stress_ratio) +
+           " times its peak " + std::to_string(peak_stress) + " Pa: run the test further (its final strain)");
+    auto crossing = [&](std::size_t last_below, double level) {
+      const std::size_t i = last_below;
+      return e[i] + (e[i + 1] - e[i]) * (level - s[i]) / (s[i + 1] - s[i]);
+    };
+    std::size_t below_peak = above_cap - 1;
+    while (below_peak > collapse && s[below_peak] >= peak_stress)
+      --below_peak;
+    std::size_t below_cap = above_cap - 1;
+    const double regain_strain = crossing(below_peak, peak_stress), cap_strain = crossing(below_cap, cap);
+
+    // The drop and the plateau, by least squares up to the onset of the lock-up ε_d, weighted by the
+    // strain each sample stands for, so that the fit is one of the curve, not of the output interval.
+    // ε_d depends on σ_r (header), so the window's end is iterated from ε_x: a few rounds settle it
+    // to the sample.
+    const double lock_up_modulus = (cap - peak_stress) / (cap_strain - regain_strain);
+    const double e_p = e[peak];
+    const double no_lock_up = std::numeric_limits<double>::infinity();
+    Candidate best;
+    std::size_t end = below_peak;
+    for (int round = 0; round < 8; ++round)
+    {
+      if (end - peak < 10)
+        fail("fewer than 10 samples between the peak at strain " + std::to_string(e_p) +
+             " and the lock-up at strain " + std::to_string(e[end]));
+      std::vector<double> weight(n, 0.0);
+      for (std::size_t i = peak + 1; i <= end; ++i)
+        weight[i] = 0.5 * (e[std::min(i + 1, end)] - e[i - 1]);
+      const double e_end = e[end];
+      constexpr int drop_points = 400; // ε_s on a logarithmic grid of the drop's length
+      const double shortest = std::max(e[peak + 1] - e_p, 1e-6 * (e_end - e_p));
+      best = Candidate{};
+      for (int a = 0; a < drop_points; ++a)
+      {
+        const double e_s = e_p + 0.999 * shortest * std::pow((e_end - e_p) / shortest, a / double(drop_points - 1));
+        const Candidate c = fit_linear_part(e, s, weight, peak, end, peak_stress, e_s, no_lock_up);
+        if (c.misfit < best.misfit)
+          best = c;
+      }
+      best.misfit /= (e_end - e_p);
+      const double onset = regain_strain - (peak_stress - best.residual) / lock_up_modulus;
+      std::size_t next = peak + 1;
+      while (next + 1 < n && e[next + 1] <= onset)
+        ++next;
+      if (next == end)
+        break;
+      end = next;
+    }
+    CompactionCurveFit fit;
+    fit.peak_index = static_cast<Index>(sample[peak]);
+    fit.peak_strain = e_p, fit.peak_stress = peak_stress;
+    fit.residual_stress = best.residual, fit.softening_end_strain = best.softening_end;
+    fit.regain_strain = regain_strain;
+    fit.lock_up_modulus = lock_up_modulus;
+    // The FE's lock-up spring starts at ε_d so that the residual plus it regains σ_p at the DEM's strain.
+    fit.lock_up_strain = regain_strain - (peak_stress - fit.residual_stress) / fit.lock_up_modulus;
+    fit.rms_misfit = std::sqrt(best.misfit) / peak_stress;
+    fit.axial_modulus =
+      std::isnan(axial_modulus) ? secant_modulus(e, s, static_cast<Index>(peak), 0.7) : axial_modulus;
+    if (!(fit.axial_modulus > 0))
+      fail("the axial modulus must be positive (is " + std::to_string(fit.axial_modulus) + " Pa)");
+    const double M = fit.axial_modulus;
+    fit.fracture_energy_density = 0.5 * (fit.peak_stress - fit.residual_stress) * fit.plastic_softening_strain();
+    fit.collapse_energy_density =
+      integral_to(e, s, 0, fit.lock_up_strain) - fit.residual_stress * fit.residual_stress / (2 * M);
+    return fit;
+  }
+} // namespace anticrack::dem

@@ -1,0 +1,130 @@
+// The stress-strain curve of a displacement-controlled compaction test (dem/lab/compaction_test.h)
+// read as the continuum reads it: the piecewise-linear response of the FE weak layer under uniaxial
+// strain (docs/physics.md §2), fitted to the DEM curve past its peak,
+//
+//   σ(ε) = σ_p − (σ_p − σ_r)(ε − ε_p)/(ε_s − ε_p)   ε_p ≤ ε < ε_s   strength drop (collapse softening)
+//        = σ_r                                      ε_s ≤ ε < ε_d   collapse plateau (residual strength)
+//        = σ_r + K_d (ε − ε_d)                      ε ≥ ε_d         lock-up of the collapsed layer
+//
+// with (ε_p, σ_p) the first peak, σ_r the residual stress, ε_s the end of the drop, ε_d the onset of
+// the lock-up and K_d the lock-up (densification) modulus: the FE's residual strength ratio, the end
+// of its softening, its densification strain and modulus.
+//
+// How each is read, and why so:
+//   * the first peak: the running maximum of the stress at the first sample where the stress has
+//     fallen below compaction_collapse_fraction (1/2) of it, the collapse. A layer whose stress never
+//     halves does not collapse and is refused (it hardens);
+//   * the lock-up: ε_x, where the locked-up layer carries σ_p again for good (the last upward
+//     crossing of σ_p before the stress exceeds compaction_lock_up_stress_ratio (3) × σ_p), and K_d,
+//     the secant of the densified branch from σ_p to 3σ_p. That branch is convex and steep (a hundred
+//     times the peak within a few percent more strain, where linear contacts overlap by percents), so
+//     a straight line through all of it would say more about the test's final strain than about the
+//     lock-up. The FE's spring then starts at ε_d = ε_x − (σ_p − σ_r)/K_d, so that residual plus
+//     spring regain σ_p where the DEM does;
+//   * ε_s and σ_r: least squares of the drop and the plateau on (ε_p, ε_x), weighted by the strain
+//     each sample stands for (a fit to the curve, not to the output interval, which varies along an
+//     adaptive-rate test); ε_s by a search over a logarithmic grid, σ_r linear for each ε_s
+//     (0 <= σ_r <= σ_p). A plateau that hardens (the SHS layer's does, from about 0.2 to 0.8 σ_p) is
+//     read as its strain-weighted mean: the FE's collapse law has a flat residual.
+// Both ratios are detection thresholds; docs/calibration.md shows what changing them does.
+//
+// Energies per unit volume of the layer:
+//   fracture energy   w_f = (σ_p − σ_r) Δε_p / 2 with Δε_p = ε_s − ε_p + (σ_p − σ_r)/M the drop's
+//                     plastic strain: what the fitted drop dissipates beyond the residual, which is
+//                     what the FE point with these parameters dissipates (its p0 falls linearly in
+//                     the plastic strain for p0 ≪ K). Read from the fit, not from the samples: on a
+//                     hardening plateau the area between the curve and its mean has either sign;
+//   collapse energy   w_c = ∫_0^{ε_d} σ dε − σ_r²/(2M): everything the DEM layer dissipates up to
+//                     the lock-up (trapezoidal rule in strain, M the secant modulus of the elastic
+//                     branch to 70 % of the peak).
+// Times the layer thickness they are energies per unit layer area [J/m²].
+//
+// Strains are those of the deformable layer (u/h), compression positive; stresses compression
+// positive.
+#pragma once
+
+#include "dem/core/types.h"
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace anticrack::dem
+{
+  struct CompactionCurveFit
+  {
+    Index peak_index = 0;          ///< sample of the first peak
+    double peak_strain = 0;        ///< ε_p
+    double peak_stress = 0;        ///< σ_p [Pa]
+    double axial_modulus = 0;      ///< M [Pa]: given, or the secant to 70 % of the peak
+    double residual_stress = 0;    ///< σ_r [Pa]
+    double softening_end_strain = 0; ///< ε_s
+    double lock_up_strain = 0;     ///< ε_d (the last strain when not locked up)
+    double lock_up_modulus = 0;    ///< K_d [Pa]
+    double regain_strain = 0;      ///< where the locked-up layer carries σ_p again (last upward crossing)
+    double fracture_energy_density = 0; ///< w_f [J/m³]
+    double collapse_energy_density = 0; ///< w_c [J/m³]
+    double rms_misfit = 0;         ///< strain-weighted RMS of data − model over the fit, over σ_p
+
+    /// σ_r / σ_p.
+    [[nodiscard]] double residual_ratio() const { return residual_stress / peak_stress; }
+    /// ε_s − ε_p: total strain of the drop.
+    [[nodiscard]] double softening_strain() const { return softening_end_strain - peak_strain; }
+    /// Plastic strain of the drop: the total strain plus the elastic strain the falling stress
+    /// gives back, ε_s − ε_p + (σ_p − σ_r)/M.
+    [[nodiscard]] double plastic_softening_strain() const
+    {
+      return softening_strain() + (peak_stress - residual_stress) / axial_modulus;
+    }
+    /// The model above at strain `e`.
+    [[nodiscard]] double model_stress(double e) const;
+  };
+
+  /// The stress falls below this fraction of its running maximum: the collapse after the first peak.
+  inline constexpr double compaction_collapse_fraction = 0.5;
+  /// Samples the rise to the peak needs: a coarser history misses the peak (on the SHS layer of
+  /// scenes/shs_weak_layer.prm at 5 /s, every 800 steps gives a peak 21 % low; every 100-400 steps
+  /// agree within 1 %).
+  inline constexpr std::size_t compaction_elastic_samples = 5;
+  /// The fit ends where the stress exceeds this multiple of the first peak after the collapse.
+  inline constexpr double compaction_lock_up_stress_ratio = 3;
+
+  /// Fits the curve (strain[i], stress[i]), strain increasing; least squares weighted by the strain
+  /// each sample stands for. Throws std::invalid_argument with the reason when the curve cannot be
+  /// read this way: fewer than 20 samples, strains not increasing, no positive stress, no collapse,
+  /// fewer than 10 samples in the fit.
+  /// The stages of a compaction curve as they come, sample by sample: the first peak (the running
+  /// maximum until the collapse), the collapse (the stress below compaction_collapse_fraction of
+  /// it) and the lock-up (above compaction_lock_up_stress_ratio times the peak after the collapse).
+  /// One definition for the fit below and for the test that stops once it has locked up
+  /// (dem/lab/compaction_test.h).
+  struct CompactionStages
+  {
+    double lock_up_ratio = compaction_lock_up_stress_ratio; ///< of the stress over the peak at lock-up
+    double peak = 0;        ///< the running maximum, frozen at the collapse [Pa]
+    bool collapsed = false;
+    bool locked_up = false;
+
+    /// Takes the next stress; returns true if this sample is the new running maximum.
+    bool add(double stress)
+    {
+      if (!collapsed)
+      {
+        if (stress > peak)
+        {
+          peak = stress;
+          return true;
+        }
+        collapsed = peak > 0 && stress < compaction_collapse_fraction * peak;
+      }
+      else if (stress > lock_up_ratio * peak)
+        locked_up = true;
+      return false;
+    }
+  };
+
+  /// `axial_modulus`: M for the plastic strain and the energies (the calibration's, which the FE
+  /// layer has); NaN: the curve's own secant to 70 % of its peak.
+  CompactionCurveFit fit_compaction_curve(const std::vector<double> &strain, const std::vector<double> &stress,
+                                          double axial_modulus = std::numeric_limits<double>::quiet_NaN());
+} // namespace anticrack::dem

@@ -1,0 +1,110 @@
+// The reading of a compaction curve (dem/lab/compaction_curve.h) on curves of the model itself,
+// whose parameters are known: elastic rise, linear drop, flat plateau, linear lock-up; with and
+// without a deterministic ripple (the DEM curve's noise), at two sample spacings.
+
+#include "dem/lab/compaction_curve.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+using namespace anticrack::dem;
+
+namespace
+{
+  struct Curve
+  {
+    double M = 6e6, peak = 12e3, residual = 3e3, softening_end = 0.008, lock_up = 0.22, K = 4e5;
+    double peak_strain() const { return peak / M; }
+    double stress(double e) const
+    {
+      if (e <= peak_strain())
+        return M * e;
+      if (e < softening_end)
+        return peak - (peak - residual) * (e - peak_strain()) / (softening_end - peak_strain());
+      return residual + (e > lock_up ? K * (e - lock_up) : 0.0);
+    }
+  };
+
+  /// Samples every `spacing` of strain to `end` (the peak itself is one of them), with a ripple of
+  /// relative amplitude `ripple` on the plateau and the lock-up.
+  void sample(const Curve &c, double spacing, double end, double ripple, std::vector<double> &e,
+              std::vector<double> &s)
+  {
+    e.clear(), s.clear();
+    for (int i = 0; i * spacing <= end; ++i)
+    {
+      const double x = i * spacing;
+      e.push_back(x);
+      const double wobble = x > c.softening_end ? ripple * std::sin(2.1e3 * x) : 0.0;
+      s.push_back(c.stress(x) * (1 + wobble));
+    }
+  }
+} // namespace
+
+TEST(CompactionCurve, RecoversTheParametersOfTheModelCurve)
+{
+  const Curve c;
+  std::vector<double> e, s;
+  sample(c, 1e-4, 0.35, 0, e, s);
+  const CompactionCurveFit f = fit_compaction_curve(e, s, c.M);
+  EXPECT_NEAR(f.peak_stress, c.peak, 1e-9 * c.peak);
+  EXPECT_NEAR(f.peak_strain, c.peak_strain(), 1e-12);
+  // σ_r and ε_s: the grid of ε_s is logarithmic with 400 points over three decades (1.8 % steps).
+  EXPECT_NEAR(f.residual_stress / c.residual, 1, 0.01);
+  EXPECT_NEAR((f.softening_end_strain - c.peak_strain()) / (c.softening_end - c.peak_strain()), 1, 0.02);
+  // The lock-up is read from the crossings of σ_p and 3σ_p, interpolated: exact on a straight branch.
+  const double regain = c.lock_up + (c.peak - c.residual) / c.K;
+  EXPECT_NEAR(f.regain_strain, regain, 1e-9);
+  EXPECT_NEAR(f.lock_up_modulus / c.K, 1, 1e-6);
+  EXPECT_NEAR(f.lock_up_strain, c.lock_up, 1e-4);
+  // w_f = (σ_p − σ_r) Δε_p / 2, Δε_p = ε_s − ε_p + (σ_p − σ_r)/M.
+  const double plastic = c.softening_end - c.peak_strain() + (c.peak - c.residual) / c.M;
+  EXPECT_NEAR(f.plastic_softening_strain() / plastic, 1, 0.02);
+  EXPECT_NEAR(f.fracture_energy_density / (0.5 * (c.peak - c.residual) * plastic), 1, 0.03);
+  // w_c: the area under the curve to ε_d less the elastic energy left at the residual.
+  const double area = 0.5 * c.peak * c.peak_strain() + 0.5 * (c.peak + c.residual) * (c.softening_end - c.peak_strain()) +
+                      c.residual * (c.lock_up - c.softening_end);
+  EXPECT_NEAR(f.collapse_energy_density / (area - c.residual * c.residual / (2 * c.M)), 1, 0.01);
+  EXPECT_LT(f.rms_misfit, 0.01);
+}
+
+TEST(CompactionCurve, DoesNotDependOnTheSampleSpacingAndAveragesTheRipple)
+{
+  const Curve c;
+  std::vector<double> e, s;
+  sample(c, 1e-4, 0.35, 0.2, e, s);
+  const CompactionCurveFit fine = fit_compaction_curve(e, s, c.M);
+  sample(c, 2e-4, 0.35, 0.2, e, s);
+  const CompactionCurveFit coarse = fit_compaction_curve(e, s, c.M);
+  // A ±20 % ripple of period 3e-3 in strain averages out of the strain-weighted plateau; on the
+  // lock-up branch it moves the crossings of σ_p and 3σ_p, and with them the window: 5 % in σ_r.
+  EXPECT_NEAR(fine.residual_stress / c.residual, 1, 0.06);
+  EXPECT_NEAR(coarse.residual_stress / fine.residual_stress, 1, 0.01);
+  EXPECT_NEAR(coarse.lock_up_strain / fine.lock_up_strain, 1, 0.01);
+  EXPECT_NEAR(coarse.plastic_softening_strain() / fine.plastic_softening_strain(), 1, 0.05);
+}
+
+TEST(CompactionCurve, RefusesCurvesThatDoNotCollapseOrLockUp)
+{
+  const Curve c;
+  std::vector<double> e, s;
+  // A hardening layer: the stress never halves.
+  for (int i = 0; i < 100; ++i)
+    e.push_back(1e-3 * i), s.push_back(1e4 * std::sqrt(1e-3 * i));
+  EXPECT_THROW(fit_compaction_curve(e, s), std::invalid_argument);
+  // A test that ends on the plateau.
+  sample(c, 1e-4, 0.2, 0, e, s);
+  EXPECT_THROW(fit_compaction_curve(e, s, c.M), std::invalid_argument);
+  // The stages as a test sees them: collapse below half the peak, lock-up past 3 x it.
+  CompactionStages stages;
+  for (const double stress : {0.0, 5e3, 12e3, 7e3, 5.9e3, 3e3, 20e3})
+    stages.add(stress);
+  EXPECT_TRUE(stages.collapsed);
+  EXPECT_FALSE(stages.locked_up);
+  EXPECT_EQ(stages.peak, 12e3);
+  stages.add(36.1e3);
+  EXPECT_TRUE(stages.locked_up);
+}
