@@ -7,9 +7,12 @@
 #include "coupling/python_script.h"
 #include "fem/analysis/run.h"
 #include "fem/material/material_file.h"
+#include "fem/scene/analysis_type.h"
+#include "fem/scene/snowpack_scene.h"
 #include "util/input_error.h"
 #include "util/atomic_file.h"
 #include "util/mpi_session.h"
+#include "util/parameter_files.h"
 #include "util/format.h"
 #include "util/progress.h"
 #include "util/run_summary.h"
@@ -20,6 +23,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -506,12 +510,20 @@ namespace anticrack::coupling
       else if (!failed && !interrupted)
       {
         const UncertainParameters u = uncertain_parameters(weak.directory);
+        // The saw tests are run again per parameter. An energy release rate is not: its layers are
+        // elastic, so of the calibration only E enters it besides G_c, whose interval (the compaction
+        // tests' fracture energy) is not among the parameters yet; it says so.
+        std::vector<bool> rerun(stages.size(), false);
+        for (std::size_t j = 1; j + 1 < stages.size(); ++j)
+          rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene.snowpack_scenes[j - 1]), scene.snowpack_scenes[j - 1])
+                       .analysis.type->saw_test;
         // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
         // parameters times scenes over the cores, each as long as the longest snowpack stage.
         double longest = 0;
         for (std::size_t k = 1; k + 1 < stages.size(); ++k)
           longest = std::max(longest, stages[k].wall_s);
-        const auto runs = static_cast<int>(u.names.size() * (stages.size() - 2));
+        const auto runs =
+          static_cast<int>(u.names.size() * static_cast<std::size_t>(std::count(rerun.begin(), rerun.end(), true)));
         announce(stages.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options)))
                                                 : std::nullopt);
         const auto stage_start = Clock::now();
@@ -528,6 +540,8 @@ namespace anticrack::coupling
           }
           for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           {
+            if (!rerun[j])
+              continue;
             const std::string name = stages[j].name + "_" + u.names[k];
             const fs::path run = uncertainty.directory / name;
             if (root)
@@ -552,6 +566,19 @@ namespace anticrack::coupling
         Json results;
         for (std::size_t j = 1; j + 1 < stages.size(); ++j)
         {
+          if (!rerun[j])
+          {
+            Json answers = Json::object();
+            for (const PstAnswer &a : pst_answers())
+              if (stages[j].results.contains(a.key) && stages[j].results[a.key].is_number())
+                answers[a.key] = {{"label", std::string(a.label) + " [" + a.unit + "]"},
+                                  {"value", stages[j].results[a.key]},
+                                  {"status", "not carried: an elastic analysis; its G_c's interval (the compaction "
+                                             "tests' fracture energy) is not among the parameters yet"}};
+            results[stages[j].name] = {{"answers", answers},
+                                       {"element_length_m", stages[j].results.value("element_length_m", 0.0)}};
+            continue;
+          }
           std::vector<Json> perturbed;
           for (std::size_t n = 0; n < jobs.size(); ++n)
             if (job_of[n].first == j)

@@ -110,11 +110,16 @@ namespace anticrack::coupling
             "# weak-layer material entries above are replaced by it).\n"
             "subsection Snowpack\n  subsection Weak layer\n    set Material file = " +
             material_file + "\n";
-    if (fem::read_whole_material_file(material_file).collapse.given())
+    const fem::MaterialCollapse collapse = fem::read_whole_material_file(material_file).collapse;
+    if (collapse.given())
       text += "    # Its Material/Collapse (the DEM compaction tests' lock-up strain and modulus) gives the\n"
               "    # collapse height (lock-up strain x Thickness) and the densification modulus.\n"
               "    set Collapse height [m] = 0\n    set Densification modulus [Pa] = 0\n";
     text += "  end\nend\n";
+    const std::string analysis = fem::read_snowpack_scene_text(read_scene_file(file), file).analysis.type->name;
+    if (collapse.fracture_energy_density > 0 && analysis == std::string("energy release rate"))
+      text += "# The fracture energy is the material file's too (fracture energy density x Thickness).\n"
+              "subsection Analysis\n  set Fracture energy [J/m^2] = 0\nend\n";
     return text;
   }
 
@@ -204,8 +209,12 @@ namespace anticrack::coupling
                                 "absolute (the stage runs a copy of the scene from its own folder)");
       // As the pipeline runs it: with the changes (an unknown entry or value is refused here).
       const fem::SnowpackScene snowpack = fem::read_snowpack_scene_text(snowpack_scene_text(scene, s, ""), s);
-      if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay)
-        problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model)");
+      // The calibrated weak layer is a cohesive Cam-Clay material; an elastic one takes only its
+      // elasticity, which only the energy release rate (elastic layers throughout) asks for.
+      const bool elastic_analysis = snowpack.analysis.type->name == std::string("energy release rate");
+      if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay && !elastic_analysis)
+        problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model); "
+                            "only an energy release rate scene may have an elastic one");
     }
     problems.throw_if_any();
     weak_layer_calibration(scene);

@@ -79,8 +79,17 @@ namespace anticrack::fem
     results["analysis"] = scene.analysis.type->name;
     results["mesh"] = mesh_json(model, comm);
     results["fracture_energy_J_per_m2"] = G_c;
+    results["fracture_energy_source"] =
+      scene.analysis.fracture_energy_from_material_file ?
+        "the weak layer's material file: fracture energy density x thickness" :
+        "Analysis/Fracture energy [J/m^2]";
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
-    if (!critical)
+    if (!critical && !release_rates.empty() && release_rates.front() >= G_c)
+      results["critical_cut_length_note"] = "G = " + format_number(release_rates.front(), 4) +
+                                             " J/m^2 exceeds G_c already at the first midpoint, a = " +
+                                             format_number(midpoints.front(), 4) +
+                                             " m: the critical cut is shorter than one element (refine the mesh)";
+    else if (!critical)
       results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format_number(cuts.back(), 4) + " m";
     Json g;
     g["cut_length_m"] = midpoints;
@@ -106,12 +115,19 @@ namespace anticrack::fem
       "which G reaches the weak layer's fracture energy.",
       /* saw_test = */ false, /* time_integration = */ false,
       [](ParameterHandler &prm) {
-        prm.declare_entry("Fracture energy [J/m^2]", "0.5", Patterns::Double(0),
+        prm.declare_entry("Fracture energy [J/m^2]", "0", Patterns::Double(0),
                           "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "
-                          "reaches it (energy release rate analysis). Units: J/m^2.");
+                          "reaches it (energy release rate analysis). 0: from the weak layer's material file, "
+                          "its Material/Collapse/Fracture energy density [J/m^3] (the DEM compaction tests') "
+                          "times Snowpack/Weak layer/Thickness [m]; one of the two must give it. Units: J/m^2.");
       },
       [](ParameterHandler &prm, SnowpackScene &scene) {
-        scene.analysis.fracture_energy = prm.get_double("Fracture energy [J/m^2]");
+        const Layer &weak = scene.snowpack.weak_layer; // read before the analysis
+        const double given = prm.get_double("Fracture energy [J/m^2]");
+        scene.analysis.fracture_energy_from_material_file = !(given > 0) && weak.fracture_energy_density > 0;
+        scene.analysis.fracture_energy_entry = given;
+        scene.analysis.fracture_energy =
+          scene.analysis.fracture_energy_from_material_file ? weak.fracture_energy_density * weak.thickness : given;
       },
       [](const SnowpackScene &scene, Problems &problems) {
         // Π(a) = −½ f·u holds for a linear snowpack only, and G needs two cuts for a difference.
@@ -124,6 +140,15 @@ namespace anticrack::fem
           elastic(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
         elastic(s.weak_layer, "Snowpack/Weak layer");
         elastic(s.substratum, "Snowpack/Substratum");
+        if (scene.analysis.fracture_energy_entry > 0 && s.weak_layer.fracture_energy_density > 0)
+          problems.add("Analysis/Fracture energy [J/m^2]",
+                       "is given (" + format_number(scene.analysis.fracture_energy_entry) + ") and so is the weak layer's material file's fracture "
+                       "energy density (" + format_number(s.weak_layer.fracture_energy_density) +
+                       " J/m^3, Material/Collapse): give it once (0 here takes the file's)");
+        else if (!(scene.analysis.fracture_energy > 0))
+          problems.add("Analysis/Fracture energy [J/m^2]",
+                       "must be > 0, or 0 with a weak-layer material file whose Material/Collapse gives the fracture "
+                       "energy density (the DEM compaction tests'; allowed: > 0 J/m^2)");
         const double dx = scene.mesh.element_length, a = scene.pst.cut_length;
         if (!(a >= 2 * dx))
           problems.add("PST/Cut length [m]", "must cover at least two element lengths, " + format_number(2 * dx) +

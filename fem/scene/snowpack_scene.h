@@ -51,6 +51,8 @@ namespace anticrack::fem
     /// collapse_height and densification_modulus come from the material file's Material/Collapse
     /// (its lock-up strain times thickness, its lock-up modulus), not from the scene.
     bool collapse_from_material_file = false;
+    /// w_f [J/m³] of the material file's Material/Collapse (the DEM compaction tests'), 0 if none.
+    double fracture_energy_density = 0;
     double densification_modulus = 0;
   };
 
@@ -115,7 +117,11 @@ namespace anticrack::fem
     bool crack_band = true;
 
     // energy release rate
-    double fracture_energy = 0.5;        ///< G_c [J/m²]
+    /// G_c [J/m²]: Analysis/Fracture energy [J/m^2], or (that entry 0) the weak layer's material
+    /// file's fracture energy density times the layer's thickness.
+    double fracture_energy = 0;
+    double fracture_energy_entry = 0;    ///< the entry as given (0: from the material file)
+    bool fracture_energy_from_material_file = false;
 
     // Newton (gravity equilibrium and quasi-static steps)
     double newton_tolerance = 1e-8;      ///< on |r| / |f_ext|

@@ -1422,9 +1422,10 @@ def pst_scene(changes=None, insert=None, material_file=None):
 def err_scene():
     """The energy release rate of the tiny PST's snowpack with an elastic weak layer: a 1.5 m column,
     5 cm elements, cuts of 0 to 0.3 m (7 elastic solves, G at 6 midpoints)."""
-    return as_analysis(pst_scene(), "energy release rate", ANTICRACK,
-                       {"Snowpack/Weak layer/Model": "elastic", "PST/Cut length [m]": "0.3",
-                        "PST/Column length [m]": "1.5", "Mesh/Element length [m]": "0.05"})
+    return edit_scene(as_analysis(pst_scene(), "energy release rate", ANTICRACK,
+                                  {"Snowpack/Weak layer/Model": "elastic", "PST/Cut length [m]": "0.3",
+                                   "PST/Column length [m]": "1.5", "Mesh/Element length [m]": "0.05"}), {},
+                      insert={"Analysis": ["set Fracture energy [J/m^2] = 0.5"]})
 
 
 def mpirun(*args, ranks=2, cwd=None):
@@ -1705,6 +1706,26 @@ def fem_material_file(work):
     with_collapse("deep.prm", 0.9)
     deep = write(os.path.join(scenes, "deep_scene.prm"), pst_scene(once_changes, material_file="deep.prm"))
     expect_bad_input(work, deep, "Collapse height [m]", "(is 0.018)")
+
+    # The energy release rate's G_c: Analysis/Fracture energy = 0 takes the file's fracture energy
+    # density times the weak layer's thickness (20 J/m^3 x 0.02 m = 0.4 J/m^2); given twice, or
+    # by neither, it is refused.
+    write(os.path.join(scenes, "energy.prm"), open(material).read().replace(
+        "end\n", "  subsection Collapse\n    set Lock-up strain = 0.15\n    set Lock-up modulus [Pa] = 1e6\n"
+        "    set Fracture energy density [J/m^3] = 20\n  end\nend\n"))
+    def err_with(fracture_energy, material_file):
+        insert = {"Snowpack/Weak layer": [f"set Material file = {material_file}"]} if material_file else None
+        return edit_scene(err_scene(), {"Analysis/Fracture energy [J/m^2]": fracture_energy, **once_changes}, insert=insert)
+    from_collapse = write(os.path.join(scenes, "err_from_file.prm"), err_with("0", "energy.prm"))
+    out = os.path.join(work, "err_from_file")
+    anticrack("run", from_collapse, "-o", out, cwd=work)
+    r = fem_summary(out)["results"]
+    check(abs(r["fracture_energy_J_per_m2"] - 0.4) < 1e-12 and r["fracture_energy_source"].startswith("the weak layer's "
+          "material file"), f"G_c {r['fracture_energy_J_per_m2']} from {r['fracture_energy_source']}")
+    expect_bad_input(work, write(os.path.join(scenes, "err_twice.prm"), err_with("0.5", "energy.prm")),
+                     "Analysis/Fracture energy [J/m^2]", "is given (0.5) and so is")
+    expect_bad_input(work, write(os.path.join(scenes, "err_none.prm"), err_with("0", None)),
+                     "Analysis/Fracture energy [J/m^2]", "must be > 0, or 0 with a weak-layer material file")
 
 
 def pipeline_files(work):

@@ -81,7 +81,7 @@ namespace
                                            std::to_string(degree) +
                                            "\n  set Element length [m] = 0.03\n  set Slab element height [m] = 0.04\n"
                                            "  set Substratum element height [m] = 0.025\nend\n"
-                                           "subsection Analysis\n  set Type = energy release rate\nend\n");
+                                           "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 0.5\nend\n");
     SnowpackModel<2> model(scene, MPI_COMM_WORLD);
     // u = A x with a full (non-symmetric) gradient: ε = sym A, rotation ignored by the stress.
     const double A[2][2] = {{1e-3, -4e-4}, {7e-4, -2e-3}};
@@ -193,7 +193,7 @@ namespace
                  "end\nsubsection PST\n  set Column length [m] = 26\n  set Cut length [m] = 0.6\nend\n"
                  "subsection Mesh\n  set Polynomial degree = 2\n  set Element length [m] = 0.1\n"
                  "  set Weak layer elements = 2\n  set Slab element height [m] = 0.1\nend\n"
-                 "subsection Analysis\n  set Type = energy release rate\nend\n");
+                 "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 0.5\nend\n");
     SnowpackRunOptions options;
     options.output_directory = temporary_directory("err");
     const Json results = run_snowpack(scene, options, MPI_COMM_WORLD);
@@ -232,7 +232,7 @@ namespace
       "end\nsubsection PST\n  set Column length [m] = 12\n  set Cut length [m] = 0.3\nend\n"
       "subsection Mesh\n  set Element length [m] = 0.1\n  set Weak layer elements = 4\n"
       "  set Slab element height [m] = 0.0125\n  set Substratum element height [m] = 0.0125\nend\n"
-      "subsection Analysis\n  set Type = energy release rate\nend\n");
+      "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 0.5\nend\n");
     // An elastic column (the energy release rate's scene: every layer elastic) driven by the
     // explicit integrator without bulk viscosity, which a dynamic PST scene would not allow.
     scene.analysis.linear_bulk_viscosity = scene.analysis.quadratic_bulk_viscosity = 0;
@@ -389,7 +389,7 @@ namespace
       "end\nsubsection PST\n  set Column length [m] = 12\n  set Column width [m] = 0.3\n  set Cut length [m] = 0.3\n"
       "end\nsubsection Mesh\n  set Dimension = 3\n  set Element length [m] = 0.1\n  set Weak layer elements = 1\n"
       "  set Slab element height [m] = 0.1\n  set Substratum element height [m] = 0.05\nend\n"
-      "subsection Analysis\n  set Type = energy release rate\nend\n");
+      "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 0.5\nend\n");
     SnowpackModel<3> model(scene, MPI_COMM_WORLD);
     QuasiStaticSolver<3> solver(model);
     SnowpackModel<3>::VectorType u;
@@ -465,7 +465,7 @@ namespace
         layer("Substratum", 0.1, 300, 1e7, 0.25) +
         "end\nsubsection PST\n  set Column length [m] = 2\n  set Cut length [m] = 0.3\nend\n"
         "subsection Mesh\n  set Element length [m] = 0.02\n  set Weak layer elements = 4\nend\n"
-        "subsection Analysis\n  set Type = energy release rate\n  subsection Newton\n    set Linear solver = " +
+        "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 0.5\n  subsection Newton\n    set Linear solver = " +
         solver_name + "\n  end\nend\n");
       SnowpackModel<2> model(scene, MPI_COMM_WORLD);
       QuasiStaticSolver<2> solver(model);

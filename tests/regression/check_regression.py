@@ -94,7 +94,8 @@ CASES = {
                                     "Analysis/Explicit/End time [s]": "0.45",
                                     "Output/Field interval [s]": "0.15"}),
     "pst_energy_release_rate": dict(scene="pst_flat.prm", sets=("ci", "full"), analysis="energy release rate",
-                                    changes={**SHORT_COLUMN, "Snowpack/Weak layer/Model": "elastic"}),
+                                    changes={**SHORT_COLUMN, "Snowpack/Weak layer/Model": "elastic"},
+                                    insert={"Analysis": ["set Fracture energy [J/m^2] = 0.5"]}),
     "pst_quasi_static": dict(scene="pst_flat.prm", sets=("ci", "full"), analysis="quasi-static",
                              changes=SHORT_COLUMN),
 }
@@ -174,6 +175,8 @@ def record(args, name, spec):
         insert = {k: v for k, v in insert.items() if k}
     if spec.get("analysis"):  # a dynamic PST made into another analysis (its own entries only)
         text = as_analysis(text, spec["analysis"], args.anticrack, spec.get("changes"))
+        if insert:
+            text = edit_scene(text, {}, insert)
     elif spec.get("changes") or insert:
         text = edit_scene(text, spec.get("changes", {}), insert or None)
     scene = os.path.join(work, spec["scene"])
