@@ -31,78 +31,43 @@ namespace anticrack::dem
       return w;
     }
 
-    struct Candidate
+    struct DropFit
     {
-      double misfit = std::numeric_limits<double>::infinity();
-      double softening_end = 0, lock_up = 0, residual = 0, modulus = 0;
+      double misfit = std::numeric_limits<double>::infinity(); ///< weighted sum of squares
+      double softening_end = 0, residual = 0;
     };
 
-    /// The best (σ_r, K_d) for given ε_s, ε_d over the samples after the peak, by least squares with
-    /// the bounds of the header; its sum of squared misfits.
-    Candidate fit_linear_part(const std::vector<double> &e, const std::vector<double> &s,
-                              const std::vector<double> &w, std::size_t peak, std::size_t end, double peak_stress,
-                              double softening_end, double lock_up)
+    /// The drop and the plateau for a given end of the drop ε_s over the samples (peak, end]: the
+    /// model is linear in σ_r, σ = c_i + a_i σ_r (a = t, c = σ_p (1 − t) on the drop, t its fraction;
+    /// a = 1, c = 0 on the plateau), so σ_r is one weighted least-squares quotient, clamped to
+    /// [0, σ_p].
+    DropFit fit_drop(const std::vector<double> &e, const std::vector<double> &s, const std::vector<double> &w,
+                     std::size_t peak, std::size_t end, double peak_stress, double softening_end)
     {
-      // model_i = c_i + a_i σ_r + b_i K_d
-      double aa = 0, ab = 0, bb = 0, ar = 0, br = 0;
       const double e_p = e[peak];
-      auto coefficients = [&](std::size_t i, double &a, double &b, double &c) {
-        if (e[i] < softening_end)
-        {
-          const double t = (e[i] - e_p) / (softening_end - e_p);
-          a = t, b = 0, c = peak_stress * (1 - t);
-        }
-        else
-          a = 1, b = e[i] > lock_up ? e[i] - lock_up : 0.0, c = 0;
+      auto coefficients = [&](std::size_t i, double &a, double &c) {
+        const double t = e[i] < softening_end ? (e[i] - e_p) / (softening_end - e_p) : 1.0;
+        a = t, c = peak_stress * (1 - t);
       };
+      double aa = 0, ar = 0;
       for (std::size_t i = peak + 1; i <= end; ++i)
       {
-        double a, b, c;
-        coefficients(i, a, b, c);
-        const double r = s[i] - c;
-        aa += w[i] * a * a, ab += w[i] * a * b, bb += w[i] * b * b, ar += w[i] * a * r, br += w[i] * b * r;
+        double a, c;
+        coefficients(i, a, c);
+        aa += w[i] * a * a, ar += w[i] * a * (s[i] - c);
       }
-      auto misfit_of = [&](double residual, double modulus) {
-        double sum = 0;
-        for (std::size_t i = peak + 1; i <= end; ++i)
-        {
-          double a, b, c;
-          coefficients(i, a, b, c);
-          const double d = s[i] - (c + a * residual + b * modulus);
-          sum += w[i] * d * d;
-        }
-        return sum;
-      };
-      auto clamp_residual = [&](double r) { return std::clamp(r, 0.0, peak_stress); };
-      Candidate best;
-      best.softening_end = softening_end, best.lock_up = lock_up;
-      const double det = aa * bb - ab * ab;
-      if (bb > 0 && det > 1e-14 * aa * bb)
+      DropFit fit;
+      fit.softening_end = softening_end;
+      fit.residual = aa > 0 ? std::clamp(ar / aa, 0.0, peak_stress) : peak_stress;
+      fit.misfit = 0;
+      for (std::size_t i = peak + 1; i <= end; ++i)
       {
-        const double residual = (ar * bb - ab * br) / det, modulus = (aa * br - ab * ar) / det;
-        if (modulus >= 0 && residual >= 0 && residual <= peak_stress)
-        {
-          best.residual = residual, best.modulus = modulus, best.misfit = misfit_of(residual, modulus);
-          return best;
-        }
+        double a, c;
+        coefficients(i, a, c);
+        const double d = s[i] - (c + a * fit.residual);
+        fit.misfit += w[i] * d * d;
       }
-      // On a bound: K_d = 0 (no lock-up), or σ_r on its bound with the best K_d >= 0 for it.
-      if (aa > 0)
-      {
-        const double r = clamp_residual(ar / aa);
-        const double m = misfit_of(r, 0.0);
-        if (m < best.misfit)
-          best.residual = r, best.modulus = 0, best.misfit = m;
-      }
-      if (bb > 0)
-        for (const double r : {0.0, peak_stress})
-        {
-          const double k = std::max(0.0, (br - ab * r) / bb);
-          const double m = misfit_of(r, k);
-          if (m < best.misfit)
-            best.residual = r, best.modulus = k, best.misfit = m;
-        }
-      return best;
+      return fit;
     }
   } // namespace
 
@@ -181,8 +146,7 @@ namespace anticrack::dem
     // to the sample.
     const double lock_up_modulus = (cap - peak_stress) / (cap_strain - regain_strain);
     const double e_p = e[peak];
-    const double no_lock_up = std::numeric_limits<double>::infinity();
-    Candidate best;
+    DropFit best;
     std::size_t end = below_peak;
     for (int round = 0; round < 8; ++round)
     {
@@ -195,11 +159,11 @@ namespace anticrack::dem
       const double e_end = e[end];
       constexpr int drop_points = 400; // ε_s on a logarithmic grid of the drop's length
       const double shortest = std::max(e[peak + 1] - e_p, 1e-6 * (e_end - e_p));
-      best = Candidate{};
+      best = DropFit{};
       for (int a = 0; a < drop_points; ++a)
       {
         const double e_s = e_p + 0.999 * shortest * std::pow((e_end - e_p) / shortest, a / double(drop_points - 1));
-        const Candidate c = fit_linear_part(e, s, weight, peak, end, peak_stress, e_s, no_lock_up);
+        const DropFit c = fit_drop(e, s, weight, peak, end, peak_stress, e_s);
         if (c.misfit < best.misfit)
           best = c;
       }

@@ -21,9 +21,10 @@
 //     a straight line through all of it would say more about the test's final strain than about the
 //     lock-up. The FE's spring then starts at ε_d = ε_x − (σ_p − σ_r)/K_d, so that residual plus
 //     spring regain σ_p where the DEM does;
-//   * ε_s and σ_r: least squares of the drop and the plateau on (ε_p, ε_x), weighted by the strain
-//     each sample stands for (a fit to the curve, not to the output interval, which varies along an
-//     adaptive-rate test); ε_s by a search over a logarithmic grid, σ_r linear for each ε_s
+//   * ε_s and σ_r: least squares of the drop and the plateau on (ε_p, ε_d] (ε_d depends on σ_r: the
+//     window's end is iterated from ε_x), weighted by the strain each sample stands for (a fit to
+//     the curve, not to the output interval); ε_s by a search over a logarithmic grid, σ_r linear
+//     for each ε_s
 //     (0 <= σ_r <= σ_p). A plateau that hardens (the SHS layer's does, from about 0.2 to 0.8 σ_p) is
 //     read as its strain-weighted mean: the FE's collapse law has a flat residual.
 // Both ratios are detection thresholds; docs/calibration.md shows what changing them does.
