@@ -126,6 +126,7 @@ namespace anticrack::coupling
       collapse.lock_up_strain_interval = interval(soft.lock_up_strain);
       collapse.lock_up_modulus = soft.lock_up_modulus.mean;
       collapse.fracture_energy_density = soft.fracture_energy_density.mean;
+      collapse.fracture_energy_density_interval = interval(soft.fracture_energy_density);
       collapse.collapse_energy_density = soft.collapse_energy_density.mean;
     }
     return file;

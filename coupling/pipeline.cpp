@@ -512,7 +512,7 @@ namespace anticrack::coupling
         const UncertainParameters u = uncertain_parameters(weak.directory);
         // The saw tests are run again per parameter. An energy release rate is not: its layers are
         // elastic, so of the calibration only E enters it besides G_c, whose interval (the compaction
-        // tests' fracture energy) is not among the parameters yet; it says so.
+        // tests' fracture energy) the stage maps itself through its G(a); E's is not carried.
         std::vector<bool> rerun(stages.size(), false);
         for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene.snowpack_scenes[j - 1]), scene.snowpack_scenes[j - 1])
@@ -568,13 +568,26 @@ namespace anticrack::coupling
         {
           if (!rerun[j])
           {
+            // Its critical cut carries G_c's interval, mapped by the stage itself through its G(a)
+            // (fem/analysis/energy_release_rate.cpp); the calibration's parameters are not carried.
+            const Json &results_j = stages[j].results;
             Json answers = Json::object();
             for (const PstAnswer &a : pst_answers())
-              if (stages[j].results.contains(a.key) && stages[j].results[a.key].is_number())
-                answers[a.key] = {{"label", std::string(a.label) + " [" + a.unit + "]"},
-                                  {"value", stages[j].results[a.key]},
-                                  {"status", "not carried: an elastic analysis; its G_c's interval (the compaction "
-                                             "tests' fracture energy) is not among the parameters yet"}};
+              if (results_j.contains(a.key) && results_j[a.key].is_number())
+              {
+                Json &answer = answers[a.key] = {{"label", std::string(a.label) + " [" + a.unit + "]"},
+                                                 {"value", results_j[a.key]},
+                                                 {"status", "not carried: an elastic analysis, not rerun per parameter"}};
+                const Json interval = results_j.value("critical_cut_length_interval", Json());
+                if (std::string(a.key) == "critical_cut_length_m" && interval.is_object() &&
+                    interval["critical_cut_length_m"][0].is_number() && interval["critical_cut_length_m"][1].is_number())
+                {
+                  answer["status"] = "G_c's interval through the stage's G(a): " + interval["carries"].get<std::string>();
+                  answer["interval"] = interval["critical_cut_length_m"];
+                  answer["dominant_parameter"] = "G_c";
+                  answer["parameters"] = Json::object();
+                }
+              }
             results[stages[j].name] = {{"answers", answers},
                                        {"element_length_m", stages[j].results.value("element_length_m", 0.0)}};
             continue;

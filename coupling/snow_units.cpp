@@ -31,7 +31,8 @@ namespace anticrack::coupling
     m.youngs_modulus *= S;
     m.p0 *= S;
     m.density = c.solid_fraction * snow.particle_density;
-    for (fem::MaterialInterval *interval : {&file.uncertainty.youngs_modulus, &file.uncertainty.p0})
+    for (fem::MaterialInterval *interval : {&file.uncertainty.youngs_modulus, &file.uncertainty.p0,
+                                            &file.collapse.fracture_energy_density_interval})
       interval->lower *= S, interval->upper *= S;
     // The collapse: its modulus and energy densities (stress x strain) scale by S, its strain not.
     for (double *collapse_value : {&file.collapse.lock_up_modulus, &file.collapse.fracture_energy_density,

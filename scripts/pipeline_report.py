@@ -127,7 +127,8 @@ def stage_section(run_dir, summary):
         for s in snowpack_stages(summary):
             for key, a in (uncertainty.get(s["name"], {}).get("answers") or {}).items():
                 if "interval" in a:
-                    changes = ", ".join(f"{n} {v['change_per_standard_error']:+.3g}" for n, v in a["parameters"].items())
+                    changes = ", ".join(f"{n} {v['change_per_standard_error']:+.3g}" for n, v in a["parameters"].items()) \
+                        or a["status"]
                     lines.append(f"| {s['name']} | {a['label']} | {fmt(a['value'])} | {fmt(a['interval'][0])} – "
                                  f"{fmt(a['interval'][1])} | {a['dominant_parameter']} | {changes} |")
                 else:

@@ -54,13 +54,17 @@ namespace anticrack::fem
                                 : std::numeric_limits<double>::quiet_NaN());
     }
 
-    // The cut length at which G reaches G_c (linear interpolation between midpoints).
+    // The cut length at which G reaches a fracture energy (linear interpolation between midpoints).
+    const auto cut_length_at = [&](const double fracture_energy) {
+      std::optional<double> cut;
+      for (unsigned int k = 0; k + 1 < midpoints.size() && !cut; ++k)
+        if (release_rates[k] < fracture_energy && release_rates[k + 1] >= fracture_energy)
+          cut = midpoints[k] + (fracture_energy - release_rates[k]) / (release_rates[k + 1] - release_rates[k]) *
+                                 (midpoints[k + 1] - midpoints[k]);
+      return cut;
+    };
     const double G_c = scene.analysis.fracture_energy;
-    std::optional<double> critical;
-    for (unsigned int k = 0; k + 1 < midpoints.size() && !critical; ++k)
-      if (release_rates[k] < G_c && release_rates[k + 1] >= G_c)
-        critical = midpoints[k] + (G_c - release_rates[k]) / (release_rates[k + 1] - release_rates[k]) *
-                                    (midpoints[k + 1] - midpoints[k]);
+    const std::optional<double> critical = cut_length_at(G_c);
 
     // Columns of different lengths: Π at the cuts, G at their midpoints.
     TimeSeries table({{"cut_length", "m", "cut length a", false, cuts},
@@ -91,6 +95,26 @@ namespace anticrack::fem
                                              " m: the critical cut is shorter than one element (refine the mesh)";
     else if (!critical)
       results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format_number(cuts.back(), 4) + " m";
+    // G(a) of the elastic snowpack does not depend on G_c, so G_c's interval maps exactly, through
+    // this run's G(a) (increasing), onto an interval of the critical cut: no further runs. Only G_c's
+    // uncertainty is carried (that of the weak layer's E, which moves G(a), is not).
+    const MaterialInterval &G_c_interval = scene.analysis.fracture_energy_interval;
+    if (critical && std::isfinite(G_c_interval.lower) && std::isfinite(G_c_interval.upper))
+    {
+      const std::optional<double> lower = cut_length_at(G_c_interval.lower), upper = cut_length_at(G_c_interval.upper);
+      Json interval;
+      interval["fracture_energy_J_per_m2"] = {G_c_interval.lower, G_c_interval.upper};
+      interval["confidence"] = scene.snowpack.weak_layer.confidence;
+      interval["critical_cut_length_m"] = {lower ? Json(*lower) : Json(nullptr), upper ? Json(*upper) : Json(nullptr)};
+      interval["carries"] = "the interval of the material file's fracture energy density (over the DEM realizations) "
+                            "through this run's G(a); the weak layer's other uncertain parameters are not carried";
+      if (!lower)
+        interval["lower_note"] = G_c_interval.lower > 0 ? "below the first midpoint (shorter than one element)"
+                                                        : "G_c's lower bound is not positive: no lower bound of the cut";
+      if (!upper)
+        interval["upper_note"] = "beyond the longest cut " + format_number(cuts.back(), 4) + " m";
+      results["critical_cut_length_interval"] = interval;
+    }
     Json g;
     g["cut_length_m"] = midpoints;
     g["fe_J_per_m2"] = release_rates;
@@ -128,6 +152,9 @@ namespace anticrack::fem
         scene.analysis.fracture_energy_entry = given;
         scene.analysis.fracture_energy =
           scene.analysis.fracture_energy_from_material_file ? weak.fracture_energy_density * weak.thickness : given;
+        if (scene.analysis.fracture_energy_from_material_file)
+          scene.analysis.fracture_energy_interval = {weak.fracture_energy_density_interval.lower * weak.thickness,
+                                                     weak.fracture_energy_density_interval.upper * weak.thickness};
       },
       [](const SnowpackScene &scene, Problems &problems) {
         // Π(a) = −½ f·u holds for a linear snowpack only, and G needs two cuts for a difference.

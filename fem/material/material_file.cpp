@@ -94,7 +94,20 @@ namespace anticrack::fem
          &C::collapse_energy_density, std::numeric_limits<double>::max()}};
       return entries;
     }
-    constexpr const char *lock_up_interval_entry = "Lock-up strain interval";
+    /// The intervals of Material/Collapse (over the realizations, at Uncertainty/Confidence); a file
+    /// may lack them (NaN).
+    struct CollapseIntervalEntry
+    {
+      const char *name;
+      MaterialInterval MaterialCollapse::*interval;
+    };
+    const std::vector<CollapseIntervalEntry> &collapse_interval_entries()
+    {
+      static const std::vector<CollapseIntervalEntry> entries = {
+        {"Lock-up strain interval", &MaterialCollapse::lock_up_strain_interval},
+        {"Fracture energy density interval [J/m^3]", &MaterialCollapse::fracture_energy_density_interval}};
+      return entries;
+    }
 
     void declare_material_file(ParameterHandler &prm)
     {
@@ -108,7 +121,8 @@ namespace anticrack::fem
       prm.enter_subsection("Collapse");
       for (const CollapseEntry &e : collapse_entries())
         prm.declare_entry(e.name, "0", Double(0, e.upper), e.meaning);
-      prm.declare_entry(lock_up_interval_entry, "", Anything(), "lower, upper");
+      for (const CollapseIntervalEntry &e : collapse_interval_entries())
+        prm.declare_entry(e.name, "", Anything(), "lower, upper");
       prm.leave_subsection();
       prm.enter_subsection("Provenance");
       for (const ProvenanceEntry &e : provenance_entries())
@@ -178,7 +192,7 @@ namespace anticrack::fem
       }
       catch (const std::exception &)
       {
-        throw InputError("material file " + name + ": Uncertainty/" + entry + " = \"" + text +
+        throw InputError("material file " + name + ": Material/" + entry + " = \"" + text +
                          "\" is not \"lower, upper\"");
       }
     }
@@ -289,14 +303,13 @@ namespace anticrack::fem
     prm.enter_subsection("Uncertainty");
     file.uncertainty.confidence = prm.get_double(confidence_entry);
     for (const MaterialEntry *e : material_interval_entries())
-      file.uncertainty.*e->interval = parse_interval(prm.get(e->interval_name()), e->interval_name(), name);
+      file.uncertainty.*e->interval = parse_interval(prm.get(e->interval_name()), "Uncertainty/" + e->interval_name(), name);
     prm.leave_subsection();
     prm.enter_subsection("Collapse");
     for (const CollapseEntry &e : collapse_entries())
       file.collapse.*e.number = prm.get_double(e.name);
-    if (!prm.get(lock_up_interval_entry).empty())
-      file.collapse.lock_up_strain_interval =
-        parse_interval(prm.get(lock_up_interval_entry), lock_up_interval_entry, name);
+    for (const CollapseIntervalEntry &e : collapse_interval_entries())
+      file.collapse.*e.interval = parse_interval(prm.get(e.name), std::string("Collapse/") + e.name, name);
     prm.leave_subsection();
     prm.enter_subsection("Provenance");
     for (const ProvenanceEntry &e : provenance_entries())
@@ -352,10 +365,10 @@ namespace anticrack::fem
       out << "  subsection Collapse\n";
       for (const CollapseEntry &e : collapse_entries())
         out << "    set " << e.name << " = " << material_file_number(file.collapse.*e.number) << "\n";
-      out << "    set " << lock_up_interval_entry << " = "
-          << material_file_number(file.collapse.lock_up_strain_interval.lower) << ", "
-          << material_file_number(file.collapse.lock_up_strain_interval.upper) << "\n"
-          << "  end\n";
+      for (const CollapseIntervalEntry &e : collapse_interval_entries())
+        out << "    set " << e.name << " = " << material_file_number((file.collapse.*e.interval).lower) << ", "
+            << material_file_number((file.collapse.*e.interval).upper) << "\n";
+      out << "  end\n";
     }
     out << "  subsection Provenance\n";
     for (const ProvenanceEntry &e : provenance_entries())

@@ -77,6 +77,7 @@ namespace anticrack::fem
     MaterialInterval lock_up_strain_interval;
     double lock_up_modulus = 0;         ///< K_d [Pa]
     double fracture_energy_density = 0; ///< w_f [J/m³], dissipated by the strength drop beyond the residual
+    MaterialInterval fracture_energy_density_interval;
     double collapse_energy_density = 0; ///< w_c [J/m³], dissipated up to the lock-up
 
     [[nodiscard]] bool given() const { return lock_up_strain > 0; }

@@ -75,6 +75,8 @@ namespace anticrack::fem
           const MaterialFile whole = read_whole_material_file(layer.material_file);
           layer.material = whole.material;
           layer.fracture_energy_density = whole.collapse.fracture_energy_density;
+          layer.fracture_energy_density_interval = whole.collapse.fracture_energy_density_interval;
+          layer.confidence = whole.uncertainty.confidence;
           if (whole.collapse.given())
           {
             // The calibrated layer's collapse is a strain (its compaction tests): its height here

@@ -53,6 +53,8 @@ namespace anticrack::fem
     bool collapse_from_material_file = false;
     /// w_f [J/m³] of the material file's Material/Collapse (the DEM compaction tests'), 0 if none.
     double fracture_energy_density = 0;
+    MaterialInterval fracture_energy_density_interval; ///< its interval (NaN if the file has none)
+    double confidence = 0.95;                          ///< level of the file's intervals
     double densification_modulus = 0;
   };
 
@@ -121,6 +123,9 @@ namespace anticrack::fem
     /// file's fracture energy density times the layer's thickness.
     double fracture_energy = 0;
     double fracture_energy_entry = 0;    ///< the entry as given (0: from the material file)
+    /// fracture_energy's interval when it comes from the material file (its w_f interval times the
+    /// thickness), NaN otherwise.
+    MaterialInterval fracture_energy_interval;
     bool fracture_energy_from_material_file = false;
 
     // Newton (gravity equilibrium and quasi-static steps)

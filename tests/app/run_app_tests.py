@@ -1712,7 +1712,8 @@ def fem_material_file(work):
     # by neither, it is refused.
     write(os.path.join(scenes, "energy.prm"), open(material).read().replace(
         "end\n", "  subsection Collapse\n    set Lock-up strain = 0.15\n    set Lock-up modulus [Pa] = 1e6\n"
-        "    set Fracture energy density [J/m^3] = 20\n  end\nend\n"))
+        "    set Fracture energy density [J/m^3] = 20\n"
+        "    set Fracture energy density interval [J/m^3] = 15, 25\n  end\nend\n"))
     def err_with(fracture_energy, material_file):
         insert = {"Snowpack/Weak layer": [f"set Material file = {material_file}"]} if material_file else None
         return edit_scene(err_scene(), {"Analysis/Fracture energy [J/m^2]": fracture_energy, **once_changes}, insert=insert)
@@ -1722,6 +1723,17 @@ def fem_material_file(work):
     r = fem_summary(out)["results"]
     check(abs(r["fracture_energy_J_per_m2"] - 0.4) < 1e-12 and r["fracture_energy_source"].startswith("the weak layer's "
           "material file"), f"G_c {r['fracture_energy_J_per_m2']} from {r['fracture_energy_source']}")
+    # Its interval (15-25 J/m^3 x 0.02 m = 0.3-0.5 J/m^2) maps through the run's own G(a), which does
+    # not depend on G_c: each bound is where the tabulated G(a) crosses it (interpolated here).
+    interval = r["critical_cut_length_interval"]
+    check(np.allclose(interval["fracture_energy_J_per_m2"], [0.3, 0.5], rtol=1e-12),
+          f"G_c interval {interval['fracture_energy_J_per_m2']}, expected 0.3, 0.5")
+    g = r["energy_release_rate"]
+    expected = [float(np.interp(G, g["fe_J_per_m2"], g["cut_length_m"])) for G in (0.3, 0.5)]
+    check(None not in interval["critical_cut_length_m"] and
+          np.allclose(interval["critical_cut_length_m"], expected, rtol=1e-9) and
+          expected[0] < r["critical_cut_length_m"] < expected[1],
+          f"critical cut interval {interval['critical_cut_length_m']} around {r['critical_cut_length_m']}, expected {expected}")
     expect_bad_input(work, write(os.path.join(scenes, "err_twice.prm"), err_with("0.5", "energy.prm")),
                      "Analysis/Fracture energy [J/m^2]", "is given (0.5) and so is")
     expect_bad_input(work, write(os.path.join(scenes, "err_none.prm"), err_with("0", None)),

@@ -203,6 +203,7 @@ TEST(MaterialFile, TheCollapseIsWrittenOnlyWhenGivenAndReadBack)
   file.collapse.lock_up_strain_interval = {0.1565, 0.3267};
   file.collapse.lock_up_modulus = 1.7e5;
   file.collapse.fracture_energy_density = 1.608;
+  file.collapse.fracture_energy_density_interval = {0.95, 2.27};
   file.collapse.collapse_energy_density = 651.5;
   const fem::MaterialFile back = fem::read_material_file_text(fem::material_file_text(file), "collapse");
   ASSERT_TRUE(back.collapse.given());
@@ -211,5 +212,7 @@ TEST(MaterialFile, TheCollapseIsWrittenOnlyWhenGivenAndReadBack)
   EXPECT_EQ(back.collapse.lock_up_strain_interval.upper, 0.3267);
   EXPECT_EQ(back.collapse.lock_up_modulus, 1.7e5);
   EXPECT_EQ(back.collapse.fracture_energy_density, 1.608);
+  EXPECT_EQ(back.collapse.fracture_energy_density_interval.lower, 0.95);
+  EXPECT_EQ(back.collapse.fracture_energy_density_interval.upper, 2.27);
   EXPECT_EQ(back.collapse.collapse_energy_density, 651.5);
 }
