@@ -240,19 +240,9 @@ namespace anticrack::params
       Json tests = Json::array();
       for (const CompactionReading &r : c.compaction_tests)
       {
-        const dem::CompactionCurveFit &f = r.fit;
-        tests.push_back(Json{{"test", r.test},
-                             {"peak_strain", f.peak_strain},
-                             {"peak_stress_Pa", f.peak_stress},
-                             {"axial_modulus_Pa", f.axial_modulus},
-                             {"residual_stress_Pa", f.residual_stress},
-                             {"softening_end_strain", f.softening_end_strain},
-                             {"plastic_softening_strain", f.plastic_softening_strain()},
-                             {"lock_up_strain", f.lock_up_strain},
-                             {"lock_up_modulus_Pa", f.lock_up_modulus},
-                             {"fracture_energy_density_J_per_m3", f.fracture_energy_density},
-                             {"collapse_energy_density_J_per_m3", f.collapse_energy_density},
-                             {"rms_misfit_over_peak", f.rms_misfit}});
+        Json test = dem::compaction_curve_json(r.fit);
+        test["test"] = r.test;
+        tests.push_back(test);
       }
       j["compaction_tests"] = tests;
       Json checks = Json::array();

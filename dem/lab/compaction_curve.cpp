@@ -195,4 +195,21 @@ namespace anticrack::dem
       integral_to(e, s, 0, fit.lock_up_strain) - fit.residual_stress * fit.residual_stress / (2 * M);
     return fit;
   }
+
+  nlohmann::json compaction_curve_json(const CompactionCurveFit &f)
+  {
+    return {{"peak_strain", f.peak_strain},
+            {"peak_stress_Pa", f.peak_stress},
+            {"axial_modulus_Pa", f.axial_modulus},
+            {"residual_stress_Pa", f.residual_stress},
+            {"residual_ratio", f.residual_ratio()},
+            {"softening_end_strain", f.softening_end_strain},
+            {"plastic_softening_strain", f.plastic_softening_strain()},
+            {"regain_strain", f.regain_strain},
+            {"lock_up_strain", f.lock_up_strain},
+            {"lock_up_modulus_Pa", f.lock_up_modulus},
+            {"fracture_energy_density_J_per_m3", f.fracture_energy_density},
+            {"collapse_energy_density_J_per_m3", f.collapse_energy_density},
+            {"rms_misfit_over_peak", f.rms_misfit}};
+  }
 } // namespace anticrack::dem

@@ -46,6 +46,8 @@
 
 #include "dem/core/types.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -128,4 +130,8 @@ namespace anticrack::dem
   /// layer has); NaN: the curve's own secant to 70 % of its peak.
   CompactionCurveFit fit_compaction_curve(const std::vector<double> &strain, const std::vector<double> &stress,
                                           double axial_modulus = std::numeric_limits<double>::quiet_NaN());
+
+  /// A fit as a run's summary.json (dem.failure_analysis.compaction_curve) and calibration.json
+  /// (softening.compaction_tests) record it: every field, the derived ratio and plastic strain.
+  nlohmann::json compaction_curve_json(const CompactionCurveFit &fit);
 } // namespace anticrack::dem

@@ -273,7 +273,8 @@ namespace anticrack::dem
       {
         if (options.loading_measure != Measure::base_normal || h.strain.empty())
           throw std::invalid_argument("analyse_failure: peak_before_lock_up needs the base normal stress and the strain");
-        a.peak_loading = point_at(h, fit_compaction_curve(h.strain, s).peak_index, 0, static_cast<Index>(s.size()) - 1);
+        a.compaction_curve = fit_compaction_curve(h.strain, s);
+        a.peak_loading = point_at(h, a.compaction_curve->peak_index, 0, static_cast<Index>(s.size()) - 1);
       }
       const Index peak = a.peak_loading->index;
       if (!h.strain.empty())

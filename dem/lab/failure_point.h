@@ -11,6 +11,7 @@
 // offending argument (empty history, mismatched lengths, zero kinetic energy, out-of-range indices).
 #pragma once
 
+#include "dem/lab/compaction_curve.h"
 #include "dem/lab/stress_invariants.h"
 #include "dem/core/types.h"
 
@@ -155,6 +156,9 @@ namespace anticrack::dem
     std::optional<double> secant_modulus;           ///< needs strain and the loading measure
     std::optional<double> softening_ratio;          ///< of the loading measure, about its peak
     std::optional<double> flow_angle;               ///< after `failure`, needs displacement and enough samples
+    /// With peak_before_lock_up: the whole curve read by fit_compaction_curve (its own secant as the
+    /// axial modulus; a calibration reads it again with the campaign's).
+    std::optional<CompactionCurveFit> compaction_curve;
   };
 
   /// Runs the analysis; throws like the functions above for invalid histories. If the loading measure

@@ -24,6 +24,7 @@ namespace anticrack::dem
       constexpr const char *step = "step", *time = "time_s", *p = "mean_pressure_p_Pa", *q = "von_mises_q_Pa";
       constexpr const char *sigma = "base_normal_stress_sigma_Pa", *tau = "base_shear_stress_tau_Pa";
       constexpr const char *love_stress = "love_stress_Pa";
+      constexpr const char *compaction_curve = "compaction_curve";
     } // namespace key
 
     /// summary.json's criterion of each control (also how a resumed campaign reads the control back).
@@ -166,6 +167,7 @@ namespace anticrack::dem
       result.softening_ratio = a.softening_ratio;
       if (a.flow_angle)
         result.flow_angle_deg = *a.flow_angle * 180 / M_PI;
+      result.compaction_curve = a.compaction_curve;
       const auto *q = history.find("von_mises_stress"), *inertial = history.find("inertial_number");
       if (q && inertial)
         result.max_inertial_number = max_inertial_number_before_failure(steps, q->values, inertial->values,
@@ -211,6 +213,12 @@ namespace anticrack::dem
       result[key::softening_ratio] = *a.softening_ratio;
     if (a.flow_angle_deg)
       result[key::flow_angle] = *a.flow_angle_deg;
+    if (a.compaction_curve)
+    {
+      result[key::compaction_curve] = compaction_curve_json(*a.compaction_curve);
+      result[key::compaction_curve]["axial_modulus_source"] = "the curve's secant to 70 % of its peak (a calibration "
+                                                              "reads the curve again with the campaign's M)";
+    }
     return result;
   }
 

@@ -44,6 +44,10 @@ namespace anticrack::dem
     std::optional<double> secant_modulus;             ///< to 70 % of the loading peak [Pa]
     std::optional<double> softening_ratio;            ///< residual / peak of the loading measure
     std::optional<double> flow_angle_deg;             ///< atan2(du_z, du_x) just after failure
+    /// Compaction tests: the curve's fit, with its own secant modulus as M (summary.json's
+    /// dem.failure_analysis.compaction_curve; not read back: a calibration fits the history again
+    /// with the campaign's M).
+    std::optional<CompactionCurveFit> compaction_curve;
     /// Largest inertial number between half the failure q and the failure point
     /// (max_inertial_number_before_failure); NaN without the columns. Not part of summary.json:
     /// a campaign that reads a test back computes it from the test's history.h5.

@@ -341,6 +341,7 @@ namespace anticrack::fem
         r["mesh"] = mesh_json(model_, comm_);
         r["critical_cut_length_m"] = optional(critical_cut);
         r["self_propagation_lead_m"] = lead;
+        r["gaume2017"] = gaume2017_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
         r["crack"] = reached_end ? "reached the column end" : (critical_cut ? "arrested" : "did not start");
         r["arrest_position_m"] = reached_end ? Json(nullptr) : Json(fronts_.crack_tip);

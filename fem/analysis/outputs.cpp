@@ -132,6 +132,45 @@ namespace anticrack::fem
     return beam;
   }
 
+  Json gaume2017_reference(const Snowpack &s)
+  {
+    Json j;
+    j["what"] = "Gaume et al. (2017) closed form with this snowpack's slab and weak layer; tau_p = the weak layer's "
+                "cohesive Cam-Clay shear strength at sigma_n, laterally confined";
+    const auto beam = beam_model(s);
+    const char *not_applicable = !beam ? "several slab layers have no single E: not evaluated"
+                                 : s.weak_layer.model != Layer::Model::cohesive_cam_clay
+                                   ? "the weak layer is elastic: it has no shear strength"
+                                   : nullptr;
+    if (not_applicable)
+    {
+      j["note"] = not_applicable;
+      return j;
+    }
+    const ContinuumMaterial &m = s.weak_layer.material;
+    CamClayParameters surface;
+    surface.M = m.M;
+    surface.beta = m.beta;
+    const double sigma_n = closed_forms::normal_load(*beam), tau_g = closed_forms::tangential_load(*beam);
+    const double k = m.poisson_ratio / (1 - m.poisson_ratio);
+    const double tau_p = layer_plane_shear_strength(sigma_n, k, m.p0, surface);
+    j["normal_stress_Pa"] = sigma_n;
+    j["slope_parallel_stress_Pa"] = tau_g;
+    j["lateral_stress_ratio"] = k;
+    j["weak_layer_shear_strength_Pa"] = std::isfinite(tau_p) ? Json(tau_p) : Json(nullptr);
+    j["shear_lag_length_m"] = closed_forms::shear_lag_length(*beam);
+    try
+    {
+      j["critical_cut_length_m"] = closed_forms::critical_cut_length_gaume2017(*beam, tau_p);
+    }
+    catch (const std::exception &e)
+    {
+      j["critical_cut_length_m"] = nullptr;
+      j["note"] = std::string("not evaluated: ") + e.what();
+    }
+    return j;
+  }
+
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)

@@ -86,6 +86,15 @@ namespace anticrack::fem
   /// (several layers have no single E; none is returned then).
   std::optional<closed_forms::SlabOnFoundation> beam_model(const Snowpack &s);
 
+  /// Gaume et al. (2017)'s critical cut length (closed_forms::critical_cut_length_gaume2017) for the
+  /// scene's snowpack, evaluated with its own weak layer: G_wl = E/(2(1 + ν)) and τ_p the layer-plane
+  /// shear strength of its cohesive Cam-Clay surface (layer_plane_shear_strength) at the slab's
+  /// normal stress σ_n = ρ g H cos ψ, laterally confined (k = ν/(1 − ν): a weak layer under a long
+  /// slab cannot strain sideways). The independent reference of the saw tests' critical cut; with
+  /// its inputs, or a "note" saying why it does not apply (several slab layers, an elastic weak
+  /// layer, τ_p <= τ_g).
+  Json gaume2017_reference(const Snowpack &s);
+
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,

@@ -88,6 +88,7 @@ namespace anticrack::fem
     results["analysis"] = scene.analysis.type->name;
     results["mesh"] = mesh_json(model, comm);
     results["critical_cut_length_m"] = critical ? Json(*critical) : Json(nullptr);
+    results["gaume2017"] = gaume2017_reference(scene.snowpack);
     results["critical_cut_length_reason"] =
       critical ? reason : "equilibrium holds up to the longest cut " + format_number(scene.pst.cut_length, 4) + " m";
     Energies energies = model.energies();

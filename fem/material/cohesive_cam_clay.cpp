@@ -673,6 +673,14 @@ namespace anticrack::fem
     return (1 + 2 * beta) * q * q + parameters.M * parameters.M * (p + beta * p0) * (p - p0);
   }
 
+  double layer_plane_shear_strength(const double sigma, const double k, const double p0,
+                                    const CamClayParameters &parameters)
+  {
+    const double p = (1 + 2 * k) * sigma / 3, beta = parameters.beta, M = parameters.M;
+    const double tau_squared = (-M * M * (p + beta * p0) * (p - p0) / (1 + 2 * beta) - (1 - k) * (1 - k) * sigma * sigma) / 3;
+    return tau_squared >= 0 ? std::sqrt(tau_squared) : std::numeric_limits<double>::quiet_NaN();
+  }
+
   double hardening_p0(double alpha, const CamClayParameters &parameters)
   {
     return strength(parameters, alpha).p0;

@@ -220,6 +220,16 @@ namespace anticrack::fem
   /// y(p, q, p0) = (1 + 2β) q² + M² (p + β p0)(p − p0) [Pa²]: <= 0 inside or on the surface.
   double yield_function(double p, double q, double p0, const CamClayParameters &parameters);
 
+  /// τ_p: the layer-plane shear traction at which the surface of tip p0 is reached under the
+  /// layer-plane normal traction σ (compression positive) [Pa], for a point whose lateral stresses
+  /// are k σ (k = ν/(1 − ν) laterally confined, as the weak layer under a slab; 0 free). With
+  /// p = (1 + 2k) σ / 3 and q² = (1 − k)² σ² + 3 τ² (the layer-plane traction's invariants,
+  /// docs/physics.md §2 Eq. P1), y = 0 gives (Eq. P2)
+  ///   τ_p² = [−M² (p + β p0)(p − p0) / (1 + 2β) − (1 − k)² σ²] / 3.
+  /// NaN where σ alone already lies outside the surface (τ_p² < 0).
+  double layer_plane_shear_strength(double sigma, double lateral_stress_ratio, double p0,
+                                    const CamClayParameters &parameters);
+
   /// p0(α) of the hardening law, floor and cap included [Pa].
   double hardening_p0(double alpha, const CamClayParameters &parameters);
 

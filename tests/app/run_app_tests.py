@@ -751,7 +751,8 @@ def campaign_compaction(work):
       pipeline's 2048-sphere layer 5 /s against 2 /s differ by 6.7 %, docs/calibration.md);
     - the material file states its collapse (Material/Collapse) with a lock-up strain between the
       solid fraction's bounds: positive and below 1 - phi / phi_max = 0.53 for phi = 0.3 and
-      random close packing 0.64."""
+      random close packing 0.64;
+    - the test's own summary.json records the same reading of its curve."""
     text = edit_scene(campaign_scene("0, 45, 90, 135, 180", check_mode="first realization"), {},
                       insert={"Campaign": ["set Compaction strain rate [1/s] = 5",
                                            "set Compaction final strain = 0.35"]})
@@ -775,6 +776,13 @@ def campaign_compaction(work):
     check(softening["source"] == "compaction tests", f"softening source {softening['source']}")
     reading = softening["compaction_tests"][0]
     peak = reading["peak_stress_Pa"]
+    # The test's own summary.json records its curve's fit (so a standalone compaction run is read
+    # without a calibration); only M (its own secant there, the campaign's here) and what follows
+    # from it may differ: the peak, residual and lock-up do not depend on M.
+    own = analysis["compaction_curve"]
+    for key in ("peak_stress_Pa", "residual_stress_Pa", "lock_up_strain", "lock_up_modulus_Pa"):
+        check(math.isclose(own[key], reading[key], rel_tol=1e-12), f"the test's summary.json {key} {own[key]}, "
+              f"the calibration's {reading[key]}")
     check(abs(peak / load_controlled - 1) < 0.15,
           f"compaction peak {peak} Pa against the load-controlled failure {load_controlled} Pa")
     rate = softening["rate_checks"][0]
@@ -1513,6 +1521,21 @@ def fem_outputs(work):
           f"propagation speed {r['propagation_speed_m_per_s']!r}")
     touchdown = r["touchdown_distance_m"]
     check(touchdown is None or 0 <= touchdown <= PST_COLUMN_LENGTH, f"touchdown distance {touchdown!r}")
+    # Gaume et al. (2017)'s critical cut of this snowpack, evaluated here from the scene's numbers:
+    # flat, so a_c = Lambda sqrt(2 tau_p / sigma_n), Lambda = sqrt(E' H h / G_wl), and tau_p the
+    # weak layer's surface at sigma_n on the confined path (k = nu / (1 - nu); fem cohesive_cam_clay.h).
+    slab_E, slab_nu, H, rho, h = 5e6, 0.25, 0.4, 250, 0.02
+    wl = {k: float(v) for k, v in WEAK_LAYER_MATERIAL.items() if k not in ("Yield surface plane", "Hardening law")}
+    sigma_n, k = rho * 9.81 * H, wl["Poisson's ratio"] / (1 - wl["Poisson's ratio"])
+    p, p0, beta, M = (1 + 2 * k) * sigma_n / 3, wl["Compressive strength p0 [Pa]"], wl["Tensile strength ratio beta"], \
+        wl["Critical state slope M"]
+    tau_p = math.sqrt((-M ** 2 * (p + beta * p0) * (p - p0) / (1 + 2 * beta) - (1 - k) ** 2 * sigma_n ** 2) / 3)
+    shear_lag = math.sqrt(slab_E / (1 - slab_nu ** 2) * H * h / (wl["Young's modulus [Pa]"] / (2 * (1 + wl["Poisson's ratio"]))))
+    gaume = r["gaume2017"]
+    check(math.isclose(gaume["weak_layer_shear_strength_Pa"], tau_p, rel_tol=1e-9) and
+          math.isclose(gaume["critical_cut_length_m"], shear_lag * math.sqrt(2 * tau_p / sigma_n), rel_tol=1e-9),
+          f"Gaume et al. (2017) reference {gaume}, expected tau_p = {tau_p} Pa, "
+          f"a_c = {shear_lag * math.sqrt(2 * tau_p / sigma_n)} m")
     check(isinstance(r["time_steps"], int) and r["time_steps"] > 0, f"time_steps {r['time_steps']!r}")
     energies = r["energies_per_width"]
     check(energies["balance_error_relative"] < 0.02, f"energy balance error {energies['balance_error_relative']}")

@@ -182,6 +182,45 @@ namespace
     EXPECT_GT(yield_function(1.01e4, 0, 1e4, m), 1e-3 * scale);
   }
 
+  TEST(CamClayStrength, LayerPlaneShearStrengthIsWhereTheConfinedPointFirstYields)
+  {
+    // A laterally confined point (ε_xx = ε_yy = ε_xy = 0) under the layer-plane traction: its
+    // lateral stress ratio follows from Hooke's law, and the shear strain that makes σ_xz equal
+    // layer_plane_shear_strength(σ) puts the elastic stress on the surface (y = 0 to round-off),
+    // while 0.1 % less stays elastic and 0.1 % more yields, for normal stresses across the surface.
+    const CamClayParameters m = parameters(0.3, 0);
+    const double nu = (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
+    const double k = nu / (1 - nu);
+    const CamClayState initial = CamClayState::initial(m);
+    const double constrained = m.bulk_modulus + 4 * m.shear_modulus / 3;
+    for (const double sigma : {-2e3, 0.0, 2e3, 3.5e3, 5e3, 6e3})
+    {
+      const double tau_p = layer_plane_shear_strength(sigma, k, 1e4, m);
+      ASSERT_TRUE(std::isfinite(tau_p)) << "sigma = " << sigma;
+      const auto strain = [&](const double shear_scale) {
+        SymmetricTensor<2, 3> e;
+        e[2][2] = -sigma / constrained;
+        e[0][2] = shear_scale * tau_p / (2 * m.shear_modulus);
+        return e;
+      };
+      const CamClayUpdate on = update_stress(m, initial, strain(0.999));
+      EXPECT_NEAR(on.stress[0][0], k * on.stress[2][2], round_off * 1e4);
+      EXPECT_NEAR(-on.stress[2][2], sigma, round_off * 1e4);
+      EXPECT_FALSE(on.plastic) << "sigma = " << sigma;
+      EXPECT_TRUE(update_stress(m, initial, strain(1.001)).plastic) << "sigma = " << sigma;
+      const SymmetricTensor<2, 3> e = strain(1);
+      const SymmetricTensor<2, 3> stress = m.bulk_modulus * dealii::trace(e) * dealii::unit_symmetric_tensor<3>() +
+                                           2 * m.shear_modulus * dealii::deviator(e);
+      EXPECT_NEAR(yield_function(mean_pressure(stress), von_mises(stress), 1e4, m) / (m.M * m.M * 1e8), 0, 1e-10)
+        << "sigma = " << sigma;
+    }
+    // Free sides (k = 0) at σ = 0: pure shear, q = √3 τ meets the surface at p = 0,
+    // (1 + 2β) 3 τ² = M² β p0².
+    EXPECT_NEAR(layer_plane_shear_strength(0, 0, 1e4, m), m.M * 1e4 * std::sqrt(m.beta / (3 * (1 + 2 * m.beta))), 1e-8);
+    // Beyond the compressive tip of the confined path's image there is no strength.
+    EXPECT_TRUE(std::isnan(layer_plane_shear_strength(3e4, k, 1e4, m)));
+  }
+
   TEST(CamClayElastic, StressIsLinearInsideTheSurface)
   {
     const CamClayParameters m = parameters(0.3, 5);
