@@ -349,6 +349,38 @@ namespace anticrack::fem::closed_forms
     return shear_lag_length(s) * 2 * (tau_p - tau_g) / (tau_g + root);
   }
 
+  double first_tip_yield_cut_length(const SlabOnFoundation &s, const std::function<double(double)> &shear_strength)
+  {
+    s.check();
+    const double lambda = 1 / characteristic_length(s), mu = 1 / shear_lag_length(s);
+    const double q_n = normal_load(s), q_t = std::abs(tangential_load(s));
+    // Failed: the tip's shear traction at or above the strength at its normal traction (a NaN
+    // strength, σ beyond the surface, fails too).
+    const auto fails = [&](const double a) {
+      const double strength = shear_strength(q_n * (1 + lambda * a) * (1 + lambda * a));
+      return !(q_t * (1 + mu * a) < strength);
+    };
+    if (fails(0))
+      throw std::domain_error("closed forms: the weak layer under the uncut column already reaches its strength "
+                              "(sigma_n = " + std::to_string(q_n) + " Pa, tau_g = " + std::to_string(q_t) + " Pa)");
+    const double step = 0.01 / lambda, cap = maximum_cut_length_in_characteristic_lengths / lambda;
+    double lower = 0, upper = step;
+    while (!fails(upper))
+    {
+      if (upper >= cap)
+        throw std::domain_error("closed forms: the crack tip does not reach the weak layer's strength up to a cut of " +
+                                std::to_string(cap) + " m");
+      lower = upper;
+      upper = std::min(upper + step, cap);
+    }
+    while (upper - lower > 1e-12 * upper)
+    {
+      const double middle = 0.5 * (lower + upper);
+      (fails(middle) ? upper : lower) = middle;
+    }
+    return upper;
+  }
+
   double flexural_wave_speed_heierli2005(double youngs_modulus,
                                          double slab_thickness,
                                          double slab_density,

@@ -19,6 +19,8 @@
 // Weak layer: independent normal springs k_n = M_wl/h and shear springs k_t = G_wl/h (Eq. 2).
 #pragma once
 
+#include <functional>
+
 namespace anticrack::fem::closed_forms
 {
   /// Standard gravity [m/s²].
@@ -155,6 +157,17 @@ namespace anticrack::fem::closed_forms
   /// τ_g (1 + a/Λ) + σ_n a² / (2 Λ²) = τ_p. Throws std::invalid_argument unless τ_p is finite and
   /// > 0, std::domain_error if τ_p <= τ_g (the layer fails without a cut).
   double critical_cut_length_gaume2017(const SlabOnFoundation &s, double peak_shear_strength);
+
+  /// The cut length at which the weak layer at the crack tip of the beam on an elastic foundation
+  /// first reaches its strength: the tip tractions σ(a) = k_n w(a) = q_n (1 + λa)² (Eq. 7) and
+  /// |τ(a)| = k_t |u(a)| = |q_t| (1 + μa) (Eq. 11) against the layer-plane shear strength
+  /// `shear_strength(σ)` [Pa] (NaN where σ alone exceeds the strength, e.g. beyond the compressive
+  /// tip). Unlike Gaume et al. (2017)'s shear criterion it lets the tip fail in compression, the
+  /// anticrack's collapse; like it, it ignores the stress concentration of a finite-thickness layer.
+  /// Scans a in steps of 1/(100 λ) and then bisects to 1e-12 relative. Throws std::domain_error if
+  /// the uncut column's tip already fails, or nothing fails up to
+  /// maximum_cut_length_in_characteristic_lengths / λ.
+  double first_tip_yield_cut_length(const SlabOnFoundation &s, const std::function<double(double)> &shear_strength);
 
   /// Heierli (2005), speed of the flexural wave that a collapsing weak layer carries under the slab:
   ///   c = (g D_f / (2 h_f ρ H))^{1/4},   D_f = E H³ / 12   [m/s]   (docs/physics.md §3; Eq. 16).

@@ -106,18 +106,21 @@ def snowpack_stages(summary):
 
 def stage_section(run_dir, summary):
     lines = ["## Snowpack analyses", "",
-             "| stage | analysis | status | crack | critical cut [m] | Gaume et al. (2017) [m] | speed [m/s] | "
-             "touchdown distance [m] |",
-             "|---|---|---|---|---|---|---|---|"]
+             "| stage | analysis | status | crack | critical cut [m] | Gaume et al. (2017) [m] | first tip yield [m] | "
+             "speed [m/s] | touchdown distance [m] |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for s in snowpack_stages(summary):
         r = s.get("results", {})
         gaume = r.get("gaume2017") or {}
         lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('crack', '—')} | "
                      f"{fmt(r.get('critical_cut_length_m'))} | {fmt(gaume.get('critical_cut_length_m'))} | "
+                     f"{fmt(gaume.get('first_tip_yield_cut_length_m'))} | "
                      f"{fmt(r.get('propagation_speed_m_per_s'))} | {fmt(r.get('touchdown_distance_m'))} |")
     lines += ["", "Gaume et al. (2017): the closed-form critical cut of each saw test's snowpack with the same "
               "calibrated weak layer (its shear strength at the slab's normal stress, laterally confined, and "
-              "G_wl = E/(2(1 + nu))), fem/analysis/outputs.h."]
+              "G_wl = E/(2(1 + nu))), a shear criterion. First tip yield: the cut at which the tip of the beam on "
+              "an elastic foundation first reaches the same surface with its normal traction rising too "
+              "(fem/closed_forms.h; fem/analysis/outputs.h)."]
     uncertainty = summary.get("results", {}).get("uncertainty") or {}
     if uncertainty.get("parameters"):
         confidence = next((u["confidence"] for u in uncertainty.values() if isinstance(u, dict) and "confidence" in u), 0.95)

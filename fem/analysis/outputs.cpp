@@ -168,6 +168,18 @@ namespace anticrack::fem
       j["critical_cut_length_m"] = nullptr;
       j["note"] = std::string("not evaluated: ") + e.what();
     }
+    // The same beam and surface with the tip's normal traction rising too (compression failure):
+    // the cut at which the tip first yields.
+    try
+    {
+      j["first_tip_yield_cut_length_m"] = closed_forms::first_tip_yield_cut_length(
+        *beam, [&](const double sigma) { return layer_plane_shear_strength(sigma, k, m.p0, surface); });
+    }
+    catch (const std::exception &e)
+    {
+      j["first_tip_yield_cut_length_m"] = nullptr;
+      j["first_tip_yield_note"] = std::string("not evaluated: ") + e.what();
+    }
     return j;
   }
 

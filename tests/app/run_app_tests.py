@@ -1536,6 +1536,18 @@ def fem_outputs(work):
           math.isclose(gaume["critical_cut_length_m"], shear_lag * math.sqrt(2 * tau_p / sigma_n), rel_tol=1e-9),
           f"Gaume et al. (2017) reference {gaume}, expected tau_p = {tau_p} Pa, "
           f"a_c = {shear_lag * math.sqrt(2 * tau_p / sigma_n)} m")
+    # Its tip first yields, flat, where q_n (1 + lambda a)^2 reaches the confined compressive
+    # strength sigma_c (tau_p(sigma_c) = 0: a quadratic in sigma), 1/lambda = (4 D / k_n)^(1/4).
+    c, Mb = (1 + 2 * k) / 3, M ** 2 / (1 + 2 * beta)
+    A, B, C = -(Mb * c ** 2 + (1 - k) ** 2), -Mb * c * (beta - 1) * p0, Mb * beta * p0 ** 2
+    sigma_c = (-B - math.sqrt(B * B - 4 * A * C)) / (2 * A)
+    E_wl, nu_wl = wl["Young's modulus [Pa]"], wl["Poisson's ratio"]
+    k_n = E_wl * (1 - nu_wl) / ((1 + nu_wl) * (1 - 2 * nu_wl)) / h
+    bending = slab_E / (1 - slab_nu ** 2) * H ** 3 / 12
+    first_yield = (math.sqrt(sigma_c / sigma_n) - 1) * (4 * bending / k_n) ** 0.25
+    check(math.isclose(gaume["first_tip_yield_cut_length_m"], first_yield, rel_tol=1e-9),
+          f"first tip yield {gaume.get('first_tip_yield_cut_length_m')} m, expected {first_yield} m "
+          f"(sigma_c = {sigma_c} Pa)")
     check(isinstance(r["time_steps"], int) and r["time_steps"] > 0, f"time_steps {r['time_steps']!r}")
     energies = r["energies_per_width"]
     check(energies["balance_error_relative"] < 0.02, f"energy balance error {energies['balance_error_relative']}")

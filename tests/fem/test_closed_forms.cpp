@@ -651,6 +651,27 @@ namespace
                                                "peak_shear_strength");
   }
 
+  /// The two pure limits of the first tip yield, solved by hand from the tip tractions: a strength
+  /// in compression only, σ_c, on flat ground gives q_n (1 + λa)² = σ_c, a = (sqrt(σ_c/q_n) − 1)/λ;
+  /// a constant shear strength τ_p on a slope gives q_t (1 + μa) = τ_p, a = (τ_p/q_t − 1)/μ (Λ = 1/μ).
+  TEST(ClosedFormsFirstTipYield, CompressionAndShearLimits)
+  {
+    const SlabOnFoundation flat = typical();
+    const double q_n = hand_normal_load(flat), sigma_c = 5 * q_n;
+    const auto compression_only = [&](const double sigma) { return sigma < sigma_c ? 1e30 : std::nan(""); };
+    EXPECT_NEAR(first_tip_yield_cut_length(flat, compression_only),
+                (std::sqrt(5.0) - 1) * characteristic_length(flat), 1e-10 * characteristic_length(flat));
+    const SlabOnFoundation slope = typical(35 * pi / 180);
+    const double tau_g = hand_tangential_load(slope), tau_p = 3 * tau_g;
+    EXPECT_NEAR(first_tip_yield_cut_length(slope, [&](double) { return tau_p; }),
+                (tau_p / tau_g - 1) * shear_lag_length(slope), 1e-10 * shear_lag_length(slope));
+    // A layer that the uncut column already breaks, and one that never fails, are refused.
+    expect_throw_naming<std::domain_error>([&] { first_tip_yield_cut_length(slope, [&](double) { return 0.5 * tau_g; }); },
+                                           "uncut column");
+    expect_throw_naming<std::domain_error>([&] { first_tip_yield_cut_length(flat, [](double) { return 1e30; }); },
+                                           "does not reach");
+  }
+
   /// E = 5 MPa, H = 0.4 m, ρ = 250 kg/m³, h_f = 4 mm: D_f = 26 666.7 N m,
   /// c = (9.81 · 26 666.7 / (2 · 0.004 · 250 · 0.4))^{1/4} = 327 000^{1/4} = 23.91316 m/s.
   TEST(ClosedFormsHeierli2005, HandValue)
