@@ -409,6 +409,9 @@ namespace anticrack::dem
 
     const MpiSession &mpi = MpiSession::get();
     const bool root = mpi.rank() == 0;
+    // Every rank has looked at the directory before rank 0 creates `tests` in it: a rank that
+    // looked later would take rank 0's new folder for an earlier campaign and refuse (exit 2).
+    mpi.barrier();
     PhaseTimer timer; // rank 0's phases: its own tests, then campaign.h5 and summary.json
     if (root)
     {
