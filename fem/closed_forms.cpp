@@ -352,13 +352,14 @@ namespace anticrack::fem::closed_forms
   double first_tip_yield_cut_length(const SlabOnFoundation &s, const std::function<double(double)> &shear_strength)
   {
     s.check();
-    const double lambda = 1 / characteristic_length(s), mu = 1 / shear_lag_length(s);
+    const double lambda = 1 / characteristic_length(s);
     const double q_n = normal_load(s), q_t = std::abs(tangential_load(s));
-    // Failed: the tip's shear traction at or above the strength at its normal traction (a NaN
-    // strength, σ beyond the surface, fails too).
+    const double k_n = normal_foundation_stiffness(s), k_t = shear_foundation_stiffness(s);
+    // Failed: the tip's shear traction k_t |u(a)| (Eq. 11) at or above the strength at its normal
+    // traction k_n w(a) (Eq. 7); a NaN strength, σ beyond the surface, fails too.
     const auto fails = [&](const double a) {
-      const double strength = shear_strength(q_n * (1 + lambda * a) * (1 + lambda * a));
-      return !(q_t * (1 + mu * a) < strength);
+      const double strength = shear_strength(k_n * weak_layer_compression_at_tip(s, a));
+      return !(k_t * std::abs(weak_layer_slip_at_tip(s, a)) < strength);
     };
     if (fails(0))
       throw std::domain_error("closed forms: the weak layer under the uncut column already reaches its strength "
