@@ -132,6 +132,52 @@ namespace anticrack::fem
     return beam;
   }
 
+  namespace
+  {
+    /// The band the saw tests' critical cut must lie in (docs/fem.md): the coupled stress and energy
+    /// criterion of finite fracture mechanics (Rosendahl & Weißgraeber 2020) on the beam on an elastic
+    /// foundation, with the two extreme energies the tip's advance can need.
+    ///  - lower: the stress criterion alone, the first tip yield (no energy is needed before it);
+    ///  - upper: the stress criterion and the energy of a full collapse, G(a) = σ_c h_c. A weak-layer
+    ///    element whose stress never exceeds its confined compressive strength σ_c and whose faces
+    ///    approach by at most the collapse height h_c dissipates no more than σ_c h_c per unit area,
+    ///    with no credit for the slab's fall: once the elastic slab alone releases that much, the tip
+    ///    must advance.
+    Json critical_cut_band(const closed_forms::SlabOnFoundation &beam, const Json &first_tip_yield,
+                           const double k, const double p0, const CamClayParameters &surface,
+                           const double collapse_height)
+    {
+      Json band;
+      band["what"] = "coupled stress and energy criterion on the beam on an elastic foundation: lower = the first tip "
+                     "yield (stress alone), upper = max(first tip yield, the cut where G(a) = sigma_c h_c, the work "
+                     "of a full collapse at the confined compressive strength)";
+      if (!first_tip_yield.is_number() || !(collapse_height > 0))
+      {
+        band["note"] = first_tip_yield.is_number() ? "the weak layer has no collapse height: no energy side"
+                                                   : "the first tip yield was not evaluated";
+        return band;
+      }
+      const double sigma_c = layer_plane_compressive_strength(k, p0, surface);
+      const double full_collapse = sigma_c * collapse_height;
+      band["confined_compressive_strength_Pa"] = sigma_c;
+      band["collapse_height_m"] = collapse_height;
+      band["full_collapse_energy_J_per_m2"] = full_collapse;
+      band["lower_m"] = first_tip_yield;
+      try
+      {
+        const double energy_side = closed_forms::cut_length_for_fracture_energy(beam, full_collapse);
+        band["energy_cut_length_m"] = energy_side;
+        band["upper_m"] = std::max(energy_side, first_tip_yield.get<double>());
+      }
+      catch (const std::exception &e)
+      {
+        band["upper_m"] = nullptr;
+        band["note"] = std::string("no energy side: ") + e.what();
+      }
+      return band;
+    }
+  } // namespace
+
   Json gaume2017_reference(const Snowpack &s)
   {
     Json j;
@@ -180,6 +226,8 @@ namespace anticrack::fem
       j["first_tip_yield_cut_length_m"] = nullptr;
       j["first_tip_yield_note"] = std::string("not evaluated: ") + e.what();
     }
+    j["band"] = critical_cut_band(*beam, j["first_tip_yield_cut_length_m"], k, m.p0, surface,
+                                  s.weak_layer.collapse_height);
     return j;
   }
 

@@ -681,6 +681,16 @@ namespace anticrack::fem
     return tau_squared >= 0 ? std::sqrt(tau_squared) : std::numeric_limits<double>::quiet_NaN();
   }
 
+  double layer_plane_compressive_strength(const double k, const double p0, const CamClayParameters &parameters)
+  {
+    const double a = (1 + 2 * k) / 3, beta = parameters.beta, M2 = parameters.M * parameters.M;
+    const double A = M2 * a * a + (1 + 2 * beta) * (1 - k) * (1 - k), B = M2 * a * p0 * (beta - 1),
+                 C = -M2 * beta * p0 * p0;
+    // C <= 0 < A: one root >= 0; written so that it does not cancel when B > 0 is large.
+    const double root = std::sqrt(B * B - 4 * A * C);
+    return B <= 0 ? (-B + root) / (2 * A) : -2 * C / (B + root);
+  }
+
   double hardening_p0(double alpha, const CamClayParameters &parameters)
   {
     return strength(parameters, alpha).p0;

@@ -230,6 +230,13 @@ namespace anticrack::fem
   double layer_plane_shear_strength(double sigma, double lateral_stress_ratio, double p0,
                                     const CamClayParameters &parameters);
 
+  /// σ_c: the layer-plane normal traction (compression positive) at which the surface of tip p0 is
+  /// reached with no shear, for lateral stresses k σ [Pa]: the positive root of τ_p(σ) = 0 in Eq. P2,
+  ///   [M² a² + (1 + 2β)(1 − k)²] σ² + M² a p0 (β − 1) σ − M² β p0² = 0,   a = (1 + 2k)/3
+  /// (k = 1: hydrostatic, σ_c = p0). The strength of a confined weak layer under a slab in pure
+  /// compression, the peak stress of its collapse.
+  double layer_plane_compressive_strength(double lateral_stress_ratio, double p0, const CamClayParameters &parameters);
+
   /// p0(α) of the hardening law, floor and cap included [Pa].
   double hardening_p0(double alpha, const CamClayParameters &parameters);
 

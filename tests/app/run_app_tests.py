@@ -1548,6 +1548,15 @@ def fem_outputs(work):
     check(math.isclose(gaume["first_tip_yield_cut_length_m"], first_yield, rel_tol=1e-9),
           f"first tip yield {gaume.get('first_tip_yield_cut_length_m')} m, expected {first_yield} m "
           f"(sigma_c = {sigma_c} Pa)")
+    # The band's energy side, flat: G_I = q_n^2 / (2 k_n) (1 + lambda a)^4 (Eq. 10) reaches the work
+    # of a full collapse sigma_c h_c (h_c = 3 mm inline).
+    band, collapse_height = gaume["band"], 0.003
+    energy_side = ((2 * k_n * sigma_c * collapse_height / sigma_n ** 2) ** 0.25 - 1) * (4 * bending / k_n) ** 0.25
+    check(math.isclose(band["confined_compressive_strength_Pa"], sigma_c, rel_tol=1e-9) and
+          math.isclose(band["energy_cut_length_m"], energy_side, rel_tol=1e-9) and
+          band["lower_m"] == gaume["first_tip_yield_cut_length_m"] and
+          math.isclose(band["upper_m"], max(energy_side, first_yield), rel_tol=1e-9),
+          f"critical cut band {band}, expected sigma_c = {sigma_c} Pa, energy side {energy_side} m")
     check(isinstance(r["time_steps"], int) and r["time_steps"] > 0, f"time_steps {r['time_steps']!r}")
     energies = r["energies_per_width"]
     check(energies["balance_error_relative"] < 0.02, f"energy balance error {energies['balance_error_relative']}")
@@ -1861,6 +1870,53 @@ def pipeline_small(work):
         check(ra["crack"] == rb["crack"] and ra["critical_cut_length_m"] == rb["critical_cut_length_m"] and
               abs(ra["propagation_speed_m_per_s"] / rb["propagation_speed_m_per_s"] - 1) < 1e-6,
               f"{stage}: serial {ra}, mpirun {rb}")
+
+
+@case
+def crossval_chain_gaume(work):
+    """Cross-validation, the chain end to end: the tiny pipeline's weak layer (the 5-angle SHS
+    campaign, calibrated, in snow units) under the tiny PST's slab on a 2 m column, the saw advancing
+    at 2 m/s, flat and at 30 degrees. The FE critical cut lies in the band of the coupled stress and
+    energy criterion on the beam on an elastic foundation, evaluated with the same calibrated layer
+    (summary.json gaume2017.band, docs/fem.md): at or above the first tip yield (a crack cannot run
+    before its tip reaches the surface), at or below the cut at which the elastic slab alone
+    releases the work of a full collapse, sigma_c h_c; each side widened by one element (the FE
+    resolves the tip to an element). Gaume et al.'s (2017) closed form is printed beside it (it is no
+    bound: docs/pipeline.md). app.fem_outputs recomputes both bounds in Python from the scene's
+    numbers (Eqs. 7 and 10 of docs/fem_closed_forms.md, Eq. P2 of docs/physics.md). A crack that runs through
+    has a speed within Bergfeld et al.'s (2022) field range, 20-50 m/s, widened by the 2 cm mesh's
+    10 % (docs/fem.md)."""
+    weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
+                 "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
+    chain = {"PST/Column length [m]": "2", "PST/Saw": "advancing", "PST/Cut length [m]": "1.2",
+             "Analysis/Explicit/End time [s]": "0.8"}
+    saw = {"PST": ["set Saw speed [m/s] = 2"]}
+    write(os.path.join(work, "flat.prm"), "set Scene = snowpack\n" + pst_scene(chain, insert=saw))
+    write(os.path.join(work, "steep.prm"), "set Scene = snowpack\n" +
+          pst_scene(chain, insert={**saw, "Snowpack": ["set Slope angle [deg] = 30"]}))
+    pipeline = write(os.path.join(work, "pipeline.prm"), "\n".join([
+        "set Scene = pipeline",
+        "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm",
+        "  set Uncertainty = none", "end",
+        "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
+    out = os.path.join(work, "out")
+    anticrack("run", pipeline, "-o", out)
+    element = 0.02
+    for stage in ["flat", "steep"]:
+        fem = fem_summary(os.path.join(out, stage))
+        results, reference = fem["results"], fem["results"]["gaume2017"]
+        band = reference["band"]
+        a_fe = results["critical_cut_length_m"]
+        print(f"{stage}: FE critical cut {a_fe} m, band [{band['lower_m']:.4f}, {band['upper_m']:.4f}] m "
+              f"(energy side {band['energy_cut_length_m']:.4f} m at {band['full_collapse_energy_J_per_m2']:.3f} J/m^2), "
+              f"Gaume et al. (2017) {reference['critical_cut_length_m']:.4f} m; crack {results['crack']!r}, "
+              f"speed {results.get('propagation_speed_m_per_s')} m/s")
+        check(a_fe is not None, f"{stage}: no critical cut ({results['crack']!r})")
+        check(band["lower_m"] - element <= a_fe <= band["upper_m"] + element,
+              f"{stage}: FE critical cut {a_fe} m outside the band {band}")
+        if results["crack"] == "reached the column end":
+            speed = results["propagation_speed_m_per_s"]
+            check(0.9 * 20 <= speed <= 1.1 * 50, f"{stage}: speed {speed} m/s outside Bergfeld et al.'s 20-50 m/s")
 
 
 @case

@@ -221,6 +221,36 @@ namespace
     EXPECT_TRUE(std::isnan(layer_plane_shear_strength(3e4, k, 1e4, m)));
   }
 
+  TEST(CamClayStrength, LayerPlaneCompressiveStrengthIsWhereTheConfinedPointFirstYieldsInCompression)
+  {
+    // The laterally confined point compressed along the layer normal alone: the FE's own return
+    // mapping stays elastic at 0.999 σ_c and yields at 1.001 σ_c; τ_p vanishes there; the
+    // hydrostatic path (k = 1) meets the surface at its tip p0.
+    const CamClayParameters m = parameters(0.3, 0);
+    const double nu = (3 * m.bulk_modulus - 2 * m.shear_modulus) / (2 * (3 * m.bulk_modulus + m.shear_modulus));
+    const double k = nu / (1 - nu), p0 = 1e4;
+    const double sigma_c = layer_plane_compressive_strength(k, p0, m);
+    const CamClayState initial = CamClayState::initial(m);
+    const double constrained = m.bulk_modulus + 4 * m.shear_modulus / 3;
+    const auto compressed = [&](const double scale) {
+      SymmetricTensor<2, 3> e;
+      e[2][2] = -scale * sigma_c / constrained;
+      return update_stress(m, initial, e);
+    };
+    EXPECT_FALSE(compressed(0.999).plastic);
+    EXPECT_TRUE(compressed(1.001).plastic);
+    EXPECT_NEAR(-compressed(0.999).stress[2][2], 0.999 * sigma_c, round_off * p0);
+    // τ_p ∝ √(σ_c − σ) at the root: 1e-12 below it τ_p is ~1e-6 of the surface's size, 1e-9 above none.
+    EXPECT_LT(layer_plane_shear_strength(sigma_c * (1 - 1e-12), k, p0, m), 1e-6 * p0);
+    EXPECT_TRUE(std::isnan(layer_plane_shear_strength(sigma_c * (1 + 1e-9), k, p0, m)));
+    EXPECT_NEAR(layer_plane_compressive_strength(1, p0, m), p0, round_off * p0);
+    // The root is written in two forms (B < 0 and B > 0): both meet at β = 1 (B = 0).
+    CamClayParameters symmetric = m;
+    symmetric.beta = 1;
+    const double a = (1 + 2 * k) / 3, A = m.M * m.M * a * a + 3 * (1 - k) * (1 - k);
+    EXPECT_NEAR(layer_plane_compressive_strength(k, p0, symmetric), m.M * p0 / std::sqrt(A), round_off * p0);
+  }
+
   TEST(CamClayElastic, StressIsLinearInsideTheSurface)
   {
     const CamClayParameters m = parameters(0.3, 5);
