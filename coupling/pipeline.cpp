@@ -511,13 +511,14 @@ namespace anticrack::coupling
       else if (!failed && !interrupted)
       {
         const UncertainParameters u = uncertain_parameters(weak.directory);
-        // The saw tests are run again per parameter. An energy release rate is not: its layers are
+        // The analyses of a yielding weak layer (the saw tests, a load to failure) are run again per
+        // parameter. An energy release rate is not: its layers are
         // elastic, so of the calibration only E enters it besides G_c, whose interval (the compaction
         // tests' fracture energy) the stage maps itself through its G(a); E's is not carried.
         std::vector<bool> rerun(stages.size(), false);
         for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene.snowpack_scenes[j - 1]), scene.snowpack_scenes[j - 1])
-                       .analysis.type->saw_test;
+                       .analysis.type->yielding_weak_layer;
         // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
         // parameters times scenes over the cores, each as long as the longest snowpack stage.
         double longest = 0;

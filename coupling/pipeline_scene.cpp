@@ -210,9 +210,9 @@ namespace anticrack::coupling
       // As the pipeline runs it: with the changes (an unknown entry or value is refused here).
       const fem::SnowpackScene snowpack = fem::read_snowpack_scene_text(snowpack_scene_text(scene, s, ""), s);
       // The calibrated weak layer is a cohesive Cam-Clay material; an elastic one takes only its
-      // elasticity, which only an analysis that is not a saw test (the energy release rate, elastic
-      // layers throughout) may ask for: the criterion the pipeline's uncertainty stage uses too.
-      if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay && snowpack.analysis.type->saw_test)
+      // elasticity, which only an analysis without a yielding weak layer (the energy release rate,
+      // elastic layers throughout) may ask for: the criterion the pipeline's uncertainty stage uses too.
+      if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay && snowpack.analysis.type->yielding_weak_layer)
         problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model); "
                             "only an energy release rate scene may have an elastic one");
     }

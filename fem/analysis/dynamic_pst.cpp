@@ -387,7 +387,7 @@ namespace anticrack::fem
     return {
       "explicit dynamics", "dynamic PST (explicit central differences)",
       "gravity equilibrium, then the saw and crack propagation in time (explicit central differences).",
-      /* saw_test = */ true, /* time_integration = */ true,
+      /* yielding_weak_layer = */ true, /* time_integration = */ true,
       [](ParameterHandler &prm) {
         prm.enter_subsection("Explicit");
         prm.declare_entry("End time [s]", "1", Patterns::Double(0),

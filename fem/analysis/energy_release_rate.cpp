@@ -137,7 +137,7 @@ namespace anticrack::fem
       "energy release rate", "energy release rate (elastic)",
       "elastic snowpack, G(a) = -dPi/da over every cut length up to `PST/Cut length`, and the cut length at "
       "which G reaches the weak layer's fracture energy.",
-      /* saw_test = */ false, /* time_integration = */ false,
+      /* yielding_weak_layer = */ false, /* time_integration = */ false,
       [](ParameterHandler &prm) {
         prm.declare_entry("Fracture energy [J/m^2]", "0", Patterns::Double(0),
                           "G_c: fracture energy of the weak layer; the analysis reports the cut length at which G "

@@ -1,4 +1,4 @@
-// What the three analyses of fem/analysis/ share: the progress log, the time series' writer, the
+// What the analyses of fem/analysis/ share: the progress log, the time series' writer, the
 // .pvd record of the field outputs, the parts of summary.json's results (mesh, energies per width, the beam model of
 // fem/closed_forms.h) and the start of both PSTs (gravity equilibrium, self-propagation lead).
 // Templates on dim are explicitly instantiated for 2 and 3 in outputs.cpp.

@@ -110,7 +110,7 @@ namespace anticrack::fem
   {
     return {"quasi-static", "quasi-static PST (Newton)",
             "gravity, then saw steps with Newton until equilibrium is lost or the crack leads the saw.",
-            /* saw_test = */ true, /* time_integration = */ false,
+            /* yielding_weak_layer = */ true, /* time_integration = */ false,
             [](ParameterHandler &prm) {
               prm.enter_subsection("Newton");
               prm.declare_entry("Saw step [m]", "0", Patterns::Double(0),

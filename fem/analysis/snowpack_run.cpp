@@ -11,6 +11,7 @@ namespace anticrack::fem
   AnalysisType energy_release_rate_analysis();
   AnalysisType quasi_static_pst_analysis();
   AnalysisType dynamic_pst_analysis();
+  AnalysisType load_to_failure_analysis();
 
   const std::vector<AnalysisType> &analysis_types()
   {
@@ -18,6 +19,7 @@ namespace anticrack::fem
       energy_release_rate_analysis(),
       quasi_static_pst_analysis(),
       dynamic_pst_analysis(),
+      load_to_failure_analysis(),
     };
     return types;
   }

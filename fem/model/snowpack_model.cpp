@@ -11,6 +11,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -148,6 +149,27 @@ namespace anticrack::fem
     step_sizes.push_back(normal_steps);
     upper[dim - 1] = s.total_thickness();
     GridGenerator::subdivided_hyper_rectangle(triangulation_, step_sizes, Point<dim>(), upper);
+    if (scene_.pst.column_ends == SawTest::ColumnEnds::periodic)
+    {
+      // Boundary ids 2k and 2k + 1 on the faces normal to lateral axis k (x; y in 3D), which repeat;
+      // p4est then keeps the periodic neighbours in the ghost layer.
+      std::vector<GridTools::PeriodicFacePair<typename Triangulation<dim>::cell_iterator>> pairs;
+      for (unsigned int axis = 0; axis + 1 < dim; ++axis)
+      {
+        for (const auto &cell : triangulation_.active_cell_iterators())
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+            {
+              const double x = cell->face(f)->center()[axis];
+              if (std::abs(x) < 1e-12 * upper[axis])
+                cell->face(f)->set_boundary_id(2 + 2 * axis);
+              else if (std::abs(x - upper[axis]) < 1e-12 * upper[axis])
+                cell->face(f)->set_boundary_id(3 + 2 * axis);
+            }
+        GridTools::collect_periodic_faces(triangulation_, 2 + 2 * axis, 3 + 2 * axis, axis, pairs);
+      }
+      triangulation_.add_periodicity(pairs);
+    }
 
     // Layer ids from the cell centres; the base gets boundary id 1.
     const std::vector<double> tops = layer_tops(s);
@@ -168,14 +190,54 @@ namespace anticrack::fem
     DoFTools::extract_locally_relevant_dofs(dof_handler_, locally_relevant_dofs_);
     constraints_.clear();
     constraints_.reinit(locally_relevant_dofs_);
+    // Periodic ends first: the base's own nodes at both ends are then fixed through their masters.
+    if (scene_.pst.column_ends == SawTest::ColumnEnds::periodic)
+      for (unsigned int axis = 0; axis + 1 < dim; ++axis)
+        DoFTools::make_periodicity_constraints(dof_handler_, 2 + 2 * axis, 3 + 2 * axis, axis, constraints_);
     VectorTools::interpolate_boundary_values(dof_handler_, 1, Functions::ZeroFunction<dim>(dim), constraints_);
     constraints_.close();
     partitioner_ = std::make_shared<Utilities::MPI::Partitioner>(locally_owned_dofs_, locally_relevant_dofs_,
                                                                  communicator_);
+    // Fixed: lines without entries (the base, and periodic copies of base nodes); the others are the
+    // periodic copies of free nodes, condensed onto their masters (condense_periodic()).
     fixed_.assign(partitioner_->locally_owned_size() + partitioner_->n_ghost_indices(), false);
+    periodic_copies_.clear();
     for (const auto &line : constraints_.get_lines())
       if (locally_relevant_dofs_.is_element(line.index))
-        fixed_[partitioner_->global_to_local(line.index)] = true;
+      {
+        if (line.entries.empty())
+          fixed_[partitioner_->global_to_local(line.index)] = true;
+        else if (locally_owned_dofs_.is_element(line.index))
+          for (const auto &[master, weight] : line.entries)
+            periodic_copies_.push_back({partitioner_->global_to_local(line.index),
+                                        partitioner_->global_to_local(master), weight});
+      }
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::condense_periodic(VectorType &vector) const
+  {
+    if (scene_.pst.column_ends != SawTest::ColumnEnds::periodic)
+      return;
+    // A copy's force acts on its master (the copy's displacement is the master's): moved there,
+    // across ranks through the ghost layer, and zeroed at the copy.
+    VectorType moved;
+    initialize_vector(moved);
+    for (const PeriodicCopy &c : periodic_copies_)
+      moved.local_element(c.master) += c.weight * vector.local_element(c.copy);
+    for (const PeriodicCopy &c : periodic_copies_)
+      vector.local_element(c.copy) = 0;
+    moved.compress(VectorOperation::add);
+    vector += moved;
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::distribute_periodic(VectorType &vector) const
+  {
+    if (scene_.pst.column_ends != SawTest::ColumnEnds::periodic)
+      return;
+    vector.zero_out_ghost_values();
+    constraints_.distribute(vector);
   }
 
   template <int dim>
@@ -302,6 +364,7 @@ namespace anticrack::fem
     }
     gravity_force_.compress(VectorOperation::add);
     lumped_mass_.compress(VectorOperation::add);
+    condense_periodic(gravity_force_);
     zero_fixed(gravity_force_);
     for (unsigned int i = 0; i < partitioner_->locally_owned_size(); ++i)
       if (fixed_[i])
@@ -513,6 +576,7 @@ namespace anticrack::fem
       max_rate2 = std::max(max_rate2, cell_modulus / data.density * data.inverse_h2);
     }
     internal_force.compress(VectorOperation::add);
+    condense_periodic(internal_force);
     zero_fixed(internal_force);
     if (request.tangent)
       request.tangent->compress(VectorOperation::add);
@@ -552,6 +616,29 @@ namespace anticrack::fem
   }
 
   template <int dim>
+  double SnowpackModel<dim>::softening_of(const QuadraturePointState &state) const
+  {
+    const CamClayParameters &weak = cell_parameters_[layer_weak];
+    return (weak.p0_initial - state.material.p0) / std::max(weak.p0_initial - weak.p0_floor, 1e-300);
+  }
+
+  template <int dim>
+  double SnowpackModel<dim>::weak_layer_softening() const
+  {
+    double sums[2] = {0, 0};
+    for (const CellData &data : cells_)
+      if (data.layer == layer_weak)
+        for (unsigned int q = 0; q < quadrature_.size(); ++q)
+        {
+          sums[0] += softening_of(committed_[data.first_qp + q]);
+          sums[1] += 1;
+        }
+    double total[2];
+    Utilities::MPI::sum(ArrayView<const double>(sums, 2), communicator_, ArrayView<double>(total, 2));
+    return total[0] / std::max(total[1], 1.);
+  }
+
+  template <int dim>
   CrackFronts SnowpackModel<dim>::crack_fronts(double failure_fraction) const
   {
     std::vector<int> failed(n_columns_, 0), locked(n_columns_, 0);
@@ -565,9 +652,8 @@ namespace anticrack::fem
       bool lock = false;
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
       {
-        const CamClayState &state = committed_[data.first_qp + q].material;
-        softening += (weak.p0_initial - state.p0) / std::max(weak.p0_initial - weak.p0_floor, 1e-300);
-        lock = lock || (densification > 0 && -trace(state.strain) > densification);
+        softening += softening_of(committed_[data.first_qp + q]);
+        lock = lock || (densification > 0 && -trace(committed_[data.first_qp + q].material.strain) > densification);
       }
       softening /= quadrature_.size();
       if (data.intact < 0.5 || softening >= failure_fraction)
@@ -638,6 +724,7 @@ namespace anticrack::fem
       {
         const QuadraturePointState &state = committed_[data.first_qp + q];
         summary.stress += carried_stress(state, stress_factor) / n_q;
+        summary.strain += state.material.strain / n_q;
         summary.p0 += state.material.p0 / n_q;
       }
       summaries.push_back(summary);

@@ -90,6 +90,7 @@ namespace anticrack::fem
     unsigned int layer = 0;
     double intact = 1;
     dealii::SymmetricTensor<2, 3> stress; ///< mean over the quadrature points, as carried (f σ_cc − p_d I)
+    dealii::SymmetricTensor<2, 3> strain; ///< mean total strain over the quadrature points
     double p0 = 0;                        ///< mean p0 (Cam-Clay cells)
   };
 
@@ -131,6 +132,14 @@ namespace anticrack::fem
     /// Sets the fixed dofs of a vector to zero.
     void zero_fixed(VectorType &vector) const;
 
+    /// Periodic column ends (PST/Column ends): moves the entries of the periodic copies of nodes onto
+    /// their masters (a force vector assembled cell by cell; internal_force and gravity_force are so
+    /// already). No-op with free ends.
+    void condense_periodic(VectorType &vector) const;
+    /// Periodic column ends: sets each copy's entry to its master's (a displacement or its
+    /// increment, after a solve). No-op with free ends.
+    void distribute_periodic(VectorType &vector) const;
+
     /// Cuts the weak layer up to `cut_length` from the cut end (set_cut(0): intact). Returns true
     /// if any cell changed its intact fraction.
     bool set_cut(double cut_length);
@@ -167,6 +176,11 @@ namespace anticrack::fem
     /// Crack and touchdown fronts of the committed states, over all ranks.
     CrackFronts crack_fronts(double failure_fraction) const;
 
+    /// How far the weak layer has softened, over all ranks: the mean over its quadrature points of
+    /// (p0_initial − p0) / (p0_initial − p0_floor), the measure of crack_fronts() (0: intact, 1: at the
+    /// residual strength everywhere; negative where a hardening law has hardened it).
+    double weak_layer_softening() const;
+
     /// Writes the fields of displacement u (ghosted) as VTU/PVTU into `directory` with the given
     /// name stem and index; returns the .pvtu file name (relative to `directory`).
     std::string write_fields(const VectorType &u, const std::string &directory, const std::string &stem,
@@ -189,6 +203,8 @@ namespace anticrack::fem
     void assemble_gravity_and_mass();
     void sum_gravity_and_mass();
     double cell_elastic_energy(const CellData &data) const;
+    /// (p0_initial − p0) / (p0_initial − p0_floor) of a weak-layer quadrature point.
+    double softening_of(const QuadraturePointState &state) const;
 
     const SnowpackScene &scene_;
     MPI_Comm communicator_;
@@ -202,6 +218,12 @@ namespace anticrack::fem
     dealii::IndexSet locally_owned_dofs_, locally_relevant_dofs_;
     std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
     std::vector<bool> fixed_;
+    struct PeriodicCopy
+    {
+      unsigned int copy, master; ///< local indices (the copy locally owned, the master owned or ghost)
+      double weight;
+    };
+    std::vector<PeriodicCopy> periodic_copies_;
 
     std::vector<Layer> layers_;                    ///< by layer id
     std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)

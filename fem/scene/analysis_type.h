@@ -37,10 +37,11 @@ namespace anticrack::fem
     const char *title;         ///< what `anticrack check` says the scene computes
     const char *documentation; ///< its paragraph of the Analysis/Type documentation (after "`name`: ")
 
-    /// A saw test of a yielding weak layer under gravity: it reads Analysis/Crack band
-    /// regularisation, Analysis/Newton/Gravity steps and subsection Analysis/Crack detection, and
-    /// needs a cohesive Cam-Clay weak layer.
-    bool saw_test;
+    /// A yielding weak layer under gravity (the saw tests, the load to failure): it reads
+    /// Analysis/Crack band regularisation, Analysis/Newton/Gravity steps and subsection
+    /// Analysis/Crack detection, and needs a cohesive Cam-Clay weak layer; the pipeline reruns it
+    /// for the calibration's uncertainty.
+    bool yielding_weak_layer;
     /// Marches in time behind a saw that may advance: it reads PST/Saw and PST/Saw speed [m/s], and
     /// its checkpoints are what `anticrack run --resume` continues.
     bool time_integration;

@@ -153,6 +153,13 @@ namespace anticrack::fem
     return names;
   }
 
+  const EnumTable<SawTest::ColumnEnds> &column_end_names()
+  {
+    static const EnumTable<SawTest::ColumnEnds> names{{"free", SawTest::ColumnEnds::free},
+                                                      {"periodic", SawTest::ColumnEnds::periodic}};
+    return names;
+  }
+
   const EnumTable<SawTest::CutSide> &cut_side_names()
   {
     static const EnumTable<SawTest::CutSide> names{{"upslope", SawTest::CutSide::upslope},
@@ -189,7 +196,7 @@ namespace anticrack::fem
     const auto any_analysis = [&](bool AnalysisType::*property) {
       return std::any_of(analyses.begin(), analyses.end(), [&](const AnalysisType *t) { return t->*property; });
     };
-    const bool pst = any_analysis(&AnalysisType::saw_test);
+    const bool yielding = any_analysis(&AnalysisType::yielding_weak_layer);
     const bool dynamic = any_analysis(&AnalysisType::time_integration);
 
     // The kind is read by app/scenes.cpp before this declaration; declaring it lets the file say it.
@@ -222,6 +229,10 @@ namespace anticrack::fem
                       "L: length of the isolated column along the slope. Units: m.");
     prm.declare_entry("Column width [m]", "0.3", Double(0),
                       "W: width of the column across the slope (3D only). Units: m.");
+    prm.declare_entry("Column ends", "free", Selection(column_end_names().pattern()),
+                      "free: the isolated column of a PST, or an open-sided specimen; periodic: the column "
+                      "repeats along the slope (and across it in 3D), an infinite slope or a laterally periodic "
+                      "specimen (analyses that do not march in time).");
     prm.declare_entry("Cut from", "upslope", Selection(cut_side_names().pattern()),
                       "End of the column where the saw enters.");
     if (dynamic)
@@ -257,7 +268,7 @@ namespace anticrack::fem
     prm.declare_entry("Type", (type ? *type : default_analysis_type()).name,
                       Selection(type ? std::string(type->name) : analysis_type_pattern()),
                       name_paragraphs(analysis_types()));
-    if (pst)
+    if (yielding)
       prm.declare_entry("Crack band regularisation", "true", Bool(),
                         "true: softening layers soften and collapse in one element row with the energy and the "
                         "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
@@ -269,12 +280,12 @@ namespace anticrack::fem
                       "Largest number of Newton iterations per load step. Dimensionless.");
     prm.declare_entry("Linear solver", "direct", Selection(linear_solver_names().pattern()),
                       "direct: MUMPS; amg: GMRES with BoomerAMG (large problems).");
-    if (pst)
+    if (yielding)
       prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
                         "Initial number of load steps of the gravity ramp (a step that fails is halved). "
                         "Dimensionless.");
     prm.leave_subsection();
-    if (pst)
+    if (yielding)
     {
       prm.enter_subsection("Crack detection");
       prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
@@ -405,6 +416,7 @@ namespace anticrack::fem
     pst.column_length = prm.get_double("Column length [m]");
     pst.column_width = prm.get_double("Column width [m]");
     pst.cut_side = cut_side_names().value(prm.get("Cut from"));
+    pst.column_ends = column_end_names().value(prm.get("Column ends"));
     pst.saw = saw_names().value(prm.get("Saw"));
     pst.cut_length = prm.get_double("Cut length [m]");
     pst.saw_speed = prm.get_double("Saw speed [m/s]");
@@ -480,6 +492,10 @@ namespace anticrack::fem
     if (!(pst.cut_length < pst.column_length))
       problems.add("PST/Cut length [m]", "must be shorter than the column, " + format_number(pst.column_length) +
                                            " m (is " + format_number(pst.cut_length) + ")");
+    if (pst.column_ends == SawTest::ColumnEnds::periodic && analysis.type->time_integration)
+      problems.add("PST/Column ends", std::string("must be `free` for the analysis `") + analysis.type->name +
+                                        "` (its lumped mass and explicit steps know no periodic ends; allowed with "
+                                        "the analyses that do not march in time)");
     if (pst.saw == SawTest::Saw::advancing && analysis.type->time_integration && !(pst.saw_speed > 0))
       problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + format_number(pst.saw_speed) + ")");
     if (!(mesh.element_length > 0) || !(mesh.element_length <= pst.column_length / 4))
@@ -490,9 +506,9 @@ namespace anticrack::fem
       problems.add("Mesh/Slab element height [m]", "must be > 0");
     if (!(mesh.substratum_element_height > 0))
       problems.add("Mesh/Substratum element height [m]", "must be > 0");
-    if (analysis.type->saw_test && s.weak_layer.model != Layer::Model::cohesive_cam_clay)
-      problems.add("Snowpack/Weak layer/Model", "must be `cohesive cam-clay` for a quasi-static or dynamic PST (only "
-                                               "a yielding weak layer can fail)");
+    if (analysis.type->yielding_weak_layer && s.weak_layer.model != Layer::Model::cohesive_cam_clay)
+      problems.add("Snowpack/Weak layer/Model", std::string("must be `cohesive cam-clay` for the analysis `") + analysis.type->name +
+                                                 "` (only a yielding weak layer can fail)");
     analysis.type->check(scene, problems);
     problems.throw_if_any();
     return scene;

@@ -86,12 +86,19 @@ namespace anticrack::fem
       fixed,    ///< the cut of `cut_length` is made at once (after the gravity equilibrium)
       advancing ///< the saw advances at `saw_speed` from 0 up to `cut_length`
     };
+    enum class ColumnEnds
+    {
+      free,    ///< the isolated column of a PST (and an open-sided specimen)
+      periodic ///< the column repeats along the slope (and across it in 3D): an infinite slope, a
+               ///< laterally periodic specimen
+    };
     double column_length = 2.5; ///< L [m]
     double column_width = 0.3;  ///< [m], 3D only
     CutSide cut_side = CutSide::upslope;
     Saw saw = Saw::advancing;
     double cut_length = 0.3;    ///< fixed cut, or the largest cut of an advancing saw [m]
     double saw_speed = 1;       ///< [m/s]
+    ColumnEnds column_ends = ColumnEnds::free;
   };
 
   /// The structured, graded mesh.
@@ -181,6 +188,7 @@ namespace anticrack::fem
   const EnumTable<Layer::Model> &layer_model_names();
   const EnumTable<SawTest::CutSide> &cut_side_names();
   const EnumTable<SawTest::Saw> &saw_names();
+  const EnumTable<SawTest::ColumnEnds> &column_end_names();
   const EnumTable<Analysis::LinearSolver> &linear_solver_names();
 
   /// "Slab layer k+1": the subsection of Snowpack that holds slab layer k (top first, from 0).

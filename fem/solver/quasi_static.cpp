@@ -68,7 +68,9 @@ namespace anticrack::fem
   {
     const Analysis &analysis = model_.scene().analysis;
     LinearAlgebra &la = *linear_algebra_;
-    const double reference = std::max(model_.gravity_force().l2_norm(), 1e-300);
+    // Relative to the applied load once it exceeds the weight (the load to failure ramps beyond 1);
+    // the weight itself below (the gravity ramp, whose early steps are small).
+    const double reference = std::max(std::abs(load_factor), 1.) * std::max(model_.gravity_force().l2_norm(), 1e-300);
     VectorType internal_force, residual, trial_u, increment;
     model_.initialize_vector(internal_force);
     model_.initialize_vector(residual);
@@ -132,6 +134,7 @@ namespace anticrack::fem
         }
         la.from_petsc(la.solution, increment);
         model_.zero_fixed(increment);
+        model_.distribute_periodic(increment);
         ++total_iterations_;
 
         // Backtracking line search on |r| (Armijo-like sufficient decrease, step-42).

@@ -16,7 +16,7 @@ namespace anticrack::fem
   {
     bool converged = false;
     unsigned int iterations = 0;
-    double relative_residual = 0; ///< |r| / |f_gravity| at the end
+    double relative_residual = 0; ///< |r| / (max(|λ|, 1) |f_gravity|) at the end
     std::string failure;          ///< why it did not converge (empty when it did)
   };
 

@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -138,6 +139,23 @@ namespace
   // differential Poisson expansion of the layers, coupled by the weak layer's shear over the
   // shear-lag length 1/μ = sqrt(E' H h / G_wl) ≈ 0.64 m: at 9 m from the ends e^{−14} ≈ 1e-6 of an
   // effect of ~200 Pa (a 6 m column missed by 0.1 %), far below the 1e-6 relative tolerance.
+  /// A layer of a column: its bottom and top heights [m] and density [kg/m³].
+  struct LayerSpan
+  {
+    double bottom, top, density;
+  };
+
+  /// The overburden at height z, Σ ρ g × (the part of each layer above z) [Pa].
+  std::function<double(double)> overburden_of(const std::vector<LayerSpan> &layers)
+  {
+    return [layers](double z) {
+      double weight = 0;
+      for (const LayerSpan &l : layers)
+        weight += l.density * 9.81 * std::max(0., l.top - std::max(l.bottom, z));
+      return weight;
+    };
+  }
+
   TEST(FemGravity, LayeredColumnCarriesItsWeight)
   {
     const SnowpackScene scene = scene_from(
@@ -155,15 +173,8 @@ namespace
     model.initialize_vector(u);
     solver.apply_gravity(u, 1);
 
-    // Overburden at height z: Σ ρ g × (part of each layer above z); layers as (bottom, top, ρ).
     const double g = 9.81;
-    const double layers[4][3] = {{0, 0.2, 350}, {0.2, 0.22, 150}, {0.22, 0.52, 300}, {0.52, 0.62, 120}};
-    auto overburden = [&](double z) {
-      double sigma = 0;
-      for (const auto &l : layers)
-        sigma += l[2] * g * std::max(0., l[1] - std::max(l[0], z));
-      return sigma;
-    };
+    const auto overburden = overburden_of({{0, 0.2, 350}, {0.2, 0.22, 150}, {0.22, 0.52, 300}, {0.52, 0.62, 120}});
     unsigned int checked = 0;
     for (const auto &cell : model.cell_summaries())
       if (std::abs(cell.center[0] - 10.0) < 1.0)
@@ -174,6 +185,43 @@ namespace
       }
     EXPECT_GT(checked, 50u);
     // The weak layer stayed elastic (p0 = 20 kPa ≫ 1.2 kPa of overburden).
+  }
+
+  // An infinite slope (PST/Column ends = periodic): every cell, the column's ends too, carries the
+  // weight above it, normal σ_nn = −ρ g cos ψ (overburden) and shear σ_xn = +ρ g sin ψ (overburden),
+  // exactly (equilibrium of a laterally uniform column: ∂σ_xn/∂n = −ρ g_x, free top). With free
+  // ends the end cells are off by far more than the tolerance (the check's power).
+  TEST(FemPeriodic, InfiniteSlopeCarriesItsWeightInEveryCell)
+  {
+    for (const std::string ends : {"periodic", "free"})
+    {
+      const SnowpackScene scene = scene_from(
+        "subsection Snowpack\n  set Slope angle [deg] = 30\n" + layer("Slab layer 1", 0.3, 250, 5e6, 0.25) +
+        elastic_weak_layer(0.02, 150, 3e5, 0.2) + layer("Substratum", 0.1, 350, 2e7, 0.3) +
+        "end\nsubsection PST\n  set Column length [m] = 0.4\n  set Cut length [m] = 0.2\n  set Column ends = " +
+        ends + "\nend\nsubsection Mesh\n  set Element length [m] = 0.05\n  set Slab element height [m] = 0.05\n"
+        "  set Weak layer elements = 2\n  set Substratum element height [m] = 0.05\nend\n"
+        "subsection Analysis\n  set Type = energy release rate\n  set Fracture energy [J/m^2] = 1\nend\n");
+      SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+      QuasiStaticSolver<2> solver(model);
+      SnowpackModel<2>::VectorType u;
+      model.initialize_vector(u);
+      solver.apply_gravity(u, 1);
+      const double psi = 30 * M_PI / 180;
+      const auto overburden = overburden_of({{0, 0.1, 350}, {0.1, 0.12, 150}, {0.12, 0.42, 250}});
+      double worst = 0;
+      for (const auto &cell : model.cell_summaries())
+      {
+        const double w = overburden(cell.center[1]);
+        worst = std::max({worst, std::abs(cell.stress[1][1] + w * std::cos(psi)),
+                          std::abs(cell.stress[0][1] - w * std::sin(psi))});
+      }
+      const double scale = overburden(0);
+      if (ends == "periodic")
+        EXPECT_LT(worst, 1e-6 * scale) << "largest stress error " << worst << " Pa";
+      else
+        EXPECT_GT(worst, 0.05 * scale) << "free ends: largest stress error " << worst << " Pa";
+    }
   }
 
   // ------------------------------------------------------------------------------------------
@@ -396,7 +444,7 @@ namespace
     model.initialize_vector(u);
     solver.apply_gravity(u, 1);
     const double g = 9.81;
-    const double layers[3][3] = {{0, 0.1, 350}, {0.1, 0.12, 150}, {0.12, 0.42, 300}};
+    const auto overburden = overburden_of({{0, 0.1, 350}, {0.1, 0.12, 150}, {0.12, 0.42, 300}});
     // The free sides across the slope relax the stress near them, so single cells differ from the
     // closed form (by 4 % at the clamped base); the mean over a slice across the width is fixed by
     // the vertical equilibrium of the slice. Slices: (x, z) of cell centres, means over y. The
@@ -415,9 +463,7 @@ namespace
     for (const auto &[key, slice] : slices)
     {
       const double z = key.second * 1e-4;
-      double expected = 0;
-      for (const auto &l : layers)
-        expected -= l[2] * g * std::max(0., l[1] - std::max(l[0], z));
+      const double expected = -overburden(z);
       ASSERT_EQ(slice.second, 3u);
       EXPECT_NEAR(slice.first / slice.second, expected, 1e-4 * 0.42 * 300 * g) << "slice at z = " << z;
       ++checked;
