@@ -62,6 +62,62 @@ namespace anticrack::coupling
     return (count == 1 ? std::string("material") : "material_m" + std::to_string(m)) + (snow ? "_snow" : "") + ".prm";
   }
 
+  params::Calibration calibrate_to_the_fe_points_peaks(const params::CampaignData &campaign,
+                                                       params::CalibrationOptions options)
+  {
+    // The path fit puts the surface's first yield on the DEM's failures divided by the FE point's
+    // peak over its first yield on each test's path (coupling/material_point_replay.h), which
+    // depends on the surface: fixed-point iterations from 1 until they settle to 1e-5 in ln (the
+    // peaks' own noise, from the path dependence of the plastic steps and the fit's tolerance, is
+    // ~2e-6). Moving the compression
+    // points moves M, which moves their factors back (the map's slope is about −1 in ln: plain
+    // iterations oscillate), so each step goes half-way in ln (the error then halves; ~15 refits).
+    constexpr int most_iterations = 40;
+    constexpr double settled = 1e-5;
+    constexpr double relaxation = 0.5;
+    // The factors need the fits' values only: the bootstrap (intervals) waits for the last fit.
+    const int bootstrap_samples = options.bootstrap_samples;
+    options.bootstrap_samples = 0;
+    params::Calibration calibration = params::calibrate(campaign, options);
+    for (int iteration = 0;; ++iteration)
+    {
+      std::map<std::string, double> factors;
+      for (std::size_t m = 0; m < calibration.microstructures.size(); ++m)
+      {
+        // The hand-off's material before the file rounds it to six digits (a rounded surface makes
+        // the map a staircase on which the iterations cycle).
+        const MaterialPointReplay replay =
+          replay_tests(calibration.microstructures[m], material_handoff(calibration, m, "").material);
+        factors.insert(replay.peak_over_first_yield.begin(), replay.peak_over_first_yield.end());
+      }
+      double change = 0;
+      for (const auto &[id, factor] : factors)
+      {
+        const auto before = options.path_peak_factors.find(id);
+        change = std::max(change, std::abs(std::log(factor / (before == options.path_peak_factors.end() ? 1.0 : before->second))));
+      }
+      if (change < settled)
+      {
+        if (bootstrap_samples == 0)
+          return calibration;
+        options.bootstrap_samples = bootstrap_samples;
+        return params::calibrate(campaign, options);
+      }
+      if (iteration == most_iterations)
+        throw params::CalibrationError(campaign.file + ": the FE material point's peaks over its first yields do not "
+                                       "settle in " + std::to_string(most_iterations) + " half-way refits of the surface (last change " +
+                                       std::to_string(change) + " in ln)");
+      for (auto &[id, factor] : factors)
+      {
+        const auto before = options.path_peak_factors.find(id);
+        const double previous = before == options.path_peak_factors.end() ? 1.0 : before->second;
+        factor = previous * std::pow(factor / previous, relaxation);
+      }
+      options.path_peak_factors = factors;
+      calibration = params::calibrate(campaign, options);
+    }
+  }
+
   int run_calibration(const CalibrateOptions &options)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -100,7 +156,7 @@ namespace anticrack::coupling
         campaign = params::read_campaign(campaign_file);
       }
       const auto phase = timer.scope("fits and intervals");
-      calibration = params::calibrate(campaign, calibration_options);
+      calibration = calibrate_to_the_fe_points_peaks(campaign, calibration_options);
     }
     catch (const params::CalibrationError &e)
     {

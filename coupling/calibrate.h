@@ -33,4 +33,10 @@ namespace anticrack::coupling
 
   /// Returns the exit code; throws InputError (bad options, degenerate data) before writing.
   int run_calibration(const CalibrateOptions &options);
+
+  /// params::calibrate with the path plane fitted through the FE material point's peaks: refits
+  /// with CalibrationOptions::path_peak_factors from the replay of the last fit until they settle.
+  /// Throws params::CalibrationError if they do not in 40 (relaxed) refits.
+  params::Calibration calibrate_to_the_fe_points_peaks(const params::CampaignData &campaign,
+                                                       params::CalibrationOptions options);
 } // namespace anticrack::coupling

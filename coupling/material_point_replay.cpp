@@ -35,38 +35,75 @@ namespace anticrack::coupling
     /// The strain that holds the layer-plane traction σ_zz = −σ̂, σ_xz = τ̂ (unit load) under the
     /// lateral condition, from the material's elastic tangent (the point is elastic until it yields,
     /// and its elasticity is linear, so the strain of load λ is λ times this).
+    /// The mixed control of the path: the stress-controlled components (the layer-plane traction
+    /// zz, xz, yz, and under open sides the lateral ones xx, yy, xy too; the others are
+    /// strain-controlled at zero), their targets for the unit load (σ_zz = −σ̂, σ_xz = τ̂), and the
+    /// Jacobian of those stresses in those strains from a tangent.
+    struct PathControl
+    {
+      std::vector<unsigned int> controlled;
+      Eigen::VectorXd unit_target;
+
+      PathControl(bool confined, double sigma_hat, double tau_hat)
+        : controlled(confined ? std::vector<unsigned int>{2, 4, 5} : std::vector<unsigned int>{0, 1, 2, 3, 4, 5})
+        , unit_target(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(controlled.size())))
+      {
+        for (std::size_t a = 0; a < controlled.size(); ++a)
+        {
+          const auto [i, j] = components[controlled[a]];
+          if (i == 2 && j == 2)
+            unit_target(static_cast<Eigen::Index>(a)) = -sigma_hat;
+          else if (i == 0 && j == 2)
+            unit_target(static_cast<Eigen::Index>(a)) = tau_hat;
+        }
+      }
+
+      [[nodiscard]] Eigen::Index size() const { return static_cast<Eigen::Index>(controlled.size()); }
+
+      [[nodiscard]] Eigen::MatrixXd jacobian(const dealii::SymmetricTensor<4, 3> &C) const
+      {
+        Eigen::MatrixXd J(size(), size());
+        for (Eigen::Index a = 0; a < size(); ++a)
+        {
+          const auto [i, j] = components[controlled[static_cast<std::size_t>(a)]];
+          for (Eigen::Index b = 0; b < size(); ++b)
+          {
+            const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
+            // ε_kl and ε_lk are one unknown: an off-diagonal strain enters twice.
+            J(a, b) = C[i][j][k][l] * (k == l ? 1.0 : 2.0);
+          }
+        }
+        return J;
+      }
+
+      [[nodiscard]] Eigen::VectorXd stresses(const Tensor &stress) const
+      {
+        Eigen::VectorXd s(size());
+        for (Eigen::Index a = 0; a < size(); ++a)
+        {
+          const auto [i, j] = components[controlled[static_cast<std::size_t>(a)]];
+          s(a) = stress[i][j];
+        }
+        return s;
+      }
+
+      void add_to_strain(const Eigen::VectorXd &x, Tensor &strain) const
+      {
+        for (Eigen::Index b = 0; b < size(); ++b)
+        {
+          const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
+          strain[k][l] += x(b);
+        }
+      }
+    };
+
     Tensor unit_load_strain(const fem::CamClayParameters &parameters, bool confined, double sigma_hat, double tau_hat)
     {
       const fem::CamClayState initial = fem::CamClayState::initial(parameters);
+      const PathControl control(confined, sigma_hat, tau_hat);
       const dealii::SymmetricTensor<4, 3> C = fem::update_stress_and_tangent(parameters, initial, Tensor()).tangent;
-      // Stress-controlled components: the layer-plane traction (zz, xz, yz), and under open sides
-      // the lateral ones (xx, yy, xy) too; the others are strain-controlled at zero.
-      const std::vector<unsigned int> controlled =
-        confined ? std::vector<unsigned int>{2, 4, 5} : std::vector<unsigned int>{0, 1, 2, 3, 4, 5};
-      const auto n = static_cast<Eigen::Index>(controlled.size());
-      Eigen::MatrixXd J(n, n);
-      Eigen::VectorXd target = Eigen::VectorXd::Zero(n);
-      for (Eigen::Index a = 0; a < n; ++a)
-      {
-        const auto [i, j] = components[controlled[static_cast<std::size_t>(a)]];
-        for (Eigen::Index b = 0; b < n; ++b)
-        {
-          const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
-          // ε_kl and ε_lk are one unknown: an off-diagonal strain enters twice.
-          J(a, b) = C[i][j][k][l] * (k == l ? 1.0 : 2.0);
-        }
-        if (i == 2 && j == 2)
-          target(a) = -sigma_hat;
-        else if (i == 0 && j == 2)
-          target(a) = tau_hat;
-      }
-      const Eigen::VectorXd x = J.fullPivLu().solve(target);
       Tensor strain;
-      for (Eigen::Index b = 0; b < n; ++b)
-      {
-        const auto [k, l] = components[controlled[static_cast<std::size_t>(b)]];
-        strain[k][l] = x(b);
-      }
+      control.add_to_strain(control.jacobian(C).fullPivLu().solve(control.unit_target), strain);
       return strain;
     }
 
@@ -97,10 +134,72 @@ namespace anticrack::coupling
       return {low, fem::update_stress(parameters, initial, low * unit_strain).stress};
     }
 
-    Failure replay_ray(const fem::CamClayParameters &parameters, bool confined, double sigma, double tau)
+    /// The peak of the load the point carries along the ray past its first yield `yield`: load
+    /// steps of the controlled stresses, each solved by Newton on the controlled strains with the
+    /// point's consistent tangent from the last converged state; steps of 1e-3 of the first yield's
+    /// load (the same sequence for every surface, so that the peak is a smooth function of the
+    /// parameters: the calibration iterates on it), halved from the first that does not converge;
+    /// the peak is the last converged load once the step is below 1e-10 of it. Under the collapse law every plastic volume change softens, yet the
+    /// stress point can slide along the shrinking surface to a larger load (confined compression of
+    /// a low-M surface: coupling/material_point_replay.h).
+    constexpr double largest_step = 1e-3;
+
+    Failure peak_load(const fem::CamClayParameters &parameters, bool confined, double sigma_hat, double tau_hat,
+                      const Failure &yield, const Tensor &unit_strain)
+    {
+      const PathControl control(confined, sigma_hat, tau_hat);
+      Tensor strain = yield.load * unit_strain;
+      fem::CamClayState state = fem::update_stress(parameters, fem::CamClayState::initial(parameters), strain).state;
+      Failure peak = yield;
+      double step = largest_step * yield.load;
+      while (step > 1e-10 * peak.load)
+      {
+        if (peak.load > 100 * yield.load)
+          throw std::runtime_error("the FE material point carries more than 100 times its first-yield load on a path");
+        const double load = peak.load + step;
+        Tensor trial = strain;
+        bool converged = false;
+        fem::CamClayUpdate update;
+        try
+        {
+          for (unsigned int iteration = 0; iteration < 30 && !converged; ++iteration)
+          {
+            const fem::CamClayTangentUpdate u = fem::update_stress_and_tangent(parameters, state, trial);
+            update = u.update;
+            const Eigen::VectorXd residual = control.stresses(u.update.stress) - load * control.unit_target;
+            converged = residual.norm() <= 1e-10 * load;
+            if (!converged)
+              control.add_to_strain(-control.jacobian(u.tangent).fullPivLu().solve(residual), trial);
+          }
+        }
+        catch (const fem::ReturnMappingError &)
+        {
+          converged = false;
+        }
+        if (!converged || !std::isfinite(update.stress.norm()))
+        {
+          step /= 2;
+          continue;
+        }
+        strain = trial;
+        state = update.state;
+        peak = {load, update.stress};
+      }
+      return peak;
+    }
+
+    /// A test's ray: its first yield and its peak (the FE point's failure).
+    struct RayFailure
+    {
+      Failure first_yield, peak;
+    };
+
+    RayFailure replay_ray(const fem::CamClayParameters &parameters, bool confined, double sigma, double tau)
     {
       const double r = std::hypot(sigma, tau);
-      return failure_load(parameters, unit_load_strain(parameters, confined, sigma / r, tau / r), r);
+      const Tensor unit_strain = unit_load_strain(parameters, confined, sigma / r, tau / r);
+      const Failure yield = failure_load(parameters, unit_strain, r);
+      return {yield, peak_load(parameters, confined, sigma / r, tau / r, yield, unit_strain)};
     }
   } // namespace
 
@@ -123,8 +222,9 @@ namespace anticrack::coupling
     for (const params::CampaignTest &t : c.tests)
     {
       by_angle[std::round(t.loading_angle_deg * 1e6) / 1e6].push_back(&t);
-      const Failure f = replay_ray(parameters, replay.laterally_confined, t.sigma, std::abs(t.tau));
-      replay.test_errors.push_back(std::log(f.load / std::hypot(t.sigma, t.tau)));
+      const RayFailure f = replay_ray(parameters, replay.laterally_confined, t.sigma, std::abs(t.tau));
+      replay.test_errors.push_back(std::log(f.peak.load / std::hypot(t.sigma, t.tau)));
+      replay.peak_over_first_yield[t.id] = f.peak.load / f.first_yield.load;
     }
     for (const auto &[angle, tests] : by_angle)
     {
@@ -133,11 +233,17 @@ namespace anticrack::coupling
       a.tests = static_cast<int>(tests.size());
       for (const params::CampaignTest *t : tests)
         a.dem_sigma += t->sigma / a.tests, a.dem_tau += std::abs(t->tau) / a.tests;
-      const Failure f = replay_ray(parameters, replay.laterally_confined, a.dem_sigma, a.dem_tau);
+      const RayFailure ray = replay_ray(parameters, replay.laterally_confined, a.dem_sigma, a.dem_tau);
+      const Failure &f = ray.peak;
+      a.peak_over_first_yield = ray.peak.load / ray.first_yield.load;
       const double r = std::hypot(a.dem_sigma, a.dem_tau);
       a.fe_sigma = -f.stress[2][2];
       a.fe_tau = f.stress[0][2];
-      a.fe_lateral_stress_ratio = std::abs(f.stress[2][2]) > 1e-9 * f.load ? f.stress[0][0] / f.stress[2][2] : 0.0;
+      const auto lateral_ratio = [](const Failure &at) {
+        return std::abs(at.stress[2][2]) > 1e-9 * at.load ? at.stress[0][0] / at.stress[2][2] : 0.0;
+      };
+      a.fe_lateral_stress_ratio = lateral_ratio(ray.first_yield);
+      a.fe_lateral_stress_ratio_at_peak = lateral_ratio(ray.peak);
       a.relative_error = std::log(f.load / r);
       replay.angles.push_back(a);
     }
@@ -160,9 +266,12 @@ namespace anticrack::coupling
                             {"fe_sigma_Pa", a.fe_sigma},
                             {"fe_tau_Pa", a.fe_tau},
                             {"fe_lateral_stress_ratio", a.fe_lateral_stress_ratio},
+                            {"fe_lateral_stress_ratio_at_peak", a.fe_lateral_stress_ratio_at_peak},
+                            {"fe_peak_over_first_yield", a.peak_over_first_yield},
                             {"relative_error", a.relative_error}});
     return Json{{"what", "the DEM tests repeated by the FE material point of the material file, along each "
-                         "test's path (coupling/material_point_replay.h); errors ln(r_FE/r_DEM)"},
+                         "test's path to the peak of its load (coupling/material_point_replay.h); errors "
+                         "ln(r_FE/r_DEM)"},
                 {"laterally_confined", replay.laterally_confined},
                 {"fit_relative_rmse", replay.fit_rmse},
                 {"largest_angle_error", replay.largest_angle_error()},

@@ -78,9 +78,11 @@ namespace anticrack::params
       for (const auto &t : tests)
       {
         // Shear is a magnitude in both planes: q >= 0 by definition, τ's sign only says along ±x.
+        const auto factor = options.path_peak_factors.find(t.id);
+        const double peak_factor = factor == options.path_peak_factors.end() ? 1.0 : factor->second;
         c.points.push_back(plane == StressPlane::base_stresses ? StressPoint{t.sigma, std::abs(t.tau)} :
                            plane == StressPlane::invariants    ? StressPoint{t.p, t.q} :
-                                                                 path.invariants(t.sigma, t.tau));
+                                                                 path.invariants(t.sigma / peak_factor, t.tau / peak_factor));
         c.realizations.push_back(t.realization);
       }
       EnvelopeFitOptions fit_options;

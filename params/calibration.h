@@ -35,6 +35,7 @@
 #include "params/yield_envelopes.h"
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,11 @@ namespace anticrack::params
     int bootstrap_samples = 1000; ///< resamples of the realizations (needs >= 3 realizations)
     std::uint64_t seed = 1;       ///< of the bootstrap: the calibration is reproducible
     std::optional<double> poisson_ratio; ///< given ν for specimens that are not isotropic
+    /// Per test id, the FE material point's peak load on the test's path over its first yield
+    /// (coupling/material_point_replay.h). The path plane's points are the DEM's failures divided
+    /// by it, so that the fitted surface's first yield times it, the FE point's peak, is the DEM's
+    /// failure. Tests not named: 1 (the peak is the first yield).
+    std::map<std::string, double> path_peak_factors;
   };
 
   /// The fits of all envelope models to one microstructure's failure points in one plane.
@@ -153,9 +159,12 @@ namespace anticrack::params
   /// normal axis (the FE surface's image in the (σ, τ) plane is one, by Eq. (P1) of test_path.h), so
   /// where one family reaches the other's shape their minima coincide (the SHS campaign: equal to
   /// four digits, docs/calibration.md); a clearly larger RMSE means the isotropic surface cannot
-  /// follow the DEM. The margin (0.5 % relative error) keeps near-perfect fits from tripping it.
+  /// follow the DEM. The margin (1 % relative error) keeps near-perfect fits from tripping it: the
+  /// FE point's peak factors (CalibrationOptions::path_peak_factors) bend the path family away from
+  /// an ellipse through the DEM's points, by 0.9 % for exact synthetic surfaces of M = 0.8 under
+  /// periodic sides (app.calibrate_scaling_laws), far below the DEM's scatter (~8 %).
   constexpr double path_misfit_factor = 1.25;
-  constexpr double path_misfit_margin = 0.005;
+  constexpr double path_misfit_margin = 0.01;
 
   /// Calibrates every microstructure of `campaign`. Throws CalibrationError for degenerate data (a
   /// microstructure with fewer completed tests than 4, fewer than 3 distinct loading angles, or no

@@ -10,13 +10,18 @@
 //   open sides (Bobillier et al. 2020): free lateral faces, σ_xx = σ_yy = 0, k = 0.
 // Its invariants are then (docs/physics.md §0: p = −tr σ/3, q = sqrt(3/2 s:s))
 //   p = (1 + 2k) σ / 3,   q = sqrt((1 − k)² σ² + 3 τ²).                                   (P1)
-// The cohesive Cam-Clay point is elastic until its first yield, and under the collapse law its first
-// yield is its peak (every plastic volume change softens), so along a ray of fixed τ/σ the FE fails
-// at the (p, q) of (P1) evaluated at the (σ, τ) where its surface is crossed. (P1) is homogeneous of
+// The cohesive Cam-Clay point is elastic until its first yield, at the (p, q) of (P1) evaluated at the
+// (σ, τ) where its surface crosses the ray of fixed τ/σ. Its failure, the peak of the load it carries,
+// lies at or beyond: under the collapse law every plastic volume change softens, yet in confined
+// compression the stress point can slide along the shrinking surface to a larger load (22 % for
+// M = 0.93; coupling/material_point_replay.h). The calibration therefore maps each DEM failure
+// divided by that peak-over-first-yield factor (CalibrationOptions::path_peak_factors, iterated by
+// coupling/calibrate.h), so that the fitted first yield times the factor is the DEM's failure. (P1) is homogeneous of
 // degree one in (σ, τ): a ray of the (σ, τ) plane is a ray of the (p, q) plane, and the relative radial
 // residual ln(r/R) of a failure point is the same in both. A surface fitted to the mapped points by
 // the relative radial residuals of params/envelope_fit.h is therefore exactly the surface whose FE
-// material point, driven along every test's path, fails closest to the DEM's (σ, τ) in that measure.
+// material point, driven along every test's path, fails (peaks) closest to the DEM's (σ, τ) in that
+// measure.
 //
 // Why the path and not the Love–Weber lateral stresses: the FE point is what must fail where the DEM
 // failed, and its lateral stresses are those of its elasticity, k σ, not the DEM's. The Love–Weber

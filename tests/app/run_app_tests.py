@@ -1275,9 +1275,11 @@ def calibrate_scene_small(work):
     FE point on the tests' paths (periodic sides: lateral stress ratio nu/(1 - nu) of the calibrated
     elasticity): a closed surface with the compressive tip beyond the tensile one (Ritter et al. 2020:
     beta < 1) in a material file the solver reads, stating its plane. Where the (sigma, tau) family
-    reaches the path family's shape the two fits are the same least-squares problem, so their
-    relative RMSEs agree (params/calibration.h); `--fe-plane` (the old choice of a plane) is gone; a
-    second call only resumes the campaign."""
+    reaches the path family's shape the two fits would be the same least-squares problem
+    (params/calibration.h); the path fit's points are the DEM's failures over the FE point's peak
+    factors f (coupling/calibrate.h), which move each point by ln f, so the two relative RMSEs differ
+    by at most the RMS of ln f; `--fe-plane` (the old choice of a plane) is gone; a second call only
+    resumes the campaign."""
     # The microstructure variant restates the scene's own force rate through a path whose unit holds
     # a '/' ([N/s]): overrides split subsections outside brackets only.
     scene = write(os.path.join(work, "campaign.prm"),
@@ -1303,7 +1305,10 @@ def calibrate_scene_small(work):
     fits = json.load(open(os.path.join(out, "summary.json")))["calibration"]["microstructures"][0]
     rmse = {plane: fits[plane]["models"]["cohesive_cam_clay"]["relative_rmse"]
             for plane in ["sigma_tau_plane", "p_q_path_plane"]}
-    check(abs(rmse["p_q_path_plane"] / rmse["sigma_tau_plane"] - 1) < 1e-6, f"relative RMSEs {rmse}")
+    moved = math.sqrt(np.mean([math.log(a["fe_peak_over_first_yield"]) ** 2
+                               for a in fits["material_point_replay"]["angles"]]))
+    check(abs(rmse["p_q_path_plane"] - rmse["sigma_tau_plane"]) <= moved + 1e-9,
+          f"relative RMSEs {rmse}, RMS of ln(peak factor) {moved}")
 
     # The same as a scene of kind `calibration` (`anticrack run`), its options in subsection
     # Calibration: the same material, the campaign resumed from a copy of the first one's.
@@ -1342,10 +1347,11 @@ def small_periodic_calibration(work):
 def crossval_material_point(work):
     """Cross-validation, DEM tests repeated by the FE material point: the material file of a small
     SHS campaign (5 angles, periodic sides), read as the solver reads it and driven along every
-    test's path by the FE's own elasticity and return mapping (coupling/material_point_replay.h),
-    fails on each test's ray where the calibrated surface says, to the file's 6 digits: its error
-    ln(r_FE/r_DEM) is minus the fit's residual, so the FE-vs-DEM errors are the fit's (RMSE printed).
-    It holds the lateral stress ratio of its own elasticity, nu/(1 - nu), and has the DEM's normal
+    test's path by the FE's own elasticity and return mapping to the peak of its load
+    (coupling/material_point_replay.h), fails on each test's ray where the calibration, fitted
+    through these peaks, says (to 3e-5: the peak factors settle to 1e-5): its error ln(r_FE/r_DEM)
+    is minus the fit's residual, so the FE-vs-DEM errors are the fit's (RMSE printed). At its first
+    yield it holds the lateral stress ratio of its own elasticity, nu/(1 - nu), and has the DEM's normal
     (constrained) and shear stiffness to 6 digits. (With one realization per angle an angle's error
     is a residual, which may exceed the RMSE; the per-angle means of the 3-realization SHS campaign
     are within it: docs/calibration.md.)"""
@@ -1356,7 +1362,8 @@ def crossval_material_point(work):
     with h5py.File(os.path.join(out, "calibration.h5"), "r") as f:
         residuals = f["microstructures/m0/fits/p_q_path/cohesive_cam_clay/residuals"][()]
     worst = max(abs(e + r) for e, r in zip(replay["test_errors"], residuals))
-    check(worst < 1e-5, f"the FE point's error differs from minus the fit's residual by {worst}")
+    # 3e-5: the fit's peak factors settle to 1e-5 (coupling/calibrate.h), the file's six digits add 1e-6.
+    check(worst < 3e-5, f"the FE point's error differs from minus the fit's residual by {worst}")
     nu = float(read_material(os.path.join(out, "material.prm"))["Poisson's ratio"])
     for a in replay["angles"]:
         if abs(a["dem_sigma_Pa"]) > 0.1 * math.hypot(a["dem_sigma_Pa"], a["dem_tau_Pa"]):
@@ -1964,15 +1971,13 @@ def crossval_fe_specimen(work):
     """Cross-validation, the DEM specimen repeated by an FE model: the small periodic SHS campaign
     (5 angles, 5 mm cube), calibrated; its specimen as an FE model (fe_specimen_scene) loaded to
     failure at 0, 90 and 180 degrees.
-    - The FE specimen first yields where the FE material point of the calibration's replay does
-      (within the load factor's resolution, 0.1 %, and 0.3 % for the layer's own weight and the
-      platen's compliance): the periodic specimen deforms homogeneously, as the replay assumes.
-    - At 90 and 180 degrees it fails at the DEM's failure load within twice the fit's RMSE (the
-      replay's residual there, plus what the FE model adds: nothing measurable, as the layer does
-      not harden after its first yield in shear or tension).
-    - At 0 degrees the FE layer keeps carrying load past its first yield (the surface's low M:
-      docs/fem.md "The DEM specimen repeated"); its peak is printed against the DEM's, not bounded:
-      the calibration fits the first yield to the DEM's failure, which the FE layer exceeds there."""
+    - The FE specimen first yields and fails (its peak) where the FE material point of the
+      calibration's replay does (within the load factor's resolution, 0.1 %, and 0.3 % for the
+      layer's own weight and the platen's compliance): the periodic specimen deforms homogeneously,
+      as the replay assumes. At 0 degrees the peak lies ~20 % above the first yield (the stress
+      point slides along the shrinking surface: coupling/material_point_replay.h).
+    - It fails at the DEM's failure load within twice the fit's RMSE (95 % of normal residuals;
+      the calibration fits the FE point's peaks to the DEM's failures)."""
     out, replay = small_periodic_calibration(work)
     rmse = replay["fit_relative_rmse"]
     with h5py.File(os.path.join(out, "campaign", "campaign.h5"), "r") as f:
@@ -1991,16 +1996,17 @@ def crossval_fe_specimen(work):
         radius = np.hypot(columns["slab_normal_traction"][0], columns["slab_shear_traction"][0])
         elastic = radius[softening <= 0]
         first_yield = (elastic[-1], radius[len(elastic)]) if len(elastic) < len(radius) else (elastic[-1], np.inf)
-        fe_point = math.hypot(point["fe_sigma_Pa"], point["fe_tau_Pa"])
+        fe_peak = math.hypot(point["fe_sigma_Pa"], point["fe_tau_Pa"])
+        fe_yield = fe_peak / point["fe_peak_over_first_yield"]
         dem = math.hypot(point["dem_sigma_Pa"], point["dem_tau_Pa"])
         peak = math.hypot(traction["normal"], traction["shear"])
-        print(f"{angle} deg: DEM {dem:.5g} Pa, FE point {fe_point:.5g} Pa, FE specimen first yield in "
-              f"[{first_yield[0]:.5g}, {first_yield[1]:.5g}] Pa, peak {peak:.5g} Pa "
+        print(f"{angle} deg: DEM {dem:.5g} Pa; FE point first yield {fe_yield:.5g} Pa, peak {fe_peak:.5g} Pa; "
+              f"FE specimen first yield in [{first_yield[0]:.5g}, {first_yield[1]:.5g}] Pa, peak {peak:.5g} Pa "
               f"(ln(FE/DEM) = {math.log(peak / dem):+.4f}; fit RMSE {rmse:.4f})")
-        check(first_yield[0] * (1 - 0.004) <= fe_point <= first_yield[1] * (1 + 0.004),
-              f"{angle} deg: the FE point yields at {fe_point} Pa, the FE specimen between {first_yield}")
-        if angle != 0:
-            check(abs(math.log(peak / dem)) <= 2 * rmse, f"{angle} deg: FE specimen {peak} Pa, DEM {dem} Pa")
+        check(first_yield[0] * (1 - 0.004) <= fe_yield <= first_yield[1] * (1 + 0.004),
+              f"{angle} deg: the FE point yields at {fe_yield} Pa, the FE specimen between {first_yield}")
+        check(abs(peak / fe_peak - 1) <= 0.004, f"{angle} deg: the FE point peaks at {fe_peak} Pa, the specimen at {peak} Pa")
+        check(abs(math.log(peak / dem)) <= 2 * rmse, f"{angle} deg: FE specimen {peak} Pa, DEM {dem} Pa")
 
 
 @case
