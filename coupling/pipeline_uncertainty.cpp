@@ -35,6 +35,13 @@ namespace anticrack::coupling
       throw std::logic_error("no material entry " + name);
     }
 
+    /// The value of an entry of subsection Material in a material file.
+    std::function<double &(fem::MaterialFile &)> material_entry(const std::string &name)
+    {
+      const fem::MaterialEntry *entry = &entry_named(name);
+      return [entry](fem::MaterialFile &file) -> double & { return file.material.*(entry->number); };
+    }
+
   } // namespace
 
   const std::vector<PstAnswer> &pst_answers()
@@ -64,17 +71,25 @@ namespace anticrack::coupling
 
     struct Candidate
     {
-      const char *name, *entry;
+      const char *name;
+      std::function<double &(fem::MaterialFile &)> value_in;
       double value, variance;
     };
+    // The softening's residual ratio and the collapse's lock-up strain are dimensionless: the same
+    // in snow units. The lock-up strain only where the compaction tests gave a collapse.
+    const auto lock_up_strain = [](fem::MaterialFile &file) -> double & { return file.collapse.lock_up_strain; };
     std::vector<Candidate> candidates = {
-      {"p0", "Compressive strength p0 [Pa]", snow.material.p0, surface(0, 0)},
-      {"beta", "Tensile strength ratio beta", snow.material.beta, surface(1, 1)},
-      {"M", "Critical state slope M", snow.material.M, surface(2, 2)},
-      {"E", "Young's modulus [Pa]", snow.material.youngs_modulus,
+      {"p0", material_entry("Compressive strength p0 [Pa]"), snow.material.p0, surface(0, 0)},
+      {"beta", material_entry("Tensile strength ratio beta"), snow.material.beta, surface(1, 1)},
+      {"M", material_entry("Critical state slope M"), snow.material.M, surface(2, 2)},
+      {"E", material_entry("Young's modulus [Pa]"), snow.material.youngs_modulus,
        std::pow(S * standard_error(m["elastic"]["youngs_modulus_Pa"]), 2)},
-      {"xi", "Hardening factor xi", snow.material.hardening_factor,
-       std::pow(standard_error(m["softening"]["hardening_factor_xi"]), 2)}};
+      {"xi", material_entry("Hardening factor xi"), snow.material.hardening_factor,
+       std::pow(standard_error(m["softening"]["hardening_factor_xi"]), 2)},
+      {"R", material_entry("Residual strength ratio"), snow.material.residual_strength_ratio,
+       std::pow(standard_error(m["softening"]["residual_ratio"]), 2)},
+      {"lock_up_strain", lock_up_strain, snow.collapse.lock_up_strain,
+       snow.collapse.given() ? std::pow(standard_error(m["softening"]["lock_up_strain"]), 2) : 0.0}};
     std::vector<int> kept;
     UncertainParameters u;
     u.confidence = snow.uncertainty.confidence;
@@ -83,7 +98,7 @@ namespace anticrack::coupling
       {
         kept.push_back(static_cast<int>(k));
         u.names.push_back(candidates[k].name);
-        u.entries.push_back(candidates[k].entry);
+        u.value_in.push_back(candidates[k].value_in);
       }
     const auto n = static_cast<Eigen::Index>(kept.size());
     u.value.resize(n);
@@ -109,7 +124,7 @@ namespace anticrack::coupling
     fem::MaterialFile file = material;
     const auto i = static_cast<Eigen::Index>(k);
     const double step = std::sqrt(u.covariance(i, i));
-    file.material.*entry_named(u.entries[k]).number += step;
+    u.value_in[k](file) += step;
     file.material.name += ", " + u.names[k] + " + 1 standard error";
     file.comment.push_back("");
     file.comment.push_back("Sensitivity run of the pipeline: " + u.names[k] + " raised by one standard error, " +

@@ -26,6 +26,7 @@
 
 #include <filesystem>
 #include <string>
+#include <functional>
 #include <vector>
 
 namespace anticrack::coupling
@@ -40,8 +41,9 @@ namespace anticrack::coupling
 
   struct UncertainParameters
   {
-    std::vector<std::string> names;   ///< p0, beta, M, E, xi
-    std::vector<std::string> entries; ///< their entries of subsection Material
+    std::vector<std::string> names;   ///< p0, beta, M, E, xi, R, lock_up_strain
+    /// Where each is in a material file (subsection Material, or Material/Collapse).
+    std::vector<std::function<double &(fem::MaterialFile &)>> value_in;
     Eigen::VectorXd value;            ///< calibrated, snow units
     Eigen::MatrixXd covariance;       ///< Σ, snow units
     double confidence = 0.95;

@@ -165,6 +165,11 @@ namespace anticrack::params
       FlowRuleAnalysis f;
       for (const auto &t : tests)
       {
+        if (!std::isfinite(t.flow_angle_deg))
+        {
+          f.excluded.push_back(t.id);
+          continue;
+        }
         const double psi = t.loading_angle_deg * degree, theta = t.flow_angle_deg * degree;
         const NormalisedStress n = normalise(t.sigma, std::abs(t.tau), surface);
         f.loading_angle.push_back(psi);
@@ -174,8 +179,15 @@ namespace anticrack::params
         f.psi_star.push_back(normalised_loading_angle(psi, surface));
         f.theta_star.push_back(normalised_flow_angle(theta, surface));
       }
-      f.associativity = measure_associativity(f.psi_star, f.theta_star, confidence);
       f.transition_predicted = transition_loading_angle(surface);
+      if (f.psi_star.size() < 3)
+      {
+        f.associativity_note = std::to_string(f.psi_star.size()) + " tests with a finite flow angle: the associativity "
+                               "needs at least 3";
+        f.transition_observed_note = f.associativity_note;
+        return f;
+      }
+      f.associativity = measure_associativity(f.psi_star, f.theta_star, confidence);
       try
       {
         f.transition_observed = observed_transition_angle(f.loading_angle, f.flow_angle);

@@ -94,6 +94,11 @@ namespace anticrack::params
     double transition_predicted = 0;                 ///< ψ± of Eq. 7 [rad]
     std::optional<double> transition_observed;       ///< where the measured θ changes sign [rad]
     std::string transition_observed_note;            ///< why it is absent
+    /// Tests left out because their flow angle is not finite (the clump did not move after the
+    /// failure: no displacement increment to take the direction of), and why the associativity is
+    /// not measured (fewer than 3 tests left), "" when it is.
+    std::vector<std::string> excluded;
+    std::string associativity_note;
   };
 
   struct MicrostructureCalibration

@@ -335,6 +335,10 @@ namespace anticrack::params
                  f.transition_observed ? Json(*f.transition_observed / degree) : Json(nullptr)}};
       if (!f.transition_observed)
         flow["transition_angle_observed_note"] = f.transition_observed_note;
+      if (!f.excluded.empty())
+        flow["tests_without_a_flow_angle"] = f.excluded;
+      if (!f.associativity_note.empty())
+        flow["associativity_note"] = f.associativity_note;
       microstructures.push_back(Json{
         {"index", c.index},
         {"label", c.material.label},

@@ -18,7 +18,6 @@ namespace
   {
     coupling::UncertainParameters u;
     u.names = {"p0", "M", "E"};
-    u.entries = {"Compressive strength p0 [Pa]", "Critical state slope M", "Young's modulus [Pa]"};
     u.value = Eigen::Vector3d(10, 2, 100);
     u.covariance = Eigen::Matrix3d::Zero();
     u.covariance(0, 0) = 4, u.covariance(1, 1) = 0.25, u.covariance(2, 2) = 9;
