@@ -195,7 +195,8 @@ namespace anticrack::fem
             "the body forces of every layer, turned to `Load to failure/Load angle` from the inward layer normal, "
             "ramped by a load factor until equilibrium is lost: the FE model of a DEM specimen (the weak layer "
             "between the fixed base and a stiff slab layer, the platen) or a snowpack's safety factor under its own "
-            "weight (the load angle the slope angle).",
+            "weight (the load angle the slope angle). The column is first cut by `PST/Cut length`, whose default "
+            "(0.3 m) is the saw tests': set 0 for an intact column.",
             /* yielding_weak_layer = */ true, /* time_integration = */ false,
             [](ParameterHandler &prm) {
               prm.enter_subsection("Load to failure");
