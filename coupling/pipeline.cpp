@@ -512,20 +512,23 @@ namespace anticrack::coupling
       {
         const UncertainParameters u = uncertain_parameters(weak.directory);
         // The analyses of a yielding weak layer (the saw tests, a load to failure) are run again per
-        // parameter. An energy release rate is not: its layers are
-        // elastic, so of the calibration only E enters it besides G_c, whose interval (the compaction
-        // tests' fracture energy) the stage maps itself through its G(a); E's is not carried.
-        std::vector<bool> rerun(stages.size(), false);
+        // parameter. An energy release rate only for E: its layers are elastic, so of the
+        // calibration only E enters it besides G_c, whose interval (the compaction tests' fracture
+        // energy) the stage maps itself, exactly, through its G(a).
+        std::vector<UncertainParameters> rerun(stages.size());
         for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene.snowpack_scenes[j - 1]), scene.snowpack_scenes[j - 1])
-                       .analysis.type->yielding_weak_layer;
+                         .analysis.type->yielding_weak_layer ?
+                       u :
+                       restricted_to(u, {"E"});
         // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
-        // parameters times scenes over the cores, each as long as the longest snowpack stage.
+        // runs over the cores, each as long as the longest snowpack stage.
         double longest = 0;
         for (std::size_t k = 1; k + 1 < stages.size(); ++k)
           longest = std::max(longest, stages[k].wall_s);
-        const auto runs =
-          static_cast<int>(u.names.size() * static_cast<std::size_t>(std::count(rerun.begin(), rerun.end(), true)));
+        std::size_t runs = 0;
+        for (const UncertainParameters &r : rerun)
+          runs += r.names.size();
         announce(stages.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options)))
                                                 : std::nullopt);
         const auto stage_start = Clock::now();
@@ -542,7 +545,7 @@ namespace anticrack::coupling
           }
           for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           {
-            if (!rerun[j])
+            if (std::find(rerun[j].names.begin(), rerun[j].names.end(), u.names[k]) == rerun[j].names.end())
               continue;
             const std::string name = stages[j].name + "_" + u.names[k];
             const fs::path run = uncertainty.directory / name;
@@ -568,38 +571,18 @@ namespace anticrack::coupling
         Json results;
         for (std::size_t j = 1; j + 1 < stages.size(); ++j)
         {
-          if (!rerun[j])
-          {
-            // Its critical cut carries G_c's interval, mapped by the stage itself through its G(a)
-            // (fem/analysis/energy_release_rate.cpp); the calibration's parameters are not carried.
-            const Json &results_j = stages[j].results;
-            Json answers = Json::object();
-            for (const PstAnswer &a : pst_answers())
-              if (results_j.contains(a.key) && results_j[a.key].is_number())
-              {
-                Json &answer = answers[a.key] = {{"label", std::string(a.label) + " [" + a.unit + "]"},
-                                                 {"value", results_j[a.key]},
-                                                 {"status", "not carried: an elastic analysis, not rerun per parameter"}};
-                const Json interval = results_j.value("critical_cut_length_interval", Json());
-                if (std::string(a.key) == "critical_cut_length_m" && interval.is_object() &&
-                    interval["critical_cut_length_m"][0].is_number() && interval["critical_cut_length_m"][1].is_number())
-                {
-                  answer["status"] = "G_c's interval through the stage's G(a): " + interval["carries"].get<std::string>();
-                  answer["interval"] = interval["critical_cut_length_m"];
-                  answer["dominant_parameter"] = "G_c";
-                  answer["parameters"] = Json::object();
-                }
-              }
-            results[stages[j].name] = {{"answers", answers},
-                                       {"element_length_m", stages[j].results.value("element_length_m", 0.0)}};
-            continue;
-          }
           std::vector<Json> perturbed;
           for (std::size_t n = 0; n < jobs.size(); ++n)
             if (job_of[n].first == j)
               perturbed.push_back(snowpack_headline(jobs[n].options.output_directory));
-          results[stages[j].name] = linearised_intervals(u, stages[j].results, perturbed,
-                                                         stages[j].results.value("element_length_m", 0.0));
+          Json &answers = results[stages[j].name] = linearised_intervals(
+            rerun[j], stages[j].results, perturbed, stages[j].results.value("element_length_m", 0.0));
+          // An elastic stage's critical cut also carries G_c's interval, which the stage mapped
+          // itself through its G(a) (fem/analysis/energy_release_rate.cpp).
+          const Json mapped = stages[j].results.value("critical_cut_length_interval", Json());
+          if (mapped.is_object() && stages[j].results["critical_cut_length_m"].is_number())
+            answers["answers"]["critical_cut_length_m"] = combined_critical_cut_interval(
+              mapped, answers["answers"]["critical_cut_length_m"], stages[j].results["critical_cut_length_m"].get<double>());
         }
         Json parameters = Json::object();
         for (std::size_t k = 0; k < u.names.size(); ++k)

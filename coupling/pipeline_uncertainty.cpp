@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <boost/math/distributions/normal.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -119,6 +120,30 @@ namespace anticrack::coupling
     return u;
   }
 
+  UncertainParameters restricted_to(const UncertainParameters &u, const std::vector<std::string> &names)
+  {
+    std::vector<Eigen::Index> kept;
+    UncertainParameters r;
+    r.confidence = u.confidence;
+    for (std::size_t k = 0; k < u.names.size(); ++k)
+      if (std::find(names.begin(), names.end(), u.names[k]) != names.end())
+      {
+        kept.push_back(static_cast<Eigen::Index>(k));
+        r.names.push_back(u.names[k]);
+        r.value_in.push_back(u.value_in[k]);
+      }
+    const auto n = static_cast<Eigen::Index>(kept.size());
+    r.value.resize(n);
+    r.covariance.resize(n, n);
+    for (Eigen::Index a = 0; a < n; ++a)
+    {
+      r.value(a) = u.value(kept[static_cast<std::size_t>(a)]);
+      for (Eigen::Index b = 0; b < n; ++b)
+        r.covariance(a, b) = u.covariance(kept[static_cast<std::size_t>(a)], kept[static_cast<std::size_t>(b)]);
+    }
+    return r;
+  }
+
   fem::MaterialFile perturbed_material(const fem::MaterialFile &material, const UncertainParameters &u, std::size_t k)
   {
     fem::MaterialFile file = material;
@@ -197,5 +222,36 @@ namespace anticrack::coupling
       out["answers"][key] = a;
     }
     return out;
+  }
+
+  Json combined_critical_cut_interval(const Json &mapped, const Json &linearised, const double value)
+  {
+    Json a;
+    a["label"] = linearised.value("label", std::string("critical cut [m]"));
+    a["value"] = value;
+    const Json &cut = mapped["critical_cut_length_m"];
+    if (!cut[0].is_number() || !cut[1].is_number())
+    {
+      a["status"] = "not carried: G_c's interval reaches beyond the cuts computed (" +
+                    mapped.value("lower_note", mapped.value("upper_note", std::string("?"))) + ")";
+      return a;
+    }
+    if (linearised.value("status", "") != "linearised")
+    {
+      a["status"] = "G_c's interval only: " + linearised.value("status", std::string("no rerun"));
+      a["interval"] = cut;
+      a["dominant_parameter"] = "G_c";
+      return a;
+    }
+    const double lower = value - cut[0].get<double>(), upper = cut[1].get<double>() - value;
+    const double z_sd = 0.5 * (linearised["interval"][1].get<double>() - linearised["interval"][0].get<double>());
+    a["status"] = "G_c's interval through the stage's G(a), combined in quadrature with the linearised "
+                  "interval of the parameters rerun for it: " + mapped.value("carries", std::string());
+    a["interval"] = {value - std::hypot(lower, z_sd), value + std::hypot(upper, z_sd)};
+    Json parameters = linearised["parameters"];
+    parameters["G_c"] = {{"interval_half_widths_m", {lower, upper}}};
+    a["parameters"] = parameters;
+    a["dominant_parameter"] = 0.5 * (lower + upper) >= z_sd ? std::string("G_c") : linearised["dominant_parameter"].get<std::string>();
+    return a;
   }
 } // namespace anticrack::coupling

@@ -53,6 +53,9 @@ namespace anticrack::coupling
   /// without a spread (one realization) are left out.
   UncertainParameters uncertain_parameters(const std::filesystem::path &weak_layer_directory);
 
+  /// The parameters of `u` named in `names` (in u's order), with their covariance block.
+  UncertainParameters restricted_to(const UncertainParameters &u, const std::vector<std::string> &names);
+
   /// `material` with parameter k raised by one standard error.
   fem::MaterialFile perturbed_material(const fem::MaterialFile &material, const UncertainParameters &u, std::size_t k);
 
@@ -61,4 +64,13 @@ namespace anticrack::coupling
   nlohmann::ordered_json linearised_intervals(const UncertainParameters &u, const nlohmann::ordered_json &base,
                                               const std::vector<nlohmann::ordered_json> &perturbed,
                                               double element_length);
+
+  /// An elastic stage's critical cut with two independent sources of spread: the fracture energy
+  /// G_c's interval, which the stage maps exactly through its own G(a) (`mapped`: results'
+  /// critical_cut_length_interval), and the linearised interval of the parameters rerun for it
+  /// (`linearised`: linearised_intervals' answer for the critical cut, e.g. from E). Each side's
+  /// half-width is the root of the sum of the squares of the two (independent: G_c from the
+  /// compaction curves, E from the elastic part of the loading tests).
+  nlohmann::ordered_json combined_critical_cut_interval(const nlohmann::ordered_json &mapped,
+                                                        const nlohmann::ordered_json &linearised, double value);
 } // namespace anticrack::coupling

@@ -303,15 +303,22 @@ namespace anticrack::params
       // A surface that cannot follow the points first: its fit may also be undetermined, but the
       // misfit says why.
       const std::string misfit = isotropic_misfit(c);
-      if (!misfit.empty())
-        throw CalibrationError(where + ": " + misfit);
       const PlaneCalibration &fe = c.material_plane();
-      if (!fe.cam_clay_not_determined.empty())
-        throw CalibrationError(where + ", " + plane_id(fe.plane) + " plane (the FE point on the tests' paths): the "
-                               "cohesive Cam-Clay fit does not determine the surface for the material file: " +
-                               fe.cam_clay_not_determined +
-                               ". Add loading angles near 0 and 180 deg, or realizations");
+      if (!misfit.empty())
+        c.material_refused = where + ": " + misfit;
+      else if (!fe.cam_clay_not_determined.empty())
+        c.material_refused = where + ", " + plane_id(fe.plane) + " plane (the FE point on the tests' paths): the "
+                             "cohesive Cam-Clay fit does not determine the surface for the material file: " +
+                             fe.cam_clay_not_determined + ". Add loading angles near 0 and 180 deg, or realizations";
+      if (!c.material_refused.empty() && campaign.microstructures.size() == 1)
+        throw CalibrationError(c.material_refused);
       c.flow_rule = analyse_flow_rule(c.tests, c.base_plane.cam_clay_surface(), options.confidence);
+      if (!c.material_refused.empty())
+      {
+        c.softening.source = "not estimated: no material for this microstructure";
+        result.microstructures.push_back(std::move(c));
+        continue;
+      }
       const bool has_compaction_tests =
         std::any_of(campaign.compaction_tests.begin(), campaign.compaction_tests.end(),
                     [&](const CampaignTest &t) { return t.microstructure == c.index; });
@@ -324,6 +331,9 @@ namespace anticrack::params
                              c.elastic.axial_modulus.mean, options.confidence);
       result.microstructures.push_back(std::move(c));
     }
+    if (std::all_of(result.microstructures.begin(), result.microstructures.end(),
+                    [](const MicrostructureCalibration &c) { return !c.material_refused.empty(); }))
+      throw CalibrationError("no microstructure gets a material file: " + result.microstructures.front().material_refused);
 
     // Across microstructures.
     std::vector<double> nu_c;

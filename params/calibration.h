@@ -123,6 +123,13 @@ namespace anticrack::params
     std::vector<CompactionReading> compaction_tests;
     std::vector<CompactionRateCheck> compaction_rate_checks;
 
+    /// Why this microstructure gets no material file ("" when it gets one): its FE surface is not
+    /// determined, or no isotropic invariant-plane surface fails where the DEM failed. A campaign of
+    /// one microstructure is refused instead; in one of several (a scaling study) its DEM-side
+    /// results, the (σ, τ) fit among them, still enter the laws across microstructures, and
+    /// `softening` is not estimated (it is the FE surface's).
+    std::string material_refused;
+
     [[nodiscard]] const PlaneCalibration &plane(StressPlane which) const;
     /// The FE solver's surface: path_plane.
     [[nodiscard]] const PlaneCalibration &material_plane() const { return path_plane; }
@@ -152,6 +159,10 @@ namespace anticrack::params
     std::vector<MicrostructureCalibration> microstructures;
     std::optional<ScalingLaws> scaling;       ///< with >= 3 microstructures of distinct ν_c
     MicroMacroRelations micro_macro;
+    /// The fit through the FE point's peaks (coupling/calibrate.h): how many refits it took and the
+    /// largest change of a test's peak factor in the last one [ln]; 0 and 0 without it.
+    int peak_factor_refits = 0;
+    double peak_factor_last_change = 0;
   };
 
   /// How far beyond the data a tip of the Cam-Clay surface may lie and still count as determined:

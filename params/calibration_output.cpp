@@ -222,6 +222,8 @@ namespace anticrack::params
     Json softening_json(const MicrostructureCalibration &c)
     {
       const SofteningEstimate &s = c.softening;
+      if (!c.material_refused.empty())
+        return Json{{"source", s.source}};
       Json j{{"law", "collapse"},
              {"source", s.source},
              {"residual_ratio", statistics_json(s.residual_ratio)},
@@ -375,7 +377,8 @@ namespace anticrack::params
               {"bulk_modulus_Pa", statistics_json(c.elastic.bulk_modulus)},
               {"poisson_ratio_from_K0", c.elastic.k0_poisson_ratio.n > 0 ? statistics_json(c.elastic.k0_poisson_ratio) :
                                                                             Json(nullptr)}}},
-        {"softening", softening_json(c)}});
+        {"softening", softening_json(c)},
+        {"material_refused", c.material_refused.empty() ? Json(nullptr) : Json(c.material_refused)}});
     }
     Json s{{"confidence", calibration.options.confidence},
            {"bootstrap_samples", calibration.options.bootstrap_samples},
@@ -385,7 +388,10 @@ namespace anticrack::params
                              {"sha256", calibration.campaign.sha256},
                              {"scene_file", calibration.campaign.scene_file},
                              {"scene_file_sha256", calibration.campaign.scene_file_sha256}}},
-           {"microstructures", microstructures}};
+           {"microstructures", microstructures},
+           {"fit_through_the_fe_points_peaks",
+            Json{{"refits", calibration.peak_factor_refits},
+                 {"last_change_of_a_peak_factor_ln", calibration.peak_factor_last_change}}}};
     if (calibration.scaling)
     {
       auto law = [](const PowerLawFit &p) {

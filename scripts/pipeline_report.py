@@ -135,8 +135,10 @@ def stage_section(run_dir, summary):
         for s in snowpack_stages(summary):
             for key, a in (uncertainty.get(s["name"], {}).get("answers") or {}).items():
                 if "interval" in a:
-                    changes = ", ".join(f"{n} {v['change_per_standard_error']:+.3g}" for n, v in a["parameters"].items()) \
-                        or a["status"]
+                    # G_c's share of an energy release rate's cut is its mapped interval (its two half-widths).
+                    changes = ", ".join(f"{n} {v['change_per_standard_error']:+.3g}" if "change_per_standard_error" in v
+                                        else f"{n} −{v['interval_half_widths_m'][0]:.3g}/+{v['interval_half_widths_m'][1]:.3g}"
+                                        for n, v in a.get("parameters", {}).items()) or a["status"]
                     lines.append(f"| {s['name']} | {a['label']} | {fmt(a['value'])} | {fmt(a['interval'][0])} – "
                                  f"{fmt(a['interval'][1])} | {a['dominant_parameter']} | {changes} |")
                 else:

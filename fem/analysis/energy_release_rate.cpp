@@ -97,7 +97,8 @@ namespace anticrack::fem
       results["critical_cut_length_note"] = "G stays below G_c up to the longest cut " + format_number(cuts.back(), 4) + " m";
     // G(a) of the elastic snowpack does not depend on G_c, so G_c's interval maps exactly, through
     // this run's G(a) (increasing), onto an interval of the critical cut: no further runs. Only G_c's
-    // uncertainty is carried (that of the weak layer's E, which moves G(a), is not).
+    // uncertainty is carried here; the weak layer's E, which moves G(a), needs another run (the
+    // pipeline's uncertainty stage does it and combines the two, coupling/pipeline_uncertainty.h).
     const MaterialInterval &G_c_interval = scene.analysis.fracture_energy_interval;
     if (critical && std::isfinite(G_c_interval.lower) && std::isfinite(G_c_interval.upper))
     {

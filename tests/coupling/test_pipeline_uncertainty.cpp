@@ -18,6 +18,9 @@ namespace
   {
     coupling::UncertainParameters u;
     u.names = {"p0", "M", "E"};
+    for (double fem::ContinuumMaterial::*entry : {&fem::ContinuumMaterial::p0, &fem::ContinuumMaterial::M,
+                                                        &fem::ContinuumMaterial::youngs_modulus})
+      u.value_in.push_back([entry](fem::MaterialFile &file) -> double & { return file.material.*entry; });
     u.value = Eigen::Vector3d(10, 2, 100);
     u.covariance = Eigen::Matrix3d::Zero();
     u.covariance(0, 0) = 4, u.covariance(1, 1) = 0.25, u.covariance(2, 2) = 9;
@@ -88,4 +91,42 @@ TEST(PipelineUncertainty, AChangedOutcomeIsNotLinearisedAndAnUnmovedAnswerHasNoD
   const Json flat = coupling::linearised_intervals(u, linear_results(none, u.value), unmoved, 0.01);
   EXPECT_EQ(flat["answers"]["propagation_speed_m_per_s"]["standard_deviation"].get<double>(), 0.0);
   EXPECT_EQ(flat["answers"]["propagation_speed_m_per_s"]["dominant_parameter"].get<std::string>().rfind("none", 0), 0u);
+}
+
+TEST(PipelineUncertainty, AnElasticStagesCutCombinesGcsMappedIntervalWithEsLinearisedOneInQuadrature)
+{
+  // The energy release rate is rerun for E alone: its restriction keeps E's variance and drops the
+  // surface's correlated block.
+  const coupling::UncertainParameters u = three_parameters();
+  const coupling::UncertainParameters only_E = coupling::restricted_to(u, {"E"});
+  ASSERT_EQ(only_E.names, std::vector<std::string>{"E"});
+  EXPECT_EQ(only_E.value(0), 100);
+  EXPECT_EQ(only_E.covariance(0, 0), 9);
+  EXPECT_EQ(coupling::restricted_to(u, {"M", "p0"}).covariance(0, 1), -0.6);
+
+  // a_c = 0.3 m; G_c's interval maps onto [0.2, 0.5] m (asymmetric, as a_c(G_c) is concave);
+  // E + 3 (one standard error) moves the cut by -0.01 m, so E's 95 % half-width is 1.96 x 0.01.
+  const Eigen::Vector3d a(0, 0, -0.01 / 3);
+  Eigen::Vector3d raised = u.value;
+  raised(2) += 3;
+  Json base = linear_results(a, u.value), perturbed = linear_results(a, raised);
+  for (Json *r : {&base, &perturbed})
+    (*r)["critical_cut_length_m"] = (*r)["critical_cut_length_m"].get<double>() - 1 + 0.3;
+  const Json linearised = coupling::linearised_intervals(only_E, base, {perturbed}, 0.01);
+  const Json mapped = {{"critical_cut_length_m", {0.2, 0.5}}, {"carries", "G_c"}};
+  const Json c = coupling::combined_critical_cut_interval(mapped, linearised["answers"]["critical_cut_length_m"], 0.3);
+  const double e = 1.959963984540054 * 0.01;
+  EXPECT_NEAR(c["interval"][0].get<double>(), 0.3 - std::hypot(0.1, e), 1e-12);
+  EXPECT_NEAR(c["interval"][1].get<double>(), 0.3 + std::hypot(0.2, e), 1e-12);
+  EXPECT_EQ(c["dominant_parameter"], "G_c");
+  EXPECT_NEAR(c["parameters"]["E"]["change_per_standard_error"].get<double>(), -0.01, 1e-12);
+
+  // A G_c interval that runs beyond the cuts computed is not carried; without E's rerun, G_c's alone.
+  const Json open = {{"critical_cut_length_m", {nullptr, 0.5}}, {"lower_note", "below the first midpoint"}};
+  EXPECT_EQ(coupling::combined_critical_cut_interval(open, linearised["answers"]["critical_cut_length_m"], 0.3)["status"]
+              .get<std::string>()
+              .rfind("not carried", 0),
+            0u);
+  const Json alone = coupling::combined_critical_cut_interval(mapped, Json{{"status", "no value in the base run"}}, 0.3);
+  EXPECT_EQ(alone["interval"], mapped["critical_cut_length_m"]);
 }
