@@ -1,6 +1,7 @@
 #include "coupling/pipeline_uncertainty.h"
 
 #include "coupling/calibrate.h"
+#include "params/regression.h"
 #include "util/atomic_file.h"
 #include "util/input_error.h"
 #include "util/run_summary.h"
@@ -70,52 +71,91 @@ namespace anticrack::coupling
     const Eigen::Vector3d scale(S, 1, 1);
     surface = scale.asDiagonal() * surface * scale.asDiagonal();
 
+    // Where a parameter's spread comes from. The surface's three carry the fit's covariance. ξ, R and
+    // the lock-up strain are read from the same compaction curves, one estimate of each per
+    // realization, so their means' errors are correlated: their covariance is that of the paired
+    // realization values (params::covariance_of_means). E comes from the loading tests' elastic part,
+    // independent of both.
+    enum class Source
+    {
+      surface_fit,
+      elastic_part,
+      softening_curves
+    };
     struct Candidate
     {
       const char *name;
       std::function<double &(fem::MaterialFile &)> value_in;
-      double value, variance;
+      double value;
+      Source source;
+      const Json *statistics; ///< summary.json statistics over the realizations (not for the surface)
+      double scale;           ///< the realization values to snow units (the surface is scaled above)
+      bool given = true;      ///< the material file carries it
     };
+    const auto lock_up_strain = [](fem::MaterialFile &file) -> double & { return file.collapse.lock_up_strain; };
+    // A statistics entry of summary.json, or null where the calibration wrote none (e.g. no lock-up
+    // strain without compaction tests).
+    static const Json none;
+    const auto statistics = [](const Json &parent, const char *key) -> const Json * {
+      return parent.is_object() && parent.contains(key) ? &parent[key] : &none;
+    };
+    const Json &softening = m["softening"];
     // The softening's residual ratio and the collapse's lock-up strain are dimensionless: the same
     // in snow units. The lock-up strain only where the compaction tests gave a collapse.
-    const auto lock_up_strain = [](fem::MaterialFile &file) -> double & { return file.collapse.lock_up_strain; };
-    std::vector<Candidate> candidates = {
-      {"p0", material_entry("Compressive strength p0 [Pa]"), snow.material.p0, surface(0, 0)},
-      {"beta", material_entry("Tensile strength ratio beta"), snow.material.beta, surface(1, 1)},
-      {"M", material_entry("Critical state slope M"), snow.material.M, surface(2, 2)},
-      {"E", material_entry("Young's modulus [Pa]"), snow.material.youngs_modulus,
-       std::pow(S * standard_error(m["elastic"]["youngs_modulus_Pa"]), 2)},
-      {"xi", material_entry("Hardening factor xi"), snow.material.hardening_factor,
-       std::pow(standard_error(m["softening"]["hardening_factor_xi"]), 2)},
+    const std::vector<Candidate> candidates = {
+      {"p0", material_entry("Compressive strength p0 [Pa]"), snow.material.p0, Source::surface_fit, nullptr, 1},
+      {"beta", material_entry("Tensile strength ratio beta"), snow.material.beta, Source::surface_fit, nullptr, 1},
+      {"M", material_entry("Critical state slope M"), snow.material.M, Source::surface_fit, nullptr, 1},
+      {"E", material_entry("Young's modulus [Pa]"), snow.material.youngs_modulus, Source::elastic_part,
+       statistics(m["elastic"], "youngs_modulus_Pa"), S},
+      {"xi", material_entry("Hardening factor xi"), snow.material.hardening_factor, Source::softening_curves,
+       statistics(softening, "hardening_factor_xi"), 1},
       {"R", material_entry("Residual strength ratio"), snow.material.residual_strength_ratio,
-       std::pow(standard_error(m["softening"]["residual_ratio"]), 2)},
-      {"lock_up_strain", lock_up_strain, snow.collapse.lock_up_strain,
-       snow.collapse.given() ? std::pow(standard_error(m["softening"]["lock_up_strain"]), 2) : 0.0}};
-    std::vector<int> kept;
+       Source::softening_curves, statistics(softening, "residual_ratio"), 1},
+      {"lock_up_strain", lock_up_strain, snow.collapse.lock_up_strain, Source::softening_curves,
+       statistics(softening, "lock_up_strain"), 1, snow.collapse.given()}};
+    const auto variance = [&](std::size_t k) {
+      const Candidate &c = candidates[k];
+      if (!c.given)
+        return 0.0;
+      if (c.source == Source::surface_fit)
+        return surface(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+      return std::pow(c.scale * standard_error(*c.statistics), 2);
+    };
+    const auto covariance_between = [&](std::size_t a, std::size_t b) {
+      const Candidate &ca = candidates[a], &cb = candidates[b];
+      if (a == b)
+        return variance(a);
+      if (ca.source != cb.source)
+        return 0.0;
+      if (ca.source == Source::surface_fit)
+        return surface(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+      if (!ca.statistics->contains("values") || !cb.statistics->contains("values"))
+        throw InputError((weak_layer_directory / "summary.json").string() + ": the realization values of " +
+                         ca.name + " and " + cb.name + " are missing (written by an older anticrack); run the "
+                         "weak layer stage again (--overwrite)");
+      return ca.scale * cb.scale *
+             params::covariance_of_means((*ca.statistics)["values"].get<std::vector<double>>(),
+                                         (*cb.statistics)["values"].get<std::vector<double>>());
+    };
+    std::vector<std::size_t> kept;
     UncertainParameters u;
     u.confidence = snow.uncertainty.confidence;
     for (std::size_t k = 0; k < candidates.size(); ++k)
-      if (std::isfinite(candidates[k].variance) && candidates[k].variance > 0)
+      if (const double v = variance(k); std::isfinite(v) && v > 0)
       {
-        kept.push_back(static_cast<int>(k));
+        kept.push_back(k);
         u.names.push_back(candidates[k].name);
         u.value_in.push_back(candidates[k].value_in);
       }
     const auto n = static_cast<Eigen::Index>(kept.size());
     u.value.resize(n);
-    u.covariance = Eigen::MatrixXd::Zero(n, n);
+    u.covariance.resize(n, n);
     for (Eigen::Index a = 0; a < n; ++a)
     {
-      const auto ka = static_cast<std::size_t>(kept[static_cast<std::size_t>(a)]);
-      u.value(a) = candidates[ka].value;
+      u.value(a) = candidates[kept[static_cast<std::size_t>(a)]].value;
       for (Eigen::Index b = 0; b < n; ++b)
-      {
-        const auto kb = static_cast<std::size_t>(kept[static_cast<std::size_t>(b)]);
-        if (ka < 3 && kb < 3)
-          u.covariance(a, b) = surface(static_cast<Eigen::Index>(ka), static_cast<Eigen::Index>(kb));
-        else if (ka == kb)
-          u.covariance(a, b) = candidates[ka].variance;
-      }
+        u.covariance(a, b) = covariance_between(kept[static_cast<std::size_t>(a)], kept[static_cast<std::size_t>(b)]);
     }
     return u;
   }

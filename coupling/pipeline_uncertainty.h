@@ -4,8 +4,11 @@
 // The uncertain parameters, in snow units, and their covariance Σ:
 //   - p0, β, M: the covariance of the surface's fit (delta method, params/envelope_fit.h), p0's
 //     rows and columns scaled by the stress scale S (coupling/snow_units.h);
-//   - E and ξ: the standard errors of their means over the realizations, sd/√n, independent of the
-//     surface and of each other (separate estimates from separate curves).
+//   - E: the standard error of its mean over the realizations, sd/√n, from the loading tests' elastic
+//     part, independent of the surface and of the softening;
+//   - ξ, R and the lock-up strain: the covariance of their means over the realizations, from the
+//     paired per-realization values (one compaction curve gives all three; params::covariance_of_means),
+//     independent of the surface and of E.
 // For each snowpack scene the FE runs once more per parameter i with θ_i raised by one standard
 // error h_i = √Σ_ii, everything else as calibrated. The sensitivity of an answer y is
 // g_i = (y_i − y_0)/h_i, its variance g^T Σ g, its interval y_0 ± z σ_y with z the normal quantile of

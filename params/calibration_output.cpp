@@ -31,7 +31,8 @@ namespace anticrack::params
       return Json{{"mean", finite_or_null(s.mean)},
                   {"standard_deviation", s.n > 1 ? finite_or_null(s.standard_deviation) : Json(nullptr)},
                   {"interval", interval_json(s.mean_ci.lower, s.mean_ci.upper)},
-                  {"samples", s.n}};
+                  {"samples", s.n},
+                  {"values", s.values}};
     }
 
     Json fit_json(const EnvelopeFit &f)

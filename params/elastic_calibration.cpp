@@ -63,6 +63,7 @@ namespace anticrack::params
     s.mean_ci = {values[0], values[0]};
     s.confidence = confidence;
     s.n = 1;
+    s.values = values;
     return s;
   }
 

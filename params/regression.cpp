@@ -251,7 +251,18 @@ namespace anticrack::params
     const double standard_error = statistics.standard_deviation / std::sqrt(n);
     statistics.mean_ci =
       symmetric_interval(statistics.mean, two_sided_t(confidence, n - 1) * standard_error);
+    statistics.values = values;
     return statistics;
+  }
+
+  double covariance_of_means(const std::vector<double> &a, const std::vector<double> &b)
+  {
+    if (a.size() != b.size() || a.size() < 2)
+      throw CalibrationError("covariance of two means: samples of " + std::to_string(a.size()) + " and " +
+                             std::to_string(b.size()) + " values; it needs at least 2 pairs");
+    const auto x = as_array(a), y = as_array(b);
+    const double n = static_cast<double>(a.size());
+    return ((x - x.mean()) * (y - y.mean())).sum() / ((n - 1) * n);
   }
 
   // Bobillier et al. 2020 (reply to referee 1, comment 3): X_macro(h) = X_macro(h_ref) / (h_ref/h).

@@ -112,7 +112,16 @@ namespace anticrack::params
     Interval mean_ci;               ///< t-interval of the mean, n - 1 degrees of freedom
     double confidence = 0.95;
     int n = 0;
+    /// The values described, in their order (e.g. one per realization): estimates taken from the
+    /// same curves (ξ, R and the lock-up strain of one compaction test) keep their pairing, so
+    /// the covariance of their means can be estimated (covariance_of_means).
+    std::vector<double> values;
   };
+
+  /// The covariance of the means of two paired samples, Σ(a − ā)(b − b̄)/((n − 1) n): the sample
+  /// covariance over n, the off-diagonal term beside the squared standard errors sd²/n. Throws
+  /// CalibrationError for samples of different sizes or fewer than 2 pairs.
+  double covariance_of_means(const std::vector<double> &a, const std::vector<double> &b);
 
   /// Mean, sample standard deviation, range and t-interval of the mean of `values` (e.g. the M of
   /// every fitted microstructure). Throws CalibrationError, naming `what`, for fewer than 2 values,

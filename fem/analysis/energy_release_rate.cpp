@@ -108,7 +108,8 @@ namespace anticrack::fem
       interval["confidence"] = scene.snowpack.weak_layer.confidence;
       interval["critical_cut_length_m"] = {lower ? Json(*lower) : Json(nullptr), upper ? Json(*upper) : Json(nullptr)};
       interval["carries"] = "the interval of the material file's fracture energy density (over the DEM realizations) "
-                            "through this run's G(a); the weak layer's other uncertain parameters are not carried";
+                            "through this run's G(a), at this run's E (E moves G(a): another run, which the "
+                            "pipeline's uncertainty stage makes)";
       if (!lower)
         interval["lower_note"] = G_c_interval.lower > 0 ? "below the first midpoint (shorter than one element)"
                                                         : "G_c's lower bound is not positive: no lower bound of the cut";

@@ -1216,15 +1216,20 @@ def calibrate_scaling_laws(work):
     whose Young's moduli follow Eq. 7 of Bobillier et al. (2020) in the particle modulus: `calibrate` recovers the
     exponents, prefactors and the micro-macro slope, writes one material file per microstructure and
     the scaling plot. A test whose clump did not move after its failure (no flow angle: NaN) is
-    left out of the flow rule, by name, and nothing else."""
+    left out of the flow rule, by name, and nothing else. In a second campaign, a microstructure
+    with M = 0.3 is weaker in shear than any isotropic invariant-plane surface can be on the tests'
+    paths (M/sqrt(1 + 2 beta) below (1 - k)/sqrt(3), params/test_path.h): it gets no material file,
+    summary.json names it and why, and it still enters the laws; its neighbour gets its file."""
     h, kappa, k, lam = 2.81e-3, 3.59, 1.38e-3, 3.09      # Eqs. 2-3 of Ritter et al. (2020)
     beta0, beta1 = 7.3e4, 0.014                          # Eq. 7 of Bobillier et al. (2020)
     micro = []
-    for phi, z, modulus in [(0.3, 2.5, 2e8), (0.35, 3.5, 5e8), (0.4, 4.5, 1e9), (0.45, 5.5, 2e9)]:
+    for phi, z, modulus, M in [(0.3, 2.5, 2e8, 0.8), (0.35, 3.5, 5e8, 0.8), (0.4, 4.5, 1e9, 0.8), (0.45, 5.5, 2e9, 0.8),
+                               (0.5, 6.0, 3e9, 0.3)]:
         nu_c, bond = z * phi, 1e6
         sigma0 = bond * h * nu_c ** kappa
         micro.append({"phi": phi, "z": z, "bond": bond, "particle_modulus": modulus, "E": beta0 + beta1 * modulus,
-                      "sigma_tau": (sigma0, bond * k * nu_c ** lam / sigma0, 0.8)})
+                      "sigma_tau": (sigma0, bond * k * nu_c ** lam / sigma0, M)})
+    refusing, micro = micro[2:], micro[:4]
     campaign = write_synthetic_campaign(os.path.join(work, "campaign.h5"), ANGLES, noise=0.002, microstructures=micro)
     with h5py.File(campaign, "r+") as f:
         no_flow = f["failure_points/test"][0].decode()
@@ -1250,6 +1255,20 @@ def calibrate_scaling_laws(work):
     for m in range(4):
         check(os.path.exists(os.path.join(out, f"material_m{m}.prm")), f"material_m{m}.prm missing")
     check(os.path.getsize(os.path.join(out, "scaling.png")) > 10000, "scaling.png missing")
+
+    campaign = write_synthetic_campaign(os.path.join(work, "refusing.h5"), ANGLES, noise=0.002, microstructures=refusing)
+    out = os.path.join(work, "refusing")
+    anticrack("calibrate", campaign, "-o", out, "--bootstrap", "0", "--no-plots")
+    summary = json.load(open(os.path.join(out, "summary.json")))["calibration"]
+    for m in (0, 1):
+        refused = summary["microstructures"][m]["material_refused"]
+        check(refused is None and os.path.exists(os.path.join(out, f"material_m{m}.prm")), f"microstructure {m} refused: {refused}")
+    refused = summary["microstructures"][2]["material_refused"]
+    check(not os.path.exists(os.path.join(out, "material_m2.prm")) and refused is not None
+          and "microstructure 2" in refused and "no isotropic invariant-plane surface" in refused,
+          f"microstructure 2 (M = 0.3): material file {os.path.exists(os.path.join(out, 'material_m2.prm'))}, refused {refused}")
+    check(summary["scaling"]["M"]["samples"] == 3 and abs(summary["scaling"]["M"]["mean"] - (0.8 + 0.8 + 0.3) / 3) < 0.01,
+          f"the refused microstructure is not in the laws: M {summary['scaling']['M']}")
 
 
 @case

@@ -7,6 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 namespace
 {
@@ -129,4 +133,67 @@ TEST(PipelineUncertainty, AnElasticStagesCutCombinesGcsMappedIntervalWithEsLinea
             0u);
   const Json alone = coupling::combined_critical_cut_interval(mapped, Json{{"status", "no value in the base run"}}, 0.3);
   EXPECT_EQ(alone["interval"], mapped["critical_cut_length_m"]);
+}
+
+// ξ, R and the lock-up strain come from the same compaction curves, one of each per realization: the
+// covariance of their means is that of the paired values over n (here by hand), E's is its squared
+// standard error alone, and the surface's block is the fit's, p0 scaled to snow units.
+TEST(PipelineUncertainty, TheSofteningFromOneCurveCarriesTheCovarianceOfItsPairedRealizationValues)
+{
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("anticrack_uncertain_parameters_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+
+  fem::MaterialFile dem;
+  dem.material = {"layer", "invariants", 1000, 2e8, 0.2, 1e4, 0.4, 2.0, "collapse", 0.6, 0.6, 0.01};
+  dem.provenance.fit_plane = std::string(fem::path_fit_plane) + ", lateral stress ratio 0.25 (periodic sides)";
+  dem.collapse.lock_up_strain = 0.24, dem.collapse.lock_up_modulus = 1e7;
+  dem.collapse.fracture_energy_density = 5, dem.collapse.collapse_energy_density = 2000;
+  fem::MaterialFile snow = dem;
+  const double S = 0.3; // the stress scale
+  snow.material.p0 *= S, snow.material.youngs_modulus *= S;
+  {
+    std::ofstream(dir / "material.prm") << fem::material_file_text(dem);
+    std::ofstream(dir / "material_snow.prm") << fem::material_file_text(snow);
+  }
+  const std::vector<double> xi = {0.5, 0.6, 0.7}, R = {0.65, 0.6, 0.55}, lock = {0.2, 0.24, 0.28}, E = {1.9e8, 2e8, 2.1e8};
+  const auto statistics = [](const std::vector<double> &v) {
+    const double mean = (v[0] + v[1] + v[2]) / 3;
+    double ss = 0;
+    for (double x : v)
+      ss += (x - mean) * (x - mean);
+    return Json{{"mean", mean}, {"standard_deviation", std::sqrt(ss / 2)}, {"samples", 3}, {"values", v}};
+  };
+  Json m;
+  m["p_q_path_plane"]["models"]["cohesive_cam_clay"]["covariance"] = {{1e4, -2, 3}, {-2, 0.01, 0}, {3, 0, 0.04}};
+  m["elastic"]["youngs_modulus_Pa"] = statistics(E);
+  m["softening"] = {{"hardening_factor_xi", statistics(xi)}, {"residual_ratio", statistics(R)}, {"lock_up_strain", statistics(lock)}};
+  Json summary;
+  summary["calibration"]["microstructures"] = Json::array({m});
+  std::ofstream(dir / "summary.json") << summary.dump();
+
+  const coupling::UncertainParameters u = coupling::uncertain_parameters(dir);
+  fs::remove_all(dir);
+  ASSERT_EQ(u.names, (std::vector<std::string>{"p0", "beta", "M", "E", "xi", "R", "lock_up_strain"}));
+  // By hand: deviations xi (-0.1, 0, 0.1), R (0.05, 0, -0.05), lock (-0.04, 0, 0.04): the covariance of
+  // the means is sum(products) / ((n - 1) n) = sum / 6.
+  EXPECT_NEAR(u.covariance(4, 4), 0.02 / 6, 1e-15);
+  EXPECT_NEAR(u.covariance(4, 5), -0.01 / 6, 1e-15);
+  EXPECT_NEAR(u.covariance(5, 4), -0.01 / 6, 1e-15);
+  EXPECT_NEAR(u.covariance(4, 6), 0.008 / 6, 1e-15);
+  EXPECT_NEAR(u.covariance(5, 6), -0.004 / 6, 1e-15);
+  EXPECT_NEAR(u.covariance(6, 6), 0.0032 / 6, 1e-15);
+  // ξ and R here are perfectly anticorrelated: the correlation is -1.
+  EXPECT_NEAR(u.covariance(4, 5) / std::sqrt(u.covariance(4, 4) * u.covariance(5, 5)), -1, 1e-12);
+  // E: (S x 1e7)^2 / 3 on the diagonal, nothing beside it.
+  EXPECT_NEAR(u.covariance(3, 3), std::pow(S * 1e7, 2) / 3, 1e-6 * std::pow(S * 1e7, 2));
+  for (Eigen::Index k : {0, 1, 2, 4, 5, 6})
+    EXPECT_EQ(u.covariance(3, k), 0) << k;
+  // The surface's block: p0's row and column scaled by S.
+  EXPECT_NEAR(u.covariance(0, 0), 1e4 * S * S, 1e-9);
+  EXPECT_NEAR(u.covariance(0, 1), -2 * S, 1e-12);
+  EXPECT_NEAR(u.covariance(2, 2), 0.04, 1e-15);
+  for (Eigen::Index a : {0, 1, 2})
+    for (Eigen::Index b : {4, 5, 6})
+      EXPECT_EQ(u.covariance(a, b), 0) << a << ", " << b;
 }
