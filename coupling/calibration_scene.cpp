@@ -50,10 +50,11 @@ namespace anticrack::coupling
   {
     /// The DEM campaign of a calibration scene, read and checked (its Calibration entries are
     /// declared beside the DEM's so that the reader accepts them).
-    dem::SceneParameters read_campaign(const std::string &file)
+    dem::SceneParameters read_campaign(const std::string &file,
+                                       const std::vector<std::pair<std::string, std::string>> &overrides = {})
     {
       dem::SceneParameters scene =
-        dem::read_scene(file, dem::SceneKind::calibration, {}, CalibrationParameters::declare_parameters);
+        dem::read_scene(file, dem::SceneKind::calibration, overrides, CalibrationParameters::declare_parameters);
       dem::require_dem_component(scene);
       return scene;
     }
@@ -110,9 +111,10 @@ namespace anticrack::coupling
               << options.confidence * 100 << " % intervals\n";
   }
 
-  CalibrateOptions read_calibration_scene(const std::string &file)
+  CalibrateOptions read_calibration_scene(const std::string &file,
+                                          const std::vector<std::pair<std::string, std::string>> &overrides)
   {
-    read_campaign(file); // every problem of the scene before anything is written
+    read_campaign(file, overrides); // every problem of the scene before anything is written
     CalibrateOptions options = calibration_options(file);
     options.input = file;
     return options;

@@ -8,6 +8,8 @@
 #include "util/run_options.h"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace dealii
 {
@@ -28,9 +30,11 @@ namespace anticrack::coupling
   /// `file` if given, else the defaults; every variant with `every_variant`) and Calibration's.
   void declare_calibration_scene(dealii::ParameterHandler &prm, const std::string &file, bool every_variant);
 
-  /// Reads and checks the scene (DEM, Campaign, Calibration); returns the calibration's options with
+  /// Reads and checks the scene (DEM, Campaign, Calibration), with `overrides` (entry path, value)
+  /// set after the file's own entries (dem::read_scene); returns the calibration's options with
   /// input = `file` (output directory and the run's options are the caller's). Throws InputError.
-  CalibrateOptions read_calibration_scene(const std::string &file);
+  CalibrateOptions read_calibration_scene(const std::string &file,
+                                          const std::vector<std::pair<std::string, std::string>> &overrides = {});
 
   /// Reads and checks the scene (DEM, Campaign, Calibration) and prints what a run would do.
   void check_calibration_scene(const std::string &file, int threads);

@@ -285,6 +285,8 @@ namespace anticrack::coupling
     std::cout << "pipeline " << file << ":\n  1. weak layer: " << scene.weak_layer_scene
               << " (campaign, calibration, material in snow units: bond tensile strength "
               << scene.snow.bond_tensile_strength << " Pa, grain density " << scene.snow.particle_density << " kg/m^3)\n";
+    for (const auto &[path, value] : scene.weak_layer_changes)
+      std::cout << "     (with " << path << " = " << value << ")\n";
     for (std::size_t k = 0; k < scene.snowpack_scenes.size(); ++k)
       std::cout << "  " << k + 2 << ". " << scene.snowpack_scenes[k] << " with the calibrated weak layer\n";
     for (const auto &[path, value] : scene.snowpack_changes)
@@ -350,11 +352,12 @@ namespace anticrack::coupling
       s.name = "weak layer";
       s.kind = "calibration";
       s.directory = dir / weak_layer_directory;
-      s.scene_file = scene.weak_layer_scene;
+      // With changes, the stage runs a copy of the scene that holds them, in its own folder.
+      s.scene_file = scene.weak_layer_changes.empty() ? scene.weak_layer_scene : (s.directory / "scene.prm").string();
       std::ostringstream snow;
       snow.precision(17);
       snow << "\nSnow units: " << scene.snow.bond_tensile_strength << " " << scene.snow.particle_density;
-      s.inputs_sha256 = util::sha256_hex(read_text_file(scene.weak_layer_scene) + snow.str());
+      s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene) + snow.str());
       stages.push_back(s);
     }
     for (std::size_t k = 0; k < names.size(); ++k)
@@ -415,7 +418,16 @@ namespace anticrack::coupling
     else
     {
       announce(0);
-      CalibrateOptions calibration = weak_layer_calibration(scene);
+      if (!scene.weak_layer_changes.empty())
+      {
+        if (root)
+        {
+          fs::create_directories(weak.directory);
+          write_text_atomically(weak.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene); });
+        }
+        barrier();
+      }
+      CalibrateOptions calibration = weak_layer_calibration(scene, weak.scene_file);
       calibration.output_directory = weak.directory.string();
       calibration.overwrite = true;
       calibration.threads = options.threads;

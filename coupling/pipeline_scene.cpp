@@ -32,6 +32,42 @@ namespace anticrack::coupling
       return kind.empty() ? "a scene that does not say its kind" : "a scene of kind `" + kind + "`";
     }
 
+    /// `text` with a block at its end that sets each of `changes` (the last setting of an entry
+    /// wins), under a comment naming the pipeline's entry they come from.
+    std::string with_changes(std::string text, const std::vector<std::pair<std::string, std::string>> &changes,
+                             const std::string &origin)
+    {
+      if (changes.empty())
+        return text;
+      text += "\n# Added by the pipeline " + origin + ".\n";
+      for (const auto &[path, value] : changes)
+      {
+        const std::vector<std::string> parts = dem::split_parameter_path(path);
+        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+          text += std::string(2 * k, ' ') + "subsection " + parts[k] + "\n";
+        text += std::string(2 * (parts.size() - 1), ' ') + "set " + parts.back() + " = " + value + "\n";
+        for (std::size_t k = parts.size() - 1; k-- > 0;)
+          text += std::string(2 * k, ' ') + "end\n";
+      }
+      return text;
+    }
+
+    /// The `path = value` items of a comma-separated list entry; a malformed item is a problem.
+    std::vector<std::pair<std::string, std::string>> changes_of(const std::string &list, const std::string &entry,
+                                                                Problems &problems)
+    {
+      std::vector<std::pair<std::string, std::string>> changes;
+      for (const std::string &item : dealii::Utilities::split_string_list(list, ','))
+      {
+        const auto equal = item.find('=');
+        if (equal == std::string::npos)
+          problems.add(entry, "'" + item + "' is not of the form `path = value`");
+        else
+          changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)), dealii::Utilities::trim(item.substr(equal + 1)));
+      }
+      return changes;
+    }
+
     std::string resolved(const std::string &path, const std::string &scene_file)
     {
       const fs::path p(path);
@@ -57,6 +93,11 @@ namespace anticrack::coupling
                       "Entries set in every snowpack scene as the pipeline runs it, a comma-separated list of "
                       "`path = value` (e.g. `Mesh/Element length [m] = 0.02, Mesh/Weak layer elements = 2` for a "
                       "coarser, faster mesh); each stage's scene.prm shows them. Empty: the scenes as they are.");
+    prm.declare_entry("Weak layer scene changes", "", Patterns::Anything(),
+                      "Entries set in the weak layer's scene as the pipeline runs it, a comma-separated list of "
+                      "`path = value` (e.g. `Campaign/Compaction strain rate [1/s] = 5, Campaign/Compaction final "
+                      "strain = 0.35` to add the compaction tests to a campaign scene); the stage runs a copy, "
+                      "weak_layer/scene.prm, that shows them. Empty: the scene as it is.");
     prm.declare_entry("Uncertainty", "sensitivities", Patterns::Selection("sensitivities|none"),
                       "sensitivities: every snowpack scene again with each calibrated parameter raised by one "
                       "standard error, for intervals on its answers (coupling/pipeline_uncertainty.h); none: the "
@@ -74,36 +115,31 @@ namespace anticrack::coupling
     prm.leave_subsection();
   }
 
-  CalibrateOptions weak_layer_calibration(const PipelineScene &scene)
+  CalibrateOptions weak_layer_calibration(const PipelineScene &scene, const std::string &file,
+                                          const std::vector<std::pair<std::string, std::string>> &changes)
   {
-    if (scene_kind_in_file(scene.weak_layer_scene) == "calibration")
-      return read_calibration_scene(scene.weak_layer_scene);
-    const dem::SceneParameters campaign = dem::read_scene(scene.weak_layer_scene, dem::SceneKind::campaign);
+    if (scene_kind_in_file(file) == "calibration")
+      return read_calibration_scene(file, changes);
+    const dem::SceneParameters campaign = dem::read_scene(file, dem::SceneKind::campaign, changes);
     dem::require_dem_component(campaign);
     if (!campaign.campaign.enabled())
       throw InputError(scene.file + ": Pipeline/Weak layer scene names " + scene.weak_layer_scene +
                        ", which has no campaign (Campaign/Loading angles [deg] is empty)");
     CalibrateOptions options;
-    options.input = scene.weak_layer_scene;
+    options.input = file;
     return options;
+  }
+
+  std::string weak_layer_scene_text(const PipelineScene &scene)
+  {
+    return with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
+                        scene.file + ": Pipeline/Weak layer scene changes, on " + scene.weak_layer_scene);
   }
 
   std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file)
   {
-    std::string text = read_scene_file(file);
-    if (!scene.snowpack_changes.empty())
-    {
-      text += "\n# Added by the pipeline " + scene.file + ": Pipeline/Snowpack scene changes.\n";
-      for (const auto &[path, value] : scene.snowpack_changes)
-      {
-        const std::vector<std::string> parts = dem::split_parameter_path(path);
-        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
-          text += std::string(2 * k, ' ') + "subsection " + parts[k] + "\n";
-        text += std::string(2 * (parts.size() - 1), ' ') + "set " + parts.back() + " = " + value + "\n";
-        for (std::size_t k = parts.size() - 1; k-- > 0;)
-          text += std::string(2 * k, ' ') + "end\n";
-      }
-    }
+    std::string text = with_changes(read_scene_file(file), scene.snowpack_changes,
+                                    scene.file + ": Pipeline/Snowpack scene changes");
     if (material_file.empty())
       return text;
     text += "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
@@ -152,15 +188,9 @@ namespace anticrack::coupling
     for (const std::string &s : dealii::Utilities::split_string_list(prm.get(snowpack_entry)))
       scene.snowpack_scenes.push_back(resolved(s, file));
     scene.uncertainty = prm.get("Uncertainty") == "sensitivities";
-    for (const std::string &item : dealii::Utilities::split_string_list(prm.get("Snowpack scene changes"), ','))
-    {
-      const auto equal = item.find('=');
-      if (equal == std::string::npos)
-        problems.add("Pipeline/Snowpack scene changes", "'" + item + "' is not of the form `path = value`");
-      else
-        scene.snowpack_changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
-                                            dealii::Utilities::trim(item.substr(equal + 1)));
-    }
+    scene.snowpack_changes = changes_of(prm.get("Snowpack scene changes"), "Pipeline/Snowpack scene changes", problems);
+    scene.weak_layer_changes =
+      changes_of(prm.get("Weak layer scene changes"), "Pipeline/Weak layer scene changes", problems);
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
     scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
@@ -217,7 +247,16 @@ namespace anticrack::coupling
                             "only an energy release rate scene may have an elastic one");
     }
     problems.throw_if_any();
-    weak_layer_calibration(scene);
+    try
+    {
+      weak_layer_calibration(scene, scene.weak_layer_scene, scene.weak_layer_changes);
+    }
+    catch (const InputError &e)
+    {
+      throw InputError("Invalid scene file <" + file + ">: Pipeline/" + weak_layer_entry + " = " + scene.weak_layer_scene +
+                       (scene.weak_layer_changes.empty() ? "" : " with Pipeline/Weak layer scene changes") + ":\n" +
+                       e.what());
+    }
     return scene;
   }
 } // namespace anticrack::coupling

@@ -38,11 +38,20 @@ namespace anticrack::coupling
     /// Pipeline/Snowpack scene changes: (path, value) applied to every snowpack scene, e.g.
     /// ("Mesh/Weak layer elements", "2").
     std::vector<std::pair<std::string, std::string>> snowpack_changes;
+    /// Pipeline/Weak layer scene changes: (path, value) applied to the weak layer's scene, e.g.
+    /// ("Campaign/Compaction strain rate [1/s]", "5") to add the compaction tests to a campaign.
+    std::vector<std::pair<std::string, std::string>> weak_layer_changes;
   };
 
-  /// The options of the weak layer's calibration: those of a calibration scene, or the defaults for
-  /// a campaign scene (read and checked either way); throws InputError.
-  CalibrateOptions weak_layer_calibration(const PipelineScene &scene);
+  /// The options of the weak layer's calibration: those of the calibration scene `file` (the
+  /// weak layer's scene, or the copy the pipeline runs), or the defaults for a campaign scene, read
+  /// and checked with `changes` set after the file's own entries; throws InputError.
+  CalibrateOptions weak_layer_calibration(const PipelineScene &scene, const std::string &file,
+                                          const std::vector<std::pair<std::string, std::string>> &changes = {});
+
+  /// The text of the weak layer's scene as the pipeline runs it: the file, then a block setting each
+  /// of scene.weak_layer_changes (the last setting of an entry wins).
+  std::string weak_layer_scene_text(const PipelineScene &scene);
 
   /// The text of snowpack scene `file` as the pipeline runs it: the file, then a block setting each
   /// of scene.snowpack_changes (the last setting of an entry wins), then, if `material_file` is not

@@ -1829,9 +1829,12 @@ def pipeline_files(work):
                  "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
     flat = write(os.path.join(work, "flat.prm"), "set Scene = snowpack\n" + pst_scene())
     steep = write(os.path.join(work, "steep.prm"), "set Scene = snowpack\n" + pst_scene(insert={"Snowpack": ["set Slope angle [deg] = 30"]}))
+    # The weak layer's scene as the pipeline runs it, with a change (the value weak.prm has: a
+    # change that shows the copy is what ran, without changing the material).
     pipeline = write(os.path.join(work, "pipeline.prm"), "\n".join([
         "set Scene = pipeline",
-        "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm", "end",
+        "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm",
+        "  set Weak layer scene changes = Calibration/Bootstrap resamples = 0", "end",
         "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
     return pipeline, weak, flat, steep
 
@@ -1869,6 +1872,18 @@ def pipeline_small(work):
         check(list(fem["scene"]["material_files"]) == ["weak layer"], f"{stage}: material files {fem['scene']}")
     for name in ["report.md", "report.png"]:
         check(os.path.getsize(os.path.join(out, name)) > 1000, f"{name} missing or empty")
+    # The weak layer ran from its copy with the change, which the campaign records.
+    copy = os.path.join(out, "weak_layer", "scene.prm")
+    check(summary["stages"][0]["scene"] == copy and open(copy).read().startswith(open(weak).read()) and
+          "set Bootstrap resamples = 0" in open(copy).read()[len(open(weak).read()):],
+          f"weak layer stage: scene {summary['stages'][0]['scene']}")
+    with h5py.File(os.path.join(out, "weak_layer", "campaign", "campaign.h5"), "r") as f:
+        recorded = f.attrs["scene_file"].decode() if isinstance(f.attrs["scene_file"], bytes) else str(f.attrs["scene_file"])
+    check(os.path.samefile(recorded, copy), f"campaign.h5 scene_file {recorded}")
+    # A change that names no entry of the weak layer's scene is refused before anything runs.
+    bad = write(os.path.join(work, "bad_change.prm"), open(pipeline).read().replace(
+        "Calibration/Bootstrap resamples = 0", "Campaign/No such entry = 1"))
+    expect_bad_input(work, bad, "Campaign/No such entry = 1", "names no entry")
     # One realization: only the surface's parameters have a spread, each rerun once per PST.
     uncertainty = summary["results"]["uncertainty"]
     check(sorted(uncertainty["parameters"]) == ["M", "beta", "p0"], f"uncertain parameters {uncertainty['parameters']}")
