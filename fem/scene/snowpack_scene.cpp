@@ -120,6 +120,14 @@ namespace anticrack::fem
                      "the crack band (one element row) must be able to close by the collapse height: it must be "
                      "< 0.9 element heights, " + format_number(0.9 * band_height) + " m (is " +
                        format_number(layer.collapse_height) + "); use fewer elements through the layer");
+      // The crack band scales ξ by the band height over the thickness the softening was measured
+      // over (fem/model/crack_band.h): without that thickness, ξ would be a mesh parameter.
+      if (layer.model == Layer::Model::cohesive_cam_clay && !(layer.material.reference_thickness > 0))
+        problems.add(section + (layer.material_file.empty() ? "/Reference thickness [m]" : "/Material file"),
+                     "the reference thickness must be > 0 (is " + format_number(layer.material.reference_thickness) +
+                       (layer.material_file.empty() ? "" : ", Material/Reference thickness [m] of " + layer.material_file) +
+                       "): the thickness of the specimen over which the softening was measured, which the crack "
+                       "band scales the hardening factor xi by (docs/physics.md §2)");
       if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height < 0.9 * band_height)
       {
         try
@@ -509,6 +517,16 @@ namespace anticrack::fem
     if (analysis.type->yielding_weak_layer && s.weak_layer.model != Layer::Model::cohesive_cam_clay)
       problems.add("Snowpack/Weak layer/Model", std::string("must be `cohesive cam-clay` for the analysis `") + analysis.type->name +
                                                  "` (only a yielding weak layer can fail)");
+    // A crack is a weak-layer element whose softening has gone Failure fraction of the way to the
+    // residual: under the signed law compaction hardens, so a collapsing layer never gets there.
+    if (analysis.type->yielding_weak_layer && s.weak_layer.model == Layer::Model::cohesive_cam_clay &&
+        s.weak_layer.material.hardening_law != "collapse")
+      problems.add(s.weak_layer.material_file.empty() ? "Snowpack/Weak layer/Hardening law" : "Snowpack/Weak layer/Material file",
+                   "must be `collapse` for the analysis `" + std::string(analysis.type->name) + "` (is `" +
+                     s.weak_layer.material.hardening_law + "`" +
+                     (s.weak_layer.material_file.empty() ? "" : " in " + s.weak_layer.material_file) +
+                     "): its crack detection needs a layer that softens as it collapses; under `signed` "
+                     "compaction hardens and no collapsing element can fail");
     analysis.type->check(scene, problems);
     problems.throw_if_any();
     return scene;

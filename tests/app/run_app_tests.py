@@ -1697,7 +1697,8 @@ def fem_mpi_equals_serial(work):
 @case
 def fem_bad_input(work):
     """Snowpack scenes refused with exit 2, nothing written and the entry named: an unknown PST
-    entry, a cut as long as the column, a collapse height the crack band cannot close, a missing
+    entry, a cut as long as the column, a collapse height the crack band cannot close, a weak layer
+    without a reference thickness or with the signed hardening law under a saw test, a missing
     material file, an earlier run without --overwrite. `check` accepts a valid scene, writes nothing."""
     missing = os.path.join(work, "no_such_material.prm")
     cases = [
@@ -1709,6 +1710,12 @@ def fem_bad_input(work):
         ("other analysis", pst_scene({"Analysis/Type": "energy release rate", "Snowpack/Weak layer/Model": "elastic"}),
          ["Analysis/Explicit/End time [s] (line", "belongs to Analysis/Type = `explicit dynamics`, not to this "
           "scene's `energy release rate`", "PST/Saw (line", "Analysis/Crack detection/Self-propagation lead [m]"]),
+        # Without the thickness its softening was measured over, the crack band cannot scale xi.
+        ("reference", pst_scene({"Snowpack/Weak layer/Reference thickness [m]": "0"}),
+         ["Snowpack/Weak layer/Reference thickness [m]", "must be > 0 (is 0)"]),
+        # A weak layer that hardens as it compacts never fails: no crack could be detected.
+        ("signed", pst_scene({"Snowpack/Weak layer/Hardening law": "signed"}),
+         ["Snowpack/Weak layer/Hardening law", "must be `collapse` for the analysis `explicit dynamics` (is `signed`)"]),
         # The reader resolves the name relative to the scene (the message gives the whole path).
         ("material", pst_scene(material_file=os.path.basename(missing)), [missing])]
     for name, text, needles in cases:
