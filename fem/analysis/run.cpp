@@ -1,6 +1,7 @@
 #include "fem/analysis/run.h"
 
 #include "fem/analysis/snowpack_run.h"
+#include "fem/model/snowpack_model.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/console.h"
 #include "util/input_error.h"
@@ -13,6 +14,8 @@
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 
@@ -27,6 +30,32 @@ namespace anticrack::fem
                                              "fields",       "checkpoint.json", "checkpoint"};
   } // namespace
 
+  namespace
+  {
+    /// The mesh a run would build: its cells and degrees of freedom, and for an analysis that
+    /// marches in time the first explicit step (CFL safety x the stable step of the unloaded
+    /// snowpack, the lock-up of a collapsed layer shortens it later).
+    template <int dim>
+    void describe_mesh(const SnowpackScene &scene, MPI_Comm comm)
+    {
+      SnowpackModel<dim> model(scene, comm);
+      ConditionalStream out(&std::cout, dealii::Utilities::MPI::this_mpi_process(comm) == 0);
+      out << "  mesh: " << model.n_cells() << " cells, " << model.n_dofs() << " degrees of freedom (Q"
+          << scene.mesh.polynomial_degree << ", " << model.n_columns() << " columns of " << scene.mesh.element_length
+          << " m)\n";
+      if (!scene.analysis.type->time_integration)
+        return;
+      typename SnowpackModel<dim>::VectorType u, force;
+      model.initialize_vector(u);
+      model.initialize_vector(force);
+      const double stable = model.evaluate(u, force, typename SnowpackModel<dim>::Request());
+      out << "  explicit time step: " << scene.analysis.cfl_safety * stable << " s (CFL safety "
+          << scene.analysis.cfl_safety << " x the stable step " << stable << " s at rest), "
+          << static_cast<unsigned long>(std::ceil(scene.analysis.end_time / (scene.analysis.cfl_safety * stable)))
+          << " steps to the end time at least\n";
+    }
+  } // namespace
+
   void check_snowpack_scene(const std::string &scene_file)
   {
     const fem::SnowpackScene scene = fem::read_snowpack_scene(scene_file);
@@ -36,6 +65,23 @@ namespace anticrack::fem
               << " layer(s), weak layer " << scene.snowpack.weak_layer.thickness << " m ("
               << scene.mesh.weak_layer_elements << " elements), slope "
               << scene.snowpack.slope_angle * 180 / 3.14159265358979323846 << " deg\n";
+    // Building the mesh needs MPI (p4est): initialised here unless the process runs under mpirun
+    // with it initialised already.
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+    if (!initialised)
+    {
+      static int argc = 1;
+      static char name[] = "anticrack";
+      static char *argv_storage[] = {name, nullptr};
+      static char **argv = argv_storage;
+      mpi.emplace(argc, argv, 1);
+    }
+    if (scene.mesh.dimension == 2)
+      describe_mesh<2>(scene, MPI_COMM_WORLD);
+    else
+      describe_mesh<3>(scene, MPI_COMM_WORLD);
   }
 
   int run_snowpack_scene(const RunOptions &options)

@@ -1738,11 +1738,18 @@ def fem_bad_input(work):
     stdout, _ = anticrack("check", scene, cwd=cwd)
     check("The scene is valid" in stdout, f"`check` does not say the scene is valid:\n{stdout}")
     check(files_of(work) == before, f"`check` wrote files: {sorted(set(files_of(work)) - set(before))}")
+    # It builds the mesh: the cells and dofs counted by hand, and the explicit step the run takes
+    # first (summary.json's first time step is the same CFL step of the snowpack at rest).
+    check(f"mesh: {PST_CELLS} cells, {PST_DOFS} degrees of freedom" in stdout, f"`check` mesh line:\n{stdout}")
+    step = re.search(r"explicit time step: ([0-9.e+-]+) s", stdout)
+    check(step is not None, f"`check` gives no explicit time step:\n{stdout}")
 
     out = os.path.join(work, "run")
     anticrack("run", scene, "-o", out)
     before = files_of(out)
     check("summary.json" in before, "the first run wrote no summary.json")
+    first = read_columns(os.path.join(out, "series.h5"))["time_step"][0][0]
+    check(abs(float(step.group(1)) / first - 1) < 1e-5, f"`check` says a step of {step.group(1)} s, the run took {first} s first")
     _, stderr = anticrack("run", scene, "-o", out, expect=2)
     check("--overwrite" in stderr and out in stderr, f"refusal of an existing run does not explain:\n{stderr}")
     check(files_of(out) == before, "a refused run changed the files of the earlier run")
