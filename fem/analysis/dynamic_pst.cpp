@@ -417,6 +417,17 @@ namespace anticrack::fem
       [](const SnowpackScene &scene, Problems &problems) {
         if (!(scene.analysis.end_time > 0))
           problems.add("Analysis/Explicit/End time [s]", "must be > 0");
+        // The stable step is estimated as 1/(c sqrt(Σ (p/h_i)²)) (SnowpackModel::evaluate), exact
+        // for Q1 with the lumped mass. Q2's lumped Gauss–Lobatto (Simpson) mass gives its 1D
+        // element chain the highest frequency √24 c/h, so central differences need
+        // Δt ≤ 2h/(√24 c) = √(2/3) h/(2c): the safety factor must stay below √(2/3) (tensor-product
+        // elements: the same ratio in every direction).
+        const double q2_limit = std::sqrt(2.0 / 3.0);
+        if (scene.mesh.polynomial_degree == 2 && scene.analysis.cfl_safety > q2_limit)
+          problems.add("Analysis/Explicit/CFL safety factor",
+                       "must be <= " + format_number(q2_limit, 4) + " with Mesh/Polynomial degree = 2 (is " +
+                         format_number(scene.analysis.cfl_safety) + "): the Q2 elements' lumped Gauss-Lobatto mass "
+                         "makes their highest frequency sqrt(24) c/h, and the step estimate is Q1's");
       },
       &run_dynamic_pst<2>, &run_dynamic_pst<3>};
   }

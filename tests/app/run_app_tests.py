@@ -1698,8 +1698,8 @@ def fem_mpi_equals_serial(work):
 def fem_bad_input(work):
     """Snowpack scenes refused with exit 2, nothing written and the entry named: an unknown PST
     entry, a cut as long as the column, a collapse height the crack band cannot close, a weak layer
-    without a reference thickness or with the signed hardening law under a saw test, a missing
-    material file, an earlier run without --overwrite. `check` accepts a valid scene, writes nothing."""
+    without a reference thickness or with the signed hardening law under a saw test, a Q2 explicit
+    step above its stability limit, a missing material file, an earlier run without --overwrite. `check` accepts a valid scene, writes nothing."""
     missing = os.path.join(work, "no_such_material.prm")
     cases = [
         ("unknown", pst_scene(insert={"PST": ["set Cut lenght [m] = 0.3"]}), ["Cut lenght [m]"]),
@@ -1716,6 +1716,9 @@ def fem_bad_input(work):
         # A weak layer that hardens as it compacts never fails: no crack could be detected.
         ("signed", pst_scene({"Snowpack/Weak layer/Hardening law": "signed"}),
          ["Snowpack/Weak layer/Hardening law", "must be `collapse` for the analysis `explicit dynamics` (is `signed`)"]),
+        # Q2's lumped Gauss-Lobatto mass is stable to sqrt(2/3) of the Q1 step estimate only.
+        ("q2 step", pst_scene(insert={"Mesh": ["set Polynomial degree = 2"], "Analysis/Explicit": ["set CFL safety factor = 0.9"]}),
+         ["Analysis/Explicit/CFL safety factor", "must be <= 0.8165 with Mesh/Polynomial degree = 2 (is 0.9)"]),
         # The reader resolves the name relative to the scene (the message gives the whole path).
         ("material", pst_scene(material_file=os.path.basename(missing)), [missing])]
     for name, text, needles in cases:
