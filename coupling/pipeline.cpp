@@ -314,13 +314,7 @@ namespace anticrack::coupling
     const bool under_mpirun = launched_by_mpirun();
     std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
     if (under_mpirun)
-    {
-      static int argc = 1;
-      static char name[] = "anticrack";
-      static char *argv_storage[] = {name, nullptr};
-      static char **argv = argv_storage;
-      mpi.emplace(argc, argv, 1);
-    }
+      fem::start_fe_mpi(mpi);
     const bool root = !under_mpirun || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
     const auto barrier = [&] {
       if (under_mpirun)

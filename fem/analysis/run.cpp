@@ -65,32 +65,33 @@ namespace anticrack::fem
               << " layer(s), weak layer " << scene.snowpack.weak_layer.thickness << " m ("
               << scene.mesh.weak_layer_elements << " elements), slope "
               << scene.snowpack.slope_angle * 180 / 3.14159265358979323846 << " deg\n";
-    // Building the mesh needs MPI (p4est): initialised here unless the process runs under mpirun
-    // with it initialised already.
-    int initialised = 0;
-    MPI_Initialized(&initialised);
+    // Building the mesh needs MPI (p4est).
     std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-    if (!initialised)
-    {
-      static int argc = 1;
-      static char name[] = "anticrack";
-      static char *argv_storage[] = {name, nullptr};
-      static char **argv = argv_storage;
-      mpi.emplace(argc, argv, 1);
-    }
+    start_fe_mpi(mpi);
     if (scene.mesh.dimension == 2)
       describe_mesh<2>(scene, MPI_COMM_WORLD);
     else
       describe_mesh<3>(scene, MPI_COMM_WORLD);
   }
 
+  void start_fe_mpi(std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
+  {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (initialised)
+      return;
+    // deal.II keeps argc and argv (PETSc reads them): they must outlive the session.
+    static int argc = 1;
+    static char name[] = "anticrack";
+    static char *argv_storage[] = {name, nullptr};
+    static char **argv = argv_storage;
+    mpi.emplace(argc, argv, 1);
+  }
+
   int run_snowpack_scene(const RunOptions &options)
   {
-    int argc = 1;
-    char name[] = "anticrack";
-    char *argv_storage[] = {name, nullptr};
-    char **argv = argv_storage;
-    dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+    start_fe_mpi(mpi);
     return run_snowpack_scene_in_mpi(options);
   }
 

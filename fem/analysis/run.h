@@ -6,6 +6,10 @@
 
 #include "util/run_options.h"
 
+#include <deal.II/base/mpi.h>
+
+#include <optional>
+
 #include <string>
 
 namespace anticrack::fem
@@ -19,6 +23,11 @@ namespace anticrack::fem
   /// in a process, so run_snowpack_scene() runs once per process).
   int run_snowpack_scene_in_mpi(const RunOptions &options);
 
-  /// Reads and checks a snowpack scene and prints what a run would do.
+  /// Reads and checks a snowpack scene, builds its mesh and prints what a run would do.
   void check_snowpack_scene(const std::string &scene_file);
+
+  /// Initialises MPI and PETSc for FE analyses in `mpi` (one thread per rank) unless MPI is
+  /// initialised already (under mpirun by the session, or by an earlier call): the one place that
+  /// starts deal.II's MPI_InitFinalize; MPI finalizes when `mpi` goes out of scope.
+  void start_fe_mpi(std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi);
 } // namespace anticrack::fem
