@@ -59,8 +59,10 @@ namespace anticrack::coupling
       return scene;
     }
 
-    /// The options that subsection Calibration of `file` sets; throws InputError naming the entry.
-    CalibrateOptions calibration_options(const std::string &file)
+    /// The options that subsection Calibration of `file` sets, with those of `overrides` (checked by
+    /// read_campaign) set after them; throws InputError naming the entry.
+    CalibrateOptions calibration_options(const std::string &file,
+                                         const std::vector<std::pair<std::string, std::string>> &overrides = {})
     {
       dealii::ParameterHandler prm;
       CalibrationParameters::declare_parameters(prm);
@@ -69,6 +71,15 @@ namespace anticrack::coupling
       {
         std::ifstream in(file);
         prm.parse_input(in, file, "", /*skip_undefined=*/true);
+        for (const auto &[path, value] : overrides)
+        {
+          const std::vector<std::string> parts = dem::split_parameter_path(path);
+          if (parts.size() != 2 || parts.front() != "Calibration")
+            continue; // the DEM's and the campaign's: read_campaign's
+          prm.enter_subsection(parts.front());
+          prm.set(parts.back(), value);
+          prm.leave_subsection();
+        }
         CalibrationParameters::parse_parameters(prm, options);
       }
       catch (const dealii::ExceptionBase &e)
@@ -115,7 +126,7 @@ namespace anticrack::coupling
                                           const std::vector<std::pair<std::string, std::string>> &overrides)
   {
     read_campaign(file, overrides); // every problem of the scene before anything is written
-    CalibrateOptions options = calibration_options(file);
+    CalibrateOptions options = calibration_options(file, overrides);
     options.input = file;
     return options;
   }

@@ -1902,6 +1902,10 @@ def pipeline_small(work):
     bad = write(os.path.join(work, "bad_change.prm"), open(pipeline).read().replace(
         "Calibration/Bootstrap resamples = 0", "Campaign/No such entry = 1"))
     expect_bad_input(work, bad, "Campaign/No such entry = 1", "names no entry")
+    # ... and so is a change of a calibration option out of its range (the options read with it).
+    bad = write(os.path.join(work, "bad_option.prm"), open(pipeline).read().replace(
+        "Calibration/Bootstrap resamples = 0", "Calibration/Poisson's ratio = 0.7"))
+    expect_bad_input(work, bad, "Calibration/Poisson's ratio", "must be in (-1, 0.5)")
     # One realization: only the surface's parameters have a spread, each rerun once per PST.
     uncertainty = summary["results"]["uncertainty"]
     check(sorted(uncertainty["parameters"]) == ["M", "beta", "p0"], f"uncertain parameters {uncertainty['parameters']}")
