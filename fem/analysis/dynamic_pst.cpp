@@ -351,6 +351,14 @@ namespace anticrack::fem
         r["touchdown_distance_m"] = optional(touchdown);
         r["final_crack_tip_m"] = fronts_.crack_tip;
         r["final_touchdown_front_m"] = fronts_.touchdown;
+        {
+          // The closure of the collapsed layer, which the collapse height bounds (the lock-up
+          // spring adds H p / K_d, a few per cent of it under a slab's weight).
+          const CrackFronts final_state = model_.crack_fronts(scene_.analysis.failure_fraction);
+          r["weak_layer_closure"] = {{"collapse_height_m", scene_.snowpack.weak_layer.collapse_height},
+                                     {"mean_over_locked_columns_m", final_state.locked_closure},
+                                     {"largest_m", final_state.largest_closure}};
+        }
         r["simulated_time_s"] = dynamics.time();
         r["time_steps"] = dynamics.steps();
         r["last_time_step_s"] = dynamics.time_step();

@@ -28,7 +28,8 @@ namespace anticrack::fem
 
   double band_height(const SnowpackScene &scene, unsigned int layer_id)
   {
-    if (scene.analysis.crack_band)
+    // The weak layer collapses as one band through its thickness (fem/model/snowpack_model.h).
+    if (scene.analysis.crack_band && layer_id != layer_weak)
       return element_height(scene, layer_id);
     return layer_of(scene.snowpack, layer_id).thickness;
   }

@@ -10,6 +10,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/full_matrix.h>
@@ -19,8 +20,10 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace anticrack::fem
@@ -194,47 +197,118 @@ namespace anticrack::fem
     if (scene_.pst.column_ends == SawTest::ColumnEnds::periodic)
       for (unsigned int axis = 0; axis + 1 < dim; ++axis)
         DoFTools::make_periodicity_constraints(dof_handler_, 2 + 2 * axis, 3 + 2 * axis, axis, constraints_);
+    tie_weak_layer_nodes();
     VectorTools::interpolate_boundary_values(dof_handler_, 1, Functions::ZeroFunction<dim>(dim), constraints_);
     constraints_.close();
     partitioner_ = std::make_shared<Utilities::MPI::Partitioner>(locally_owned_dofs_, locally_relevant_dofs_,
                                                                  communicator_);
-    // Fixed: lines without entries (the base, and periodic copies of base nodes); the others are the
-    // periodic copies of free nodes, condensed onto their masters (condense_periodic()).
+    // Fixed: lines without entries (the base, and periodic copies of base nodes); the others are
+    // tied to their masters (periodic copies, nodes inside the weak layer; condense_constraints()).
     fixed_.assign(partitioner_->locally_owned_size() + partitioner_->n_ghost_indices(), false);
-    periodic_copies_.clear();
+    tied_ = fixed_;
+    ties_.clear();
     for (const auto &line : constraints_.get_lines())
       if (locally_relevant_dofs_.is_element(line.index))
       {
+        const unsigned int local = partitioner_->global_to_local(line.index);
         if (line.entries.empty())
-          fixed_[partitioner_->global_to_local(line.index)] = true;
-        else if (locally_owned_dofs_.is_element(line.index))
-          for (const auto &[master, weight] : line.entries)
-            periodic_copies_.push_back({partitioner_->global_to_local(line.index),
-                                        partitioner_->global_to_local(master), weight});
+          fixed_[local] = true;
+        else
+        {
+          tied_[local] = true;
+          if (locally_owned_dofs_.is_element(line.index))
+            for (const auto &[master, weight] : line.entries)
+              ties_.push_back({local, partitioner_->global_to_local(master), weight});
+        }
+      }
+    has_ties_ = Utilities::MPI::logical_or(!ties_.empty(), communicator_);
+  }
+
+  template <int dim>
+  void SnowpackModel<dim>::tie_weak_layer_nodes()
+  {
+    const std::vector<double> tops = layer_tops(scene_.snowpack);
+    const double bottom = layer_weak == 0 ? 0. : tops[layer_weak - 1], top = tops[layer_weak];
+    const double thickness = top - bottom, tolerance = 1e-9 * scene_.snowpack.total_thickness();
+    if (!(thickness > 0))
+      return;
+    // The dofs on the layer's two faces, by (position along the slope [and across], face, component),
+    // from every rank: a column of weak-layer cells may span ranks.
+    const std::vector<Point<dim>> &unit_points = fe_.get_unit_support_points();
+    const MappingQ1<dim> mapping;
+    std::vector<types::global_dof_index> dofs(fe_.n_dofs_per_cell());
+    auto key_of = [&](const Point<dim> &p) {
+      std::array<long long, 2> key{{std::llround(p[0] / tolerance), dim == 3 ? std::llround(p[1] / tolerance) : 0}};
+      return key;
+    };
+    std::vector<long long> face_dofs; // (key 0, key 1, face 0|1, component, dof) per entry
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->material_id() == layer_weak)
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+        {
+          const Point<dim> x = mapping.transform_unit_to_real_cell(cell, unit_points[i]);
+          const double n = x[dim - 1];
+          const int face = std::abs(n - bottom) < tolerance ? 0 : std::abs(n - top) < tolerance ? 1 : -1;
+          if (face < 0)
+            continue;
+          const auto key = key_of(x);
+          face_dofs.insert(face_dofs.end(), {key[0], key[1], face, (long long)fe_.system_to_component_index(i).first,
+                                              (long long)dofs[i]});
+        }
+      }
+    std::map<std::array<long long, 4>, types::global_dof_index> on_face;
+    for (const std::vector<long long> &from_rank : Utilities::MPI::all_gather(communicator_, face_dofs))
+      for (std::size_t k = 0; k + 4 < from_rank.size(); k += 5)
+        on_face[{{from_rank[k], from_rank[k + 1], from_rank[k + 2], from_rank[k + 3]}}] = from_rank[k + 4];
+
+    // Every locally relevant dof strictly inside the layer: u = (1 − s) u_lower + s u_upper.
+    for (const auto &cell : dof_handler_.active_cell_iterators())
+      if ((cell->is_locally_owned() || cell->is_ghost()) && cell->material_id() == layer_weak)
+      {
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+        {
+          const Point<dim> x = mapping.transform_unit_to_real_cell(cell, unit_points[i]);
+          const double n = x[dim - 1];
+          if (n < bottom + tolerance || n > top - tolerance || constraints_.is_constrained(dofs[i]))
+            continue;
+          const auto key = key_of(x);
+          const long long component = fe_.system_to_component_index(i).first;
+          const auto lower = on_face.find({{key[0], key[1], 0, component}}),
+                     upper = on_face.find({{key[0], key[1], 1, component}});
+          AssertThrow(lower != on_face.end() && upper != on_face.end(),
+                      ExcMessage("the weak layer's faces have no node below or above an inner node"));
+          const double s = (n - bottom) / thickness;
+          constraints_.add_line(dofs[i]);
+          constraints_.add_entry(dofs[i], lower->second, 1 - s);
+          constraints_.add_entry(dofs[i], upper->second, s);
+        }
       }
   }
 
   template <int dim>
-  void SnowpackModel<dim>::condense_periodic(VectorType &vector) const
+  void SnowpackModel<dim>::condense_constraints(VectorType &vector) const
   {
-    if (scene_.pst.column_ends != SawTest::ColumnEnds::periodic)
+    if (!has_ties_)
       return;
-    // A copy's force acts on its master (the copy's displacement is the master's): moved there,
-    // across ranks through the ghost layer, and zeroed at the copy.
+    // A tied dof's force acts on its masters (its displacement is theirs, weighted): moved there,
+    // across ranks through the ghost layer, and zeroed at the tied dof.
     VectorType moved;
     initialize_vector(moved);
-    for (const PeriodicCopy &c : periodic_copies_)
-      moved.local_element(c.master) += c.weight * vector.local_element(c.copy);
-    for (const PeriodicCopy &c : periodic_copies_)
-      vector.local_element(c.copy) = 0;
+    for (const Tie &t : ties_)
+      moved.local_element(t.master) += t.weight * vector.local_element(t.tied);
+    for (const Tie &t : ties_)
+      vector.local_element(t.tied) = 0;
     moved.compress(VectorOperation::add);
     vector += moved;
   }
 
   template <int dim>
-  void SnowpackModel<dim>::distribute_periodic(VectorType &vector) const
+  void SnowpackModel<dim>::distribute_constraints(VectorType &vector) const
   {
-    if (scene_.pst.column_ends != SawTest::ColumnEnds::periodic)
+    if (!has_ties_)
       return;
     vector.zero_out_ghost_values();
     constraints_.distribute(vector);
@@ -295,8 +369,12 @@ namespace anticrack::fem
       data.column = std::min(n_columns_ - 1, (unsigned int)std::floor(cell->center()[0] / column_length));
       const BoundingBox<dim> box = cell->bounding_box();
       data.height = box.side_length(dim - 1);
+      // The weak layer's tied rows move as one element of the layer's thickness, linear through it
+      // (tie_weak_layer_nodes()): its stiffness and condensed mass are those of that element.
       for (unsigned int d = 0; d < dim; ++d)
-        data.inverse_h2 += std::pow(degree / box.side_length(d), 2);
+        data.inverse_h2 += d + 1 == dim && data.layer == layer_weak
+                             ? std::pow(1 / layers_[layer_weak].thickness, 2)
+                             : std::pow(degree / box.side_length(d), 2);
       data.density = layers_[data.layer].material.density;
       data.first_qp = committed_.size();
       data.dofs.resize(fe_.n_dofs_per_cell());
@@ -364,10 +442,13 @@ namespace anticrack::fem
     }
     gravity_force_.compress(VectorOperation::add);
     lumped_mass_.compress(VectorOperation::add);
-    condense_periodic(gravity_force_);
+    // The tied dofs' mass moves onto their masters with the constraint's weights: the row sums of
+    // Cᵀ M C (the weights of a tie sum to 1), the lumped mass of the constrained system.
+    condense_constraints(gravity_force_);
+    condense_constraints(lumped_mass_);
     zero_fixed(gravity_force_);
     for (unsigned int i = 0; i < partitioner_->locally_owned_size(); ++i)
-      if (fixed_[i])
+      if (fixed_[i] || tied_[i])
         lumped_mass_.local_element(i) = 1;
   }
 
@@ -576,7 +657,7 @@ namespace anticrack::fem
       max_rate2 = std::max(max_rate2, cell_modulus / data.density * data.inverse_h2);
     }
     internal_force.compress(VectorOperation::add);
-    condense_periodic(internal_force);
+    condense_constraints(internal_force);
     zero_fixed(internal_force);
     if (request.tangent)
       request.tangent->compress(VectorOperation::add);
@@ -642,20 +723,27 @@ namespace anticrack::fem
   CrackFronts SnowpackModel<dim>::crack_fronts(double failure_fraction) const
   {
     std::vector<int> failed(n_columns_, 0), locked(n_columns_, 0);
+    // Per column: Σ h_e mean(−ε_nn) and Σ h_e / H over its weak-layer cells (the second counts the
+    // cells across the width in 3D).
+    std::vector<double> closure(n_columns_, 0.), across(n_columns_, 0.);
     const CamClayParameters &weak = cell_parameters_[layer_weak];
-    const double densification = weak.densification_strain;
+    const double densification = weak.densification_strain, thickness = layers_[layer_weak].thickness;
     for (const CellData &data : cells_)
     {
       if (data.layer != layer_weak)
         continue;
-      double softening = 0;
+      double softening = 0, compaction = 0;
       bool lock = false;
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
       {
+        const SymmetricTensor<2, 3> &strain = committed_[data.first_qp + q].material.strain;
         softening += softening_of(committed_[data.first_qp + q]);
-        lock = lock || (densification > 0 && -trace(committed_[data.first_qp + q].material.strain) > densification);
+        compaction -= strain[dim - 1][dim - 1];
+        lock = lock || (densification > 0 && -trace(strain) > densification);
       }
       softening /= quadrature_.size();
+      closure[data.column] += data.height * compaction / quadrature_.size();
+      across[data.column] += data.height / thickness;
       if (data.intact < 0.5 || softening >= failure_fraction)
         failed[data.column] = 1;
       if (lock)
@@ -663,6 +751,8 @@ namespace anticrack::fem
     }
     Utilities::MPI::max(failed, communicator_, failed);
     Utilities::MPI::max(locked, communicator_, locked);
+    Utilities::MPI::sum(closure, communicator_, closure);
+    Utilities::MPI::sum(across, communicator_, across);
     const double column_length = scene_.pst.column_length / n_columns_;
     auto front = [&](const std::vector<int> &flags) {
       unsigned int k = 0;
@@ -683,6 +773,16 @@ namespace anticrack::fem
         fronts.touchdown = (k + 1) * column_length;
     }
     fronts.failed_anywhere = std::any_of(failed.begin(), failed.end(), [](int f) { return f != 0; });
+    double locked_sum = 0;
+    unsigned int locked_count = 0;
+    for (unsigned int column = 0; column < n_columns_; ++column)
+    {
+      const double c = across[column] > 0 ? closure[column] / across[column] : 0.;
+      fronts.largest_closure = std::max(fronts.largest_closure, c);
+      if (locked[column])
+        locked_sum += c, ++locked_count;
+    }
+    fronts.locked_closure = locked_count > 0 ? locked_sum / locked_count : 0.;
     return fronts;
   }
 

@@ -10,12 +10,19 @@
 // slab layers from the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
 // quadrature point (docs/physics.md §0); the base (normal coordinate 0) is fixed.
 //
-// Softening regularisation (crack band, Bažant & Oh 1983; fem/model/crack_band.h): the hardening
-// factor of a cohesive Cam-Clay cell is ξ_e = ξ h_e / h_ref, with h_e the cell's height normal to the slope and h_ref
-// the material's reference thickness (the specimen height over which the calibration measured the
-// softening strain). The collapse law dissipates ∫ p0 dα over Δα = asinh(p0/K)/ξ_e, so a band one
-// element high dissipates per unit area h_e ∫ p0 dα, which does not depend on h_e
-// (tests/fem: crack-band test).
+// The weak layer collapses as one band through its thickness (docs/fem.md "The weak layer, one
+// band"): every node strictly inside it is tied to the nodes on its lower and upper faces at the same
+// position along the slope, u = (1 − s) u_lower + s u_upper with s the fraction of the thickness
+// (AffineConstraints, like the periodic copies). The displacement is therefore linear through the
+// layer whatever the number of element rows, as in the beam-on-foundation models (Gaume et al.
+// 2017; Rosendahl et al. 2025), and the rows only sample the layer's state more finely. So the
+// layer's own parameters hold in every row: the lock-up strain h_c / H closes a collapsed column by
+// its collapse height h_c, and ξ_H = ξ H / h_ref gives the softening the plastic closure
+// H Δα of the calibrated specimen (h_ref Δα_ref), hence its dissipation per unit area
+// (fem/model/crack_band.h), whatever the rows and the element length.
+// Other cohesive Cam-Clay layers (slab, substratum) soften in a crack band of one element row:
+// ξ_e = ξ h_e / h_ref, so a band one element high dissipates per unit area h_e ∫ p0 dα over
+// Δα = asinh(p0/K)/ξ_e, which does not depend on h_e (Bažant & Oh 1983).
 //
 // The saw: weak-layer cells are removed progressively as the saw passes them; a cell's intact
 // fraction f ∈ [0, 1] is the part of its length not yet cut, and its Cam-Clay stress and weight are
@@ -80,6 +87,10 @@ namespace anticrack::fem
     double crack_tip = 0;  ///< far end of the contiguous failed (or cut) columns
     double touchdown = 0;  ///< far end of the farthest column where the collapsed layer locked up
     bool failed_anywhere = false;
+    /// Closure of the weak layer, ∫ −ε_nn dn through its thickness (mean over a column's width in
+    /// 3D) [m]: the largest over the columns, and the mean over the locked-up columns (0 if none).
+    double largest_closure = 0;
+    double locked_closure = 0;
   };
 
   /// Average state of one locally owned cell (for tests and diagnostics).
@@ -129,16 +140,20 @@ namespace anticrack::fem
 
     /// True for the dofs of the fixed base (locally owned or ghost), indexed by local element.
     bool is_fixed(unsigned int local_index) const { return fixed_[local_index]; }
+    /// True for the dofs that follow others (locally owned or ghost): the periodic copies and the
+    /// nodes inside the weak layer (the band, see above). Their force and mass are moved onto their
+    /// masters (condense_constraints()) and their values follow (distribute_constraints()).
+    bool is_tied(unsigned int local_index) const { return tied_[local_index]; }
     /// Sets the fixed dofs of a vector to zero.
     void zero_fixed(VectorType &vector) const;
 
-    /// Periodic column ends (PST/Column ends): moves the entries of the periodic copies of nodes onto
-    /// their masters (a force vector assembled cell by cell; internal_force and gravity_force are so
-    /// already). No-op with free ends.
-    void condense_periodic(VectorType &vector) const;
-    /// Periodic column ends: sets each copy's entry to its master's (a displacement or its
-    /// increment, after a solve). No-op with free ends.
-    void distribute_periodic(VectorType &vector) const;
+    /// Moves the entries of the tied dofs (periodic copies, nodes inside the weak layer) onto their
+    /// masters with the constraint's weights and zeroes them: Cᵀ of a force vector assembled cell by
+    /// cell (internal_force, gravity_force and lumped_mass are so already). No-op without ties.
+    void condense_constraints(VectorType &vector) const;
+    /// Sets each tied dof's entry from its masters (a displacement, a velocity or an increment,
+    /// after an update of the masters). No-op without ties.
+    void distribute_constraints(VectorType &vector) const;
 
     /// Cuts the weak layer up to `cut_length` from the cut end (set_cut(0): intact). Returns true
     /// if any cell changed its intact fraction.
@@ -199,6 +214,9 @@ namespace anticrack::fem
 
     void make_mesh();
     void setup_dofs();
+    /// The weak layer's band constraints (header): every node strictly inside the weak layer
+    /// follows the nodes below and above it on the layer's faces, linearly in the normal coordinate.
+    void tie_weak_layer_nodes();
     void setup_cells();
     void assemble_gravity_and_mass();
     void sum_gravity_and_mass();
@@ -217,13 +235,14 @@ namespace anticrack::fem
     dealii::AffineConstraints<double> constraints_;
     dealii::IndexSet locally_owned_dofs_, locally_relevant_dofs_;
     std::shared_ptr<const dealii::Utilities::MPI::Partitioner> partitioner_;
-    std::vector<bool> fixed_;
-    struct PeriodicCopy
+    std::vector<bool> fixed_, tied_;
+    struct Tie
     {
-      unsigned int copy, master; ///< local indices (the copy locally owned, the master owned or ghost)
+      unsigned int tied, master; ///< local indices (the tied dof locally owned, the master owned or ghost)
       double weight;
     };
-    std::vector<PeriodicCopy> periodic_copies_;
+    std::vector<Tie> ties_;  ///< locally owned tied dofs, one entry per master
+    bool has_ties_ = false;  ///< on any rank
 
     std::vector<Layer> layers_;                    ///< by layer id
     std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)

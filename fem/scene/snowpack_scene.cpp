@@ -117,9 +117,9 @@ namespace anticrack::fem
                      "must be > 0 when a collapse height is given (is " + format_number(layer.densification_modulus) + ")");
       if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
         problems.add(section + "/Collapse height [m]",
-                     "the crack band (one element row) must be able to close by the collapse height: it must be "
-                     "< 0.9 element heights, " + format_number(0.9 * band_height) + " m (is " +
-                       format_number(layer.collapse_height) + "); use fewer elements through the layer");
+                     "the band that collapses (the weak layer's thickness; one element row of another layer) "
+                     "must be able to close by the collapse height: it must be < 0.9 band heights, " +
+                       format_number(0.9 * band_height) + " m (is " + format_number(layer.collapse_height) + ")");
       // The crack band scales ξ by the band height over the thickness the softening was measured
       // over (fem/model/crack_band.h): without that thickness, ξ would be a mesh parameter.
       if (layer.model == Layer::Model::cohesive_cam_clay && !(layer.material.reference_thickness > 0))

@@ -44,15 +44,19 @@ namespace anticrack::fem
     const VectorType &mass = model_.lumped_mass();
     const VectorType &gravity = model_.gravity_force();
     const bool first = steps_ == 0;
+    const double previous_dt = dt_;
     dt_ = analysis.cfl_safety * stable_dt_;
-    const double velocity_step = first ? dt_ / 2 : dt_;
+    // Central differences with a variable step: the velocity lives at the half steps, so the
+    // acceleration at t_n moves it over ½ (Δt_{n−1} + Δt_n) (Belytschko et al. 2014, ch. 6);
+    // from rest the first half step is Δt_0 / 2.
+    const double velocity_step = first ? dt_ / 2 : (previous_dt + dt_) / 2;
     const unsigned int n = mass.locally_owned_size();
 
     // v_{n+½} = v_{n−½} + Δt M⁻¹ (f_g − f_int − α_M M v), then u_{n+1} = u_n + Δt v_{n+½}.
     double damping_power = 0, external_power = 0, kinetic = 0;
     for (unsigned int i = 0; i < n; ++i)
     {
-      if (model_.is_fixed(i))
+      if (model_.is_fixed(i) || model_.is_tied(i))
         continue;
       const double m = mass.local_element(i);
       double &v = v_.local_element(i);
@@ -63,6 +67,8 @@ namespace anticrack::fem
       external_power += gravity.local_element(i) * v;
       kinetic += 0.5 * m * v * v;
     }
+    model_.distribute_constraints(u_); // the tied dofs follow their masters
+    model_.distribute_constraints(v_);
     u_.update_ghost_values();
     v_.update_ghost_values();
     external_work_ += dt_ * Utilities::MPI::sum(external_power, model_.communicator());

@@ -4,7 +4,7 @@
 // constitutive loop) and optional mass-proportional damping.
 //
 //   a_n = M⁻¹ (λ f_g − f_int(u_n, v_{n−½}) − α_M M v_{n−½})
-//   v_{n+½} = v_{n−½} + Δt_n a_n        (the first step uses Δt_0/2 from v_0)
+//   v_{n+½} = v_{n−½} + ½ (Δt_{n−1} + Δt_n) a_n   (centred; the first step uses Δt_0/2 from v_0)
 //   u_{n+1} = u_n + Δt_n v_{n+½}
 //
 // Energy bookkeeping: external work f_g · Δu; kinetic ½ v·M v at half steps; viscous work of the

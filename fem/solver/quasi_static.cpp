@@ -134,7 +134,7 @@ namespace anticrack::fem
         }
         la.from_petsc(la.solution, increment);
         model_.zero_fixed(increment);
-        model_.distribute_periodic(increment);
+        model_.distribute_constraints(increment);
         ++total_iterations_;
 
         // Backtracking line search on |r| (Armijo-like sufficient decrease, step-42).

@@ -1705,8 +1705,9 @@ def fem_bad_input(work):
     cases = [
         ("unknown", pst_scene(insert={"PST": ["set Cut lenght [m] = 0.3"]}), ["Cut lenght [m]"]),
         ("cut", pst_scene({"PST/Cut length [m]": "1.0"}), ["PST/Cut length [m]", "(is 1)"]),
-        ("collapse", pst_scene({"Snowpack/Weak layer/Collapse height [m]": "0.0095"}),
-         ["Snowpack/Weak layer/Collapse height [m]", "(is 0.0095)"]),
+        # The weak layer (2 cm) collapses as one band: it cannot close by more than 0.9 of it.
+        ("collapse", pst_scene({"Snowpack/Weak layer/Collapse height [m]": "0.019"}),
+         ["Snowpack/Weak layer/Collapse height [m]", "< 0.9 band heights, 0.018 m (is 0.019)"]),
         # An energy release rate that keeps the dynamic PST's saw, explicit and output entries.
         ("other analysis", pst_scene({"Analysis/Type": "energy release rate", "Snowpack/Weak layer/Model": "elastic"}),
          ["Analysis/Explicit/End time [s] (line", "belongs to Analysis/Type = `explicit dynamics`, not to this "

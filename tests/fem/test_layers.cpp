@@ -69,11 +69,15 @@ namespace
     EXPECT_DOUBLE_EQ(element_height(scene, 2), 0.025);
   }
 
-  TEST(FemCrackBand, BandIsOneElementRowOrTheWholeLayer)
+  // The weak layer is one band through its thickness, whatever its rows (its inner nodes are tied);
+  // another layer softens in one element row, or over its thickness without the crack band.
+  TEST(FemCrackBand, TheWeakLayerIsOneBandOtherLayersOneElementRow)
   {
     SnowpackScene scene = three_slab_layers();
-    EXPECT_DOUBLE_EQ(band_height(scene, layer_weak), 0.005);
+    EXPECT_DOUBLE_EQ(band_height(scene, layer_weak), 0.02);
+    EXPECT_DOUBLE_EQ(band_height(scene, 2), 0.025);
     scene.analysis.crack_band = false;
     EXPECT_DOUBLE_EQ(band_height(scene, layer_weak), 0.02);
+    EXPECT_DOUBLE_EQ(band_height(scene, 2), 0.05);
   }
 } // namespace

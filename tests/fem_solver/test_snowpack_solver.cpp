@@ -156,6 +156,15 @@ namespace
     };
   }
 
+  /// The overburden a weak layer between `bottom` and `top` carries in the model: its rows deform as
+  /// one band (strain uniform through it), so each carries the overburden at the layer's mid-height,
+  /// the mean of the exact linear profile (they differ by ρ_wl g H / 2 at the faces).
+  std::function<double(double)> with_weak_layer_band(std::function<double(double)> overburden, double bottom,
+                                                     double top)
+  {
+    return [=](double z) { return overburden(z > bottom && z < top ? (bottom + top) / 2 : z); };
+  }
+
   TEST(FemGravity, LayeredColumnCarriesItsWeight)
   {
     const SnowpackScene scene = scene_from(
@@ -174,7 +183,8 @@ namespace
     solver.apply_gravity(u, 1);
 
     const double g = 9.81;
-    const auto overburden = overburden_of({{0, 0.2, 350}, {0.2, 0.22, 150}, {0.22, 0.52, 300}, {0.52, 0.62, 120}});
+    const auto overburden = with_weak_layer_band(
+      overburden_of({{0, 0.2, 350}, {0.2, 0.22, 150}, {0.22, 0.52, 300}, {0.52, 0.62, 120}}), 0.2, 0.22);
     unsigned int checked = 0;
     for (const auto &cell : model.cell_summaries())
       if (std::abs(cell.center[0] - 10.0) < 1.0)
@@ -208,7 +218,8 @@ namespace
       model.initialize_vector(u);
       solver.apply_gravity(u, 1);
       const double psi = 30 * M_PI / 180;
-      const auto overburden = overburden_of({{0, 0.1, 350}, {0.1, 0.12, 150}, {0.12, 0.42, 250}});
+      const auto overburden =
+        with_weak_layer_band(overburden_of({{0, 0.1, 350}, {0.1, 0.12, 150}, {0.12, 0.42, 250}}), 0.1, 0.12);
       double worst = 0;
       for (const auto &cell : model.cell_summaries())
       {
@@ -331,12 +342,11 @@ namespace
   // Small dynamic PSTs (1 m column, 2 cm elements, fixed cut made at once after the gravity
   // equilibrium). The weak layer (p0 = 5 kPa) fails at the tip of a 0.45 m cut; whether the crack
   // then runs through depends on the energy the slab releases by falling through the collapse
-  // height, ρ g H h_c per unit area, against the energy the weak layer dissipates (softening plus
-  // residual flow, about 0.5–1 J/m² here). With h_c = 3 mm the slab releases ~3 J/m²: the crack
-  // reaches the end (so it does from h_c = 1 mm up). With h_c = 0.5 mm (0.5 J/m²) it runs 0.2 m
-  // ahead of the cut and stops: arrest.
-  std::string small_pst(double collapse_height, double cut, unsigned int weak_layer_elements = 2,
-                        bool crack_band = true)
+  // height, ρ g D h_c per unit area, against the energy the weak layer dissipates (softening plus
+  // residual flow, about 1 J/m² here). With h_c = 3 mm the slab releases ~3 J/m²: the crack
+  // reaches the end (so it does from h_c = 1.4 mm up, measured). With h_c = 1.2 mm (1.2 J/m²) it
+  // runs ahead of the cut and stops: arrest (1.0 mm: it stops 0.09 m ahead, within the lead).
+  std::string small_pst(double collapse_height, double cut, unsigned int weak_layer_elements = 2)
   {
     std::ostringstream weak;
     weak << "    set Compressive strength p0 [Pa] = 5000\n    set Tensile strength ratio beta = 0.5\n"
@@ -350,8 +360,7 @@ namespace
          << "end\nsubsection PST\n  set Column length [m] = 1.0\n  set Saw = fixed\n  set Cut length [m] = " << cut
          << "\nend\nsubsection Mesh\n  set Element length [m] = 0.02\n  set Weak layer elements = " << weak_layer_elements
          << "\n  set Slab element height [m] = 0.08\n  set Substratum element height [m] = 0.04\nend\n"
-            "subsection Analysis\n  set Type = explicit dynamics\n  set Crack band regularisation = "
-         << (crack_band ? "true" : "false") << "\n  subsection Crack detection\n"
+            "subsection Analysis\n  set Type = explicit dynamics\n  subsection Crack detection\n"
             "    set Self-propagation lead [m] = 0.1\n  end\n  subsection Explicit\n    set End time [s] = 0.25\n"
             "  end\nend\n"
             "subsection Output\n  set Field interval [s] = 0\n  set Progress interval = 0\nend\n";
@@ -388,7 +397,7 @@ namespace
   {
     SnowpackRunOptions options;
     options.output_directory = temporary_directory("pst_arrest");
-    const Json r = run_snowpack(scene_from(small_pst(0.0005, 0.45)), options, MPI_COMM_WORLD);
+    const Json r = run_snowpack(scene_from(small_pst(0.0012, 0.45)), options, MPI_COMM_WORLD);
     EXPECT_EQ(r["crack"], "arrested") << r.dump(1);
     EXPECT_GT(double(r["arrest_position_m"]), 0.45 + 0.1) << r.dump(1);
     EXPECT_LT(double(r["arrest_position_m"]), 0.95) << r.dump(1);
@@ -399,31 +408,41 @@ namespace
 namespace
 {
   // ------------------------------------------------------------------------------------------
-  // Crack band: the plastic energy the weak layer dissipates while the crack runs through the
-  // column does not depend on the number of elements through its thickness once the softening can
-  // localise (2 and 4 rows: measured 1.368 J/m of width both, to 0.1 %), whereas the local model
-  // dissipates less as the rows get thinner (0.961 → 0.898 J/m, −7 %: a band of one row softens over
-  // a smaller volume). Tolerances: 2 % for the regularised pair (the crack speed and touchdown, hence
-  // the residual flow around the tip, vary by a few per cent with the mesh), and a required drop of
-  // at least 4 % for the local model, so that the test fails if the regularisation were not needed
-  // or did nothing.
-  double dissipated_through_column(unsigned int rows, bool crack_band)
+  // The weak layer collapses as one band through its thickness (its inner nodes are tied), so a
+  // collapsed column closes by the collapse height whatever the rows, and the crack dissipates the
+  // same energy. Before the band, each row closed by h_c (4 rows: 4 h_c) and the rows changed the
+  // touchdown and speed.
+  // Closure reference: the column locks up at h_c and then carries the slab's weight ρ g D = 981 Pa
+  // on the lock-up spring, which adds H ρ g D / K_d = 0.02 · 981 / 1e6 m = 0.65 % of h_c; the slab
+  // still swings at the end time. Tolerance 2 % (the issue's), which a closure of 2 h_c or of
+  // h_c/2 (a band of one row of two) misses by far. Dissipation: the same energy per unit crack
+  // area, 2 % between the rows (the row count changes only where the layer's state is sampled).
+  struct BandRun
+  {
+    double closure, dissipated;
+  };
+
+  BandRun crack_through_column(unsigned int rows)
   {
     SnowpackRunOptions options;
-    options.output_directory = temporary_directory("band_" + std::to_string(rows) + (crack_band ? "_on" : "_off"));
-    const Json r = run_snowpack(scene_from(small_pst(0.003, 0.45, rows, crack_band)), options, MPI_COMM_WORLD);
+    options.output_directory = temporary_directory("band_" + std::to_string(rows));
+    const Json r = run_snowpack(scene_from(small_pst(0.003, 0.45, rows)), options, MPI_COMM_WORLD);
     EXPECT_EQ(r["crack"], "reached the column end") << r.dump(1);
-    std::cout << rows << " rows, crack band " << crack_band << ": dissipated "
-              << double(r["energies_per_width"]["dissipated_plastic_J"]) << " J/m\n";
-    return r["energies_per_width"]["dissipated_plastic_J"];
+    const BandRun run{r["weak_layer_closure"]["mean_over_locked_columns_m"],
+                      r["energies_per_width"]["dissipated_plastic_J"]};
+    std::cout << rows << " rows: closure " << run.closure << " m, dissipated " << run.dissipated << " J/m\n";
+    return run;
   }
 
-  TEST(FemCrackBand, DissipatedEnergyDoesNotDependOnTheRowsThroughTheWeakLayer)
+  TEST(FemWeakLayerBand, CollapsedColumnClosesByTheCollapseHeightWhateverTheRows)
   {
-    const double band_2 = dissipated_through_column(2, true), band_4 = dissipated_through_column(4, true);
-    EXPECT_NEAR(band_4 / band_2, 1.0, 0.02);
-    const double local_2 = dissipated_through_column(2, false), local_4 = dissipated_through_column(4, false);
-    EXPECT_LT(local_4 / local_2, 0.96);
+    const BandRun one = crack_through_column(1);
+    for (const unsigned int rows : {1u, 2u, 4u, 8u})
+    {
+      const BandRun run = rows == 1 ? one : crack_through_column(rows);
+      EXPECT_NEAR(run.closure / 0.003, 1.0, 0.02) << rows << " rows";
+      EXPECT_NEAR(run.dissipated / one.dissipated, 1.0, 0.02) << rows << " rows";
+    }
   }
 
   // ------------------------------------------------------------------------------------------
