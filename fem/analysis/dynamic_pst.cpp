@@ -110,25 +110,27 @@ namespace anticrack::fem
         ExplicitDynamics<dim> &dynamics = *dynamics_;
         while (dynamics.time() < analysis.end_time && !end_time_)
         {
-          if (scene_.pst.saw == SawTest::Saw::advancing && !critical_cut_)
-          {
-            const double saw = std::min(scene_.pst.saw_speed * dynamics.time(), scene_.pst.cut_length);
-            if (saw > cut_)
-            {
-              cut_ = saw;
-              if (model_.set_cut(cut_))
-                dynamics.refresh_internal_force();
-            }
-          }
           try
           {
+            if (scene_.pst.saw == SawTest::Saw::advancing && !critical_cut_)
+            {
+              const double saw = std::min(scene_.pst.saw_speed * dynamics.time(), scene_.pst.cut_length);
+              if (saw > cut_)
+              {
+                cut_ = saw;
+                if (model_.set_cut(cut_))
+                  dynamics.refresh_internal_force();
+              }
+            }
             dynamics.step();
           }
           catch (const ReturnMappingError &e)
           {
-            throw NumericalFailure("dynamic PST at t = " + format_number(dynamics.time(), 6) + " s (step " +
-                                   std::to_string(dynamics.steps()) + "): " + e.what());
+            throw failure("return mapping", e.what());
           }
+          if (!dynamics.step_finite())
+            throw failure("non-finite value", "a non-finite force, velocity or time step: " +
+                                                  dynamics.non_finite_location());
           if (dynamics.time() >= next_series_)
           {
             fronts_ = model_.crack_fronts(analysis.failure_fraction);
@@ -171,13 +173,28 @@ namespace anticrack::fem
         fields_.write(model_, dynamics.displacement(), dynamics.time());
       }
 
+      /// The failure `what` at `where` (a cell, a node) now: summary.json's "failure" gets both and
+      /// the step, time, time step and cut length; the series written up to here are kept.
+      NumericalFailure failure(const std::string &what, const std::string &where) const
+      {
+        const ExplicitDynamics<dim> &dynamics = *dynamics_;
+        Json details = {{"what", what},
+                        {"where", where},
+                        {"when", {{"phase", "explicit dynamics"},
+                                  {"step", dynamics.steps()},
+                                  {"time_s", dynamics.time()},
+                                  {"time_step_s", dynamics.time_step()},
+                                  {"cut_length_m", cut_}}}};
+        return NumericalFailure("dynamic PST: " + what + " at t = " + format_number(dynamics.time(), 6) + " s (step " +
+                                  std::to_string(dynamics.steps()) + ", cut " + format_number(cut_, 4) + " m): " + where,
+                                details);
+      }
+
       void record()
       {
         const ExplicitDynamics<dim> &dynamics = *dynamics_;
         if (!dynamics.finite())
-          throw NumericalFailure("dynamic PST: non-finite displacement or velocity at t = " +
-                                 format_number(dynamics.time(), 6) + " s (step " + std::to_string(dynamics.steps()) +
-                                 ", dt = " + format_number(dynamics.time_step(), 3) + " s)");
+          throw failure("non-finite value", "a non-finite displacement or velocity: " + dynamics.non_finite_location());
         const Energies e = per_width<dim>(dynamics.energies(), scene_);
         series_.append({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
                         e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});

@@ -236,10 +236,21 @@ namespace anticrack::fem
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)
   {
     const auto start = std::chrono::steady_clock::now();
-    solver.apply_gravity(u, model.scene().analysis.gravity_steps, [&](double load, const NewtonResult &r) {
-      log.line("[fem] gravity ", format_number(100 * load, 3), " %: ", r.iterations, " Newton iterations, |r|/|f| = ",
-               format_number(r.relative_residual, 2));
-    });
+    try
+    {
+      solver.apply_gravity(u, model.scene().analysis.gravity_steps, [&](double load, const NewtonResult &r) {
+        log.line("[fem] gravity ", format_number(100 * load, 3), " %: ", r.iterations, " Newton iterations, |r|/|f| = ",
+                 format_number(r.relative_residual, 2));
+      });
+    }
+    catch (const GravityRampFailure &e)
+    {
+      // Newton's reason names the cell of a failed return mapping, or the linear solver.
+      throw NumericalFailure(std::string("gravity equilibrium: ") + e.what(),
+                             {{"what", "gravity ramp"},
+                              {"where", e.what()},
+                              {"when", {{"phase", "gravity equilibrium"}, {"load_factor", e.load_factor}}}});
+    }
     log.line("[fem] gravity equilibrium in ",
              format_number(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 3), " s");
   }

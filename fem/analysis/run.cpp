@@ -159,7 +159,9 @@ namespace anticrack::fem
     catch (const fem::NumericalFailure &e)
     {
       summary["status"] = "failed";
-      summary["failure"] = e.what();
+      Json failure = e.details();
+      failure["message"] = e.what();
+      summary["failure"] = failure;
       code = exit_numerical_failure;
       ConditionalStream(&std::cerr, root) << "anticrack: numerical failure: " << e.what() << "\n";
     }

@@ -31,10 +31,19 @@ namespace anticrack::fem
 
   /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that
   /// cannot converge, non-finite values, unstable step); the message says what, where and when.
+  /// `details` is written with the message into summary.json's "failure": what failed, where (cell,
+  /// layer, position) and when (step, time, cut length, load factor), as far as the thrower knows.
   class NumericalFailure : public std::runtime_error
   {
   public:
-    using std::runtime_error::runtime_error;
+    explicit NumericalFailure(const std::string &message, Json details = Json::object())
+      : std::runtime_error(message)
+      , details_(std::move(details))
+    {}
+    const Json &details() const { return details_; }
+
+  private:
+    Json details_;
   };
 
   /// Runs the scene; returns the "results" of summary.json (every number with its unit in its name).

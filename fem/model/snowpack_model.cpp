@@ -720,6 +720,40 @@ namespace anticrack::fem
   }
 
   template <int dim>
+  std::string SnowpackModel<dim>::locate_non_finite(const std::vector<const VectorType *> &vectors) const
+  {
+    std::string found;
+    for (unsigned int i = 0; i < partitioner_->locally_owned_size() && found.empty(); ++i)
+      for (const VectorType *vector : vectors)
+        if (!std::isfinite(vector->local_element(i)))
+        {
+          std::map<types::global_dof_index, Point<dim>> points;
+          DoFTools::map_dofs_to_support_points(MappingQ1<dim>(), dof_handler_, points);
+          const types::global_dof_index dof = partitioner_->local_to_global(i);
+          const Point<dim> &x = points.at(dof);
+          unsigned int component = 0;
+          for (unsigned int c = 0; c < dim; ++c)
+          {
+            ComponentMask mask(dim, false);
+            mask.set(c, true);
+            if (DoFTools::extract_dofs(dof_handler_, mask).is_element(dof))
+              component = c;
+          }
+          std::ostringstream where;
+          where << "node at (" << x << ") m (along the slope" << (dim == 3 ? ", across" : "")
+                << ", normal), displacement component " << component << ", in the "
+                << layers_[layer_id_at(layer_tops(scene_.snowpack), x[dim - 1])].label << " (rank "
+                << Utilities::MPI::this_mpi_process(communicator_) << ")";
+          found = where.str();
+          break;
+        }
+    for (const std::string &from_rank : Utilities::MPI::all_gather(communicator_, found))
+      if (!from_rank.empty())
+        return from_rank;
+    return "";
+  }
+
+  template <int dim>
   CrackFronts SnowpackModel<dim>::crack_fronts(double failure_fraction) const
   {
     std::vector<int> failed(n_columns_, 0), locked(n_columns_, 0);

@@ -188,6 +188,11 @@ namespace anticrack::fem
     /// Elastic and dissipated energies of the committed states, over all ranks.
     Energies energies() const;
 
+    /// Where the first non-finite entry of the given vectors (same layout, ghosted) lies: its node's
+    /// position, component and layer, on the lowest rank that has one ("" if none). Collective;
+    /// for failure reports only (it maps every dof to its support point).
+    std::string locate_non_finite(const std::vector<const VectorType *> &vectors) const;
+
     /// Crack and touchdown fronts of the committed states, over all ranks.
     CrackFronts crack_fronts(double failure_fraction) const;
 

@@ -6,6 +6,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <limits>
 
 namespace anticrack::fem
 {
@@ -60,6 +61,10 @@ namespace anticrack::fem
         continue;
       const double m = mass.local_element(i);
       double &v = v_.local_element(i);
+      // A non-finite force or velocity poisons the summed power below (and so external_work_),
+      // which step_finite() checks on every rank after the step.
+      if (!std::isfinite(internal_force_.local_element(i)) || !std::isfinite(v))
+        external_power = std::numeric_limits<double>::quiet_NaN();
       const double damping = analysis.mass_damping * m * v;
       damping_power += damping * v;
       v += velocity_step * (gravity.local_element(i) - internal_force_.local_element(i) - damping) / m;

@@ -14,6 +14,8 @@
 
 #include "fem/model/snowpack_model.h"
 
+#include <cmath>
+
 namespace anticrack::fem
 {
   template <int dim>
@@ -31,8 +33,9 @@ namespace anticrack::fem
     /// An integrator whose state load() sets (resuming from a checkpoint): nothing is evaluated.
     ExplicitDynamics(SnowpackModel<dim> &model, const VectorType &u0, double initial_external_work, bool for_load);
 
-    /// One step. The model throws ReturnMappingError when a return mapping fails; non-finite
-    /// values are found by finite(), which the caller checks at its output intervals.
+    /// One step. The model throws ReturnMappingError when a return mapping fails. A non-finite
+    /// force, velocity or step makes the step's summed powers non-finite: step_finite() says so
+    /// after every step at no extra communication; finite() checks the fields themselves.
     void step();
 
     /// Re-evaluates the internal force at the current state, after the model changed (a cut).
@@ -55,6 +58,16 @@ namespace anticrack::fem
 
     /// True when every displacement and velocity is finite (over all ranks).
     bool finite() const;
+    /// Where the first non-finite displacement, velocity or force lies (SnowpackModel::
+    /// locate_non_finite(); collective).
+    std::string non_finite_location() const { return model_.locate_non_finite({&u_, &v_, &internal_force_}); }
+    /// True when the last step's force, velocity, kinetic energy, external work and next step are
+    /// finite on every rank (from the step's own reductions).
+    bool step_finite() const
+    {
+      return std::isfinite(kinetic_) && std::isfinite(external_work_) && std::isfinite(viscous_work_) &&
+             std::isfinite(stable_dt_);
+    }
 
     /// Largest displacement magnitude (over all ranks) [m].
     double max_displacement() const;

@@ -118,19 +118,33 @@ namespace anticrack::fem
         la.to_petsc(residual, la.rhs);
         la.solution = 0;
         SolverControl control(2000, 1e-10 * la.rhs.l2_norm());
-        if (const auto phase = model_.timer().scope("linear solves");
-            analysis.linear_solver == Analysis::LinearSolver::direct)
+        try
         {
-          PETScWrappers::SparseDirectMUMPS direct(control, model_.communicator());
-          direct.solve(la.matrix, la.solution, la.rhs);
+          const auto phase = model_.timer().scope("linear solves");
+          if (analysis.linear_solver == Analysis::LinearSolver::direct)
+          {
+            PETScWrappers::SparseDirectMUMPS direct(control, model_.communicator());
+            direct.solve(la.matrix, la.solution, la.rhs);
+          }
+          else
+          {
+            PETScWrappers::PreconditionBoomerAMG::AdditionalData data;
+            data.symmetric_operator = false;
+            PETScWrappers::PreconditionBoomerAMG amg(la.matrix, data);
+            PETScWrappers::SolverGMRES gmres(control, model_.communicator());
+            gmres.solve(la.matrix, la.solution, la.rhs, amg);
+          }
         }
-        else
+        catch (const dealii::ExceptionBase &e)
         {
-          PETScWrappers::PreconditionBoomerAMG::AdditionalData data;
-          data.symmetric_operator = false;
-          PETScWrappers::PreconditionBoomerAMG amg(la.matrix, data);
-          PETScWrappers::SolverGMRES gmres(control, model_.communicator());
-          gmres.solve(la.matrix, la.solution, la.rhs, amg);
+          // GMRES out of iterations (SolverControl::NoConvergence), a PETSc or MUMPS error (a
+          // singular or indefinite tangent): the step fails like a Newton that does not converge,
+          // and the caller halves its load or saw step. Every rank gets the same PETSc error.
+          std::ostringstream message;
+          message << "the linear solver failed in Newton iteration " << result.iterations << " (|r|/|f| = " << norm
+                  << "): " << e.get_exc_name();
+          result.failure = message.str();
+          break;
         }
         la.from_petsc(la.solution, increment);
         model_.zero_fixed(increment);
@@ -139,8 +153,9 @@ namespace anticrack::fem
 
         // Backtracking line search on |r| (Armijo-like sufficient decrease, step-42).
         double step = 1, trial_norm = 0;
+        bool accepted = false;
         typename SnowpackModel<dim>::Request force_only;
-        for (unsigned int k = 0; k < 8; ++k, step /= 2)
+        for (unsigned int k = 0; k < 8 && !accepted; ++k, step /= 2)
         {
           trial_u = u;
           trial_u.add(step, increment);
@@ -153,8 +168,16 @@ namespace anticrack::fem
           {
             trial_norm = std::numeric_limits<double>::infinity();
           }
-          if (trial_norm < (1 - 1e-4 * step) * norm)
-            break;
+          accepted = trial_norm < (1 - 1e-4 * step) * norm;
+        }
+        if (!accepted)
+        {
+          // No step down to 1/128 of Newton's decreases |r| enough: refused, not taken.
+          std::ostringstream message;
+          message << "the line search found no acceptable step in Newton iteration " << result.iterations
+                  << " (|r|/|f| = " << norm << ", " << trial_norm << " at the smallest step " << 2 * step << ")";
+          result.failure = message.str();
+          break;
         }
         u = trial_u;
         u.update_ghost_values();
@@ -194,7 +217,7 @@ namespace anticrack::fem
           std::ostringstream message;
           message << "the gravity ramp failed at load factor " << load + step << " with the smallest step "
                   << step << ": " << result.failure;
-          throw std::runtime_error(message.str());
+          throw GravityRampFailure(message.str(), load + step);
         }
         step /= 2;
         continue;

@@ -3,6 +3,8 @@
 // BoomerAMG), and load steps that adapt (halve on failure, grow after easy convergence).
 #pragma once
 
+#include <stdexcept>
+
 #include "fem/model/snowpack_model.h"
 
 #include <functional>
@@ -20,6 +22,18 @@ namespace anticrack::fem
     std::string failure;          ///< why it did not converge (empty when it did)
   };
 
+  /// The gravity ramp could not be continued: Newton failed at `load_factor` even with the
+  /// smallest load step. The message names the load factor and Newton's reason.
+  class GravityRampFailure : public std::runtime_error
+  {
+  public:
+    GravityRampFailure(const std::string &message, double load_factor)
+      : std::runtime_error(message)
+      , load_factor(load_factor)
+    {}
+    double load_factor;
+  };
+
   template <int dim>
   class QuasiStaticSolver
   {
@@ -35,7 +49,7 @@ namespace anticrack::fem
     NewtonResult solve(VectorType &u, double load_factor);
 
     /// Ramps gravity from 0 to 1 in adaptive steps (at least `initial_steps`); u starts at zero.
-    /// Throws std::runtime_error naming the load factor when a step cannot be made smaller than
+    /// Throws GravityRampFailure naming the load factor when a step cannot be made smaller than
     /// 1e-4 and still fails. `progress` is called after every converged step.
     void apply_gravity(VectorType &u, unsigned int initial_steps,
                        const std::function<void(double load_factor, const NewtonResult &)> &progress = {});

@@ -1708,6 +1708,40 @@ def fem_mpi_equals_serial(work):
 
 
 @case
+def fem_numerical_failure(work):
+    """A dynamic PST whose step is unstable stops at once with exit 1 and a summary.json that says
+    what failed, where and when, and keeps the series up to there. Mass damping alpha_M = 2e6 /s
+    makes the explicit update v (1 - alpha_M dt) grow by |1 - alpha_M dt| ~ 90 per step (dt ~ 4.5e-5
+    s; central differences with explicit damping need alpha_M dt < 2): the strains overflow within
+    some tens of steps. The failure must be found in the step it happens, not at a series row: the
+    series interval is longer than the whole run."""
+    scene = write(os.path.join(work, "unstable.prm"), pst_scene(
+        {"Output/Field interval [s]": "0"},
+        insert={"Analysis/Explicit": ["set Mass damping [1/s] = 2e6"], "Output": ["set Series interval [s] = 1"]}))
+    out = os.path.join(work, "run")
+    _, stderr = anticrack("run", scene, "-o", out, expect=1)
+    check("numerical failure" in stderr, f"stderr does not say what happened:\n{stderr}")
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    failure = summary.get("failure", {})
+    # What fails first is the weak layer's return mapping, which an overflowing strain defeats, or
+    # else a non-finite force or velocity; either stops the run where it happens.
+    check(summary.get("status") == "failed" and failure.get("what") in ("return mapping", "non-finite value"),
+          f"summary.json status {summary.get('status')!r}, failure {failure!r}")
+    when = failure.get("when", {})
+    check(when.get("phase") == "explicit dynamics" and 0 < when.get("step", 0) < 1000 and
+          0 < when.get("time_s", 0) < 0.02 and when.get("cut_length_m") == PST_CUT,
+          f"failure 'when' {when!r}: expected the explicit phase within its first 1000 steps, cut {PST_CUT} m")
+    where = failure.get("where", "")
+    check(("cell centre" in where or "node at (" in where) and
+          any(layer in where for layer in ("weak layer", "slab layer", "substratum")),
+          f"failure 'where' {where!r} names no cell or node and no layer")
+    check("results" not in summary, "a failed run reports results")
+    with h5py.File(os.path.join(out, "series.h5"), "r") as f:
+        check(len(f["time"][()]) >= 1, "series.h5 lost the rows before the failure")
+
+
+@case
 def fem_bad_input(work):
     """Snowpack scenes refused with exit 2, nothing written and the entry named: an unknown PST
     entry, a cut as long as the column, a collapse height the crack band cannot close, a weak layer
