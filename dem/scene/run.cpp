@@ -8,6 +8,7 @@
 #include "dem/scene/history_columns.h"
 #include "dem/scene/model.h"
 #include "util/input_error.h"
+#include "util/stop_signals.h"
 #include "util/phase_timer.h"
 #include "util/progress.h"
 #include "util/run_summary.h"
@@ -15,7 +16,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -33,32 +33,6 @@ namespace anticrack::dem
 
   namespace
   {
-    // Ctrl-C / SIGTERM end the run between two chunks of steps, with a checkpoint if the scene
-    // writes checkpoints, instead of killing it with half-written files.
-    volatile std::sig_atomic_t stop_requested = 0;
-    extern "C" void request_stop(int) { stop_requested = 1; }
-
-    /// Installs the stop handler for the lifetime of the object.
-    class StopSignals
-    {
-    public:
-      StopSignals()
-      {
-        stop_requested = 0;
-        previous_int_ = std::signal(SIGINT, request_stop);
-        previous_term_ = std::signal(SIGTERM, request_stop);
-      }
-      ~StopSignals()
-      {
-        std::signal(SIGINT, previous_int_);
-        std::signal(SIGTERM, previous_term_);
-      }
-
-    private:
-      void (*previous_int_)(int);
-      void (*previous_term_)(int);
-    };
-
     /// Files of a run inside its output directory.
     struct OutputFiles
     {
@@ -625,7 +599,7 @@ namespace anticrack::dem
           message = "the test ended at step " + std::to_string(system_.step_count) + ": " + protocol_->stage(system_);
           break;
         }
-        if (stop_requested)
+        if (StopSignals::requested())
         {
           status = "interrupted";
           message = "stopped by a signal at step " + std::to_string(system_.step_count);

@@ -8,6 +8,7 @@
 #include "fem/solver/quasi_static.h"
 #include "util/input_error.h"
 #include "util/problems.h"
+#include "util/stop_signals.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -55,6 +56,7 @@ namespace anticrack::fem
       Json run()
       {
         const auto wall_start = std::chrono::steady_clock::now();
+        const StopSignals stop_signals; // before the first line, which tells a caller it may signal
         log_.line("[fem] dynamic PST: ", model_.n_cells(), " cells, ", model_.n_dofs(), " dofs, ",
                   Utilities::MPI::n_mpi_processes(comm_), " rank(s)");
         if (options_.resume)
@@ -76,6 +78,9 @@ namespace anticrack::fem
       }
 
     private:
+      /// Steps between the ranks' agreements on a stop signal (one reduction; ~10 ms of steps).
+      static constexpr unsigned long stop_poll_steps = 200;
+
       // The state of the run besides the model and the integrator (saved in checkpoints).
       double cut_ = 0, next_series_ = 0, next_field_ = 0, wall_ = 0;
       std::optional<double> critical_cut_, critical_time_, end_time_;
@@ -160,6 +165,15 @@ namespace anticrack::fem
                       format_number(fronts_.crack_tip, 4), " m, E_kin = ", format_number(dynamics.energies().kinetic, 3), " J");
           if (scene_.output.checkpoint_interval > 0 && dynamics.steps() % scene_.output.checkpoint_interval == 0)
             write_checkpoint();
+          // Ctrl-C / SIGTERM: the ranks agree every stop_poll_steps steps (each may get the signal
+          // in another step), write a checkpoint whatever the interval, and stop.
+          if (dynamics.steps() % stop_poll_steps == 0 && Utilities::MPI::logical_or(StopSignals::requested(), comm_))
+          {
+            write_checkpoint();
+            throw RunInterrupted("dynamic PST stopped by a signal at step " + std::to_string(dynamics.steps()) +
+                                 ", t = " + format_number(dynamics.time(), 6) + " s; checkpoint written, resume "
+                                 "with --resume");
+          }
         }
         // A run that stopped at its end time can be extended (--resume with a later end time): its
         // checkpoint comes before the final row and fields, which a longer run would not have.
@@ -277,9 +291,12 @@ namespace anticrack::fem
                            std::to_string(info.value("ranks", 0u)) + " rank(s); run on as many");
         const unsigned long step = info["step"];
         std::ifstream in(rank_file(step, Utilities::MPI::this_mpi_process(comm_)), std::ios::binary);
-        if (!in)
-          throw InputError("cannot resume: the checkpoint file " +
-                           rank_file(step, Utilities::MPI::this_mpi_process(comm_)) + " is missing");
+        // Every rank must refuse together: a rank that stopped alone would leave the others
+        // waiting in the next collective call.
+        const std::vector<int> missing = Utilities::MPI::all_gather(comm_, int(!in));
+        for (unsigned int rank = 0; rank < missing.size(); ++rank)
+          if (missing[rank])
+            throw InputError("cannot resume: the checkpoint file " + rank_file(step, rank) + " is missing");
         typename SnowpackModel<dim>::VectorType u;
         model_.initialize_vector(u);
         try

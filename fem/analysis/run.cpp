@@ -156,6 +156,13 @@ namespace anticrack::fem
       summary["results"] = fem::run_snowpack(scene, run, comm);
       summary["status"] = "completed";
     }
+    catch (const fem::RunInterrupted &e)
+    {
+      summary["status"] = "interrupted";
+      summary["message"] = e.what();
+      code = exit_interrupted;
+      ConditionalStream(&std::cerr, root) << "anticrack: " << e.what() << "\n";
+    }
     catch (const fem::NumericalFailure &e)
     {
       summary["status"] = "failed";

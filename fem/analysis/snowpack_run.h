@@ -46,6 +46,14 @@ namespace anticrack::fem
     Json details_;
   };
 
+  /// Thrown when a stop signal (Ctrl-C, SIGTERM; util/stop_signals.h) ended the run after a
+  /// checkpoint; the message says where it stopped. anticrack exits with 130.
+  class RunInterrupted : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
   /// Runs the scene; returns the "results" of summary.json (every number with its unit in its name).
   Json run_snowpack(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm communicator);
 } // namespace anticrack::fem

@@ -11,12 +11,14 @@ when the case passes and kept for inspection when it fails.
 Exit code: 0 when every case passed, 1 otherwise.
 """
 import argparse
+import glob
 import hashlib
 import json
 import math
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import traceback
@@ -2224,6 +2226,42 @@ def fem_resume(work):
           f"a resume on 2 ranks of a 1-rank checkpoint: exit {result.returncode}\n{result.stderr}")
     _, stderr = anticrack("run", full, "-o", os.path.join(work, "nothing"), "--resume", expect=2)
     check("checkpoint.json" in stderr, f"a resume without a checkpoint was not refused clearly:\n{stderr}")
+
+    # A checkpoint that one rank lacks: every rank refuses (exit 2, the file named), none hangs.
+    two_ranks = os.path.join(work, "two_ranks")
+    mpirun = ["mpirun", "--oversubscribe", "-np", "2", ANTICRACK, "run"]
+    result = subprocess.run(mpirun + [part, "-o", two_ranks], capture_output=True, text=True, env=environment,
+                            timeout=300)
+    check(result.returncode == 0, f"the 2-rank first part: exit {result.returncode}\n{result.stderr}")
+    rank_1 = glob.glob(os.path.join(two_ranks, "checkpoint", "step_*_rank_1.bin"))
+    check(len(rank_1) == 1, f"checkpoint files of rank 1: {rank_1}")
+    os.remove(rank_1[0])
+    result = subprocess.run(mpirun + [full, "-o", two_ranks, "--resume"], capture_output=True, text=True,
+                            env=environment, timeout=120)
+    check(result.returncode == 2 and os.path.basename(rank_1[0]) in result.stderr,
+          f"a resume whose rank-1 checkpoint is missing: exit {result.returncode}\n{result.stderr}")
+
+    # Ctrl-C: a checkpoint, exit 130, summary.json "interrupted"; the resume ends as the straight run.
+    interrupted = os.path.join(work, "interrupted")
+    process = subprocess.Popen([ANTICRACK, "run", full, "-o", interrupted], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    for line in process.stdout:
+        if "dynamic PST" in line:  # the stop handler is in place from this line on
+            process.send_signal(signal.SIGINT)
+            break
+    _, stderr = process.communicate(timeout=300)
+    check(process.returncode == 130 and "stopped by a signal" in stderr,
+          f"Ctrl-C: exit {process.returncode}, expected 130\n{stderr}")
+    with open(os.path.join(interrupted, "summary.json")) as f:
+        status = json.load(f).get("status")
+    check(status == "interrupted" and os.path.exists(os.path.join(interrupted, "checkpoint.json")),
+          f"Ctrl-C: summary.json status {status!r}, checkpoint.json written: "
+          f"{os.path.exists(os.path.join(interrupted, 'checkpoint.json'))}")
+    anticrack("run", full, "-o", interrupted, "--resume")
+    c = fem_summary(interrupted)["results"]
+    for key in a:
+        if "wall" not in key and "per_s" not in key:
+            check(a[key] == c[key], f"after Ctrl-C, {key}: straight {a[key]!r}, resumed {c[key]!r}")
 
 
 @case
