@@ -554,8 +554,8 @@ namespace
   // ------------------------------------------------------------------------------------------
   // The quasi-static PST (Newton, saw steps of one element, halved down to 1/64 when equilibrium
   // fails) and the dynamic PST with a slow saw (0.5 m/s, a cut per 40 ms of one element, against
-  // crossing times of the slab's waves of ~5 ms) find the same critical cut: measured 0.335 m and
-  // 0.356 m. Tolerance two element lengths (0.04 m): each locates the crack tip to one element,
+  // crossing times of the slab's waves of ~5 ms) find the same critical cut: measured 0.329 m and
+  // 0.352 m. Tolerance two element lengths (0.04 m): each locates the crack tip to one element,
   // and the dynamic one dates the onset back to the last row with the tip within two elements of
   // the saw. A quasi-static solve that lost equilibrium for another reason (a bad tangent, a line
   // search that stalls) would stop far earlier; a missing softening far later or never.
