@@ -263,7 +263,9 @@ namespace anticrack::fem
     prm.declare_entry("Element length [m]", "0.01", Double(0),
                       "dx: element size along the slope (and across in 3D). Units: m.");
     prm.declare_entry("Weak layer elements", "4", Integer(1, 64),
-                      "n_w: element rows through the weak-layer thickness. Dimensionless.");
+                      "n_w: element rows through the weak-layer thickness. The layer deforms as one band "
+                      "(its inner nodes follow its faces linearly, docs/fem.md): more rows sample its state "
+                      "at more points. Dimensionless.");
     prm.declare_entry("Slab element height [m]", "0.04", Double(0),
                       "h_s: largest element height in the slab layers (each layer gets the fewest rows no "
                       "higher). Units: m.");
@@ -278,9 +280,10 @@ namespace anticrack::fem
                       name_paragraphs(analysis_types()));
     if (yielding)
       prm.declare_entry("Crack band regularisation", "true", Bool(),
-                        "true: softening layers soften and collapse in one element row with the energy and the "
+                        "Softening slab or substratum layers (the weak layer is always one band through its "
+                        "thickness): true: they soften and collapse in one element row with the energy and the "
                         "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
-                        "1983; docs/physics.md §2, mesh-independent); false: the local model.");
+                        "1983; docs/physics.md §2, mesh-independent); false: over their whole thickness.");
     prm.enter_subsection("Newton");
     prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2),
                       "tol: Newton converges when |residual| / |external force| is below it. Dimensionless.");
