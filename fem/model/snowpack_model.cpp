@@ -241,51 +241,49 @@ namespace anticrack::fem
       std::array<long long, 2> key{{std::llround(p[0] / tolerance), dim == 3 ? std::llround(p[1] / tolerance) : 0}};
       return key;
     };
-    std::vector<long long> face_dofs; // (key 0, key 1, face 0|1, component, dof) per entry
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->material_id() == layer_weak)
-      {
-        cell->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
+    // f(position, component, dof) for every support point of the weak layer's cells that `take`.
+    auto for_each_support_point = [&](auto take, auto f) {
+      for (const auto &cell : dof_handler_.active_cell_iterators())
+        if (take(cell) && cell->material_id() == layer_weak)
         {
-          const Point<dim> x = mapping.transform_unit_to_real_cell(cell, unit_points[i]);
-          const double n = x[dim - 1];
-          const int face = std::abs(n - bottom) < tolerance ? 0 : std::abs(n - top) < tolerance ? 1 : -1;
-          if (face < 0)
-            continue;
-          const auto key = key_of(x);
-          face_dofs.insert(face_dofs.end(), {key[0], key[1], face, (long long)fe_.system_to_component_index(i).first,
-                                              (long long)dofs[i]});
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            f(mapping.transform_unit_to_real_cell(cell, unit_points[i]),
+              (long long)fe_.system_to_component_index(i).first, dofs[i]);
         }
-      }
+    };
+    std::vector<long long> face_dofs; // (key 0, key 1, face 0|1, component, dof) per entry
+    for_each_support_point([](const auto &cell) { return cell->is_locally_owned(); },
+                           [&](const Point<dim> &x, long long component, types::global_dof_index dof) {
+                             const double n = x[dim - 1];
+                             const int face = std::abs(n - bottom) < tolerance ? 0 : std::abs(n - top) < tolerance ? 1 : -1;
+                             if (face < 0)
+                               return;
+                             const auto key = key_of(x);
+                             face_dofs.insert(face_dofs.end(), {key[0], key[1], face, component, (long long)dof});
+                           });
     std::map<std::array<long long, 4>, types::global_dof_index> on_face;
     for (const std::vector<long long> &from_rank : Utilities::MPI::all_gather(communicator_, face_dofs))
       for (std::size_t k = 0; k + 4 < from_rank.size(); k += 5)
         on_face[{{from_rank[k], from_rank[k + 1], from_rank[k + 2], from_rank[k + 3]}}] = from_rank[k + 4];
 
     // Every locally relevant dof strictly inside the layer: u = (1 − s) u_lower + s u_upper.
-    for (const auto &cell : dof_handler_.active_cell_iterators())
-      if ((cell->is_locally_owned() || cell->is_ghost()) && cell->material_id() == layer_weak)
-      {
-        cell->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-        {
-          const Point<dim> x = mapping.transform_unit_to_real_cell(cell, unit_points[i]);
-          const double n = x[dim - 1];
-          if (n < bottom + tolerance || n > top - tolerance || constraints_.is_constrained(dofs[i]))
-            continue;
-          const auto key = key_of(x);
-          const long long component = fe_.system_to_component_index(i).first;
-          const auto lower = on_face.find({{key[0], key[1], 0, component}}),
-                     upper = on_face.find({{key[0], key[1], 1, component}});
-          AssertThrow(lower != on_face.end() && upper != on_face.end(),
-                      ExcMessage("the weak layer's faces have no node below or above an inner node"));
-          const double s = (n - bottom) / thickness;
-          constraints_.add_line(dofs[i]);
-          constraints_.add_entry(dofs[i], lower->second, 1 - s);
-          constraints_.add_entry(dofs[i], upper->second, s);
-        }
-      }
+    for_each_support_point(
+      [](const auto &cell) { return cell->is_locally_owned() || cell->is_ghost(); },
+      [&](const Point<dim> &x, long long component, types::global_dof_index dof) {
+        const double n = x[dim - 1];
+        if (n < bottom + tolerance || n > top - tolerance || constraints_.is_constrained(dof))
+          return;
+        const auto key = key_of(x);
+        const auto lower = on_face.find({{key[0], key[1], 0, component}}),
+                   upper = on_face.find({{key[0], key[1], 1, component}});
+        AssertThrow(lower != on_face.end() && upper != on_face.end(),
+                    ExcMessage("the weak layer's faces have no node below or above an inner node"));
+        const double s = (n - bottom) / thickness;
+        constraints_.add_line(dof);
+        constraints_.add_entry(dof, lower->second, 1 - s);
+        constraints_.add_entry(dof, upper->second, s);
+      });
   }
 
   template <int dim>
