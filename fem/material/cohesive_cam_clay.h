@@ -47,8 +47,9 @@
 // pores, grain contacts) in parallel with the broken bond skeleton rather than a change of the
 // skeleton's strength; it keeps the Cam-Clay history (ε_p, α, p0) identical with and without it,
 // so the return mapping, its brackets and its tangent are untouched (bit-for-bit when off). The
-// price: the shear strength of a densified layer stays at the residual surface q_max(p0_floor)
-// whatever the confinement (no pressure-dependent friction of the compacted grains).
+// shear strength of the Cam-Clay part of a densified layer stays at the residual surface
+// q_max(p0_floor) whatever the confinement; the pressure-dependent friction of the compacted grains
+// is a model of its own, in parallel (fem/material/collapsed_layer_friction.h).
 //
 // Return mapping (backward Euler, closest point in the energy norm). With the trial state (p_tr, q_tr)
 // and c = 2 K M² Δγ, d = 1 + 6 G (1 + 2β) Δγ, docs/physics.md §2 gives

@@ -45,11 +45,12 @@ namespace anticrack::fem
     }
 
     /// What a cell carries at a point: the fraction f of the Cam-Clay stress, and the whole lock-up
-    /// pressure, which is the contact of the faces of a collapsed (or sawn) layer: a cut cell lets
-    /// the slab fall by the collapse height and then carries it.
+    /// pressure and friction, which are the contact of the faces of a collapsed (or sawn) layer: a
+    /// cut cell lets the slab fall by the collapse height and then carries it, and its shear.
     SymmetricTensor<2, 3> carried_stress(const QuadraturePointState &state, double stress_factor)
     {
-      return stress_factor * state.cam_clay_stress() - state.lock_up_pressure * unit_symmetric_tensor<3>();
+      return stress_factor * state.cam_clay_stress() - state.lock_up_pressure * unit_symmetric_tensor<3>() +
+             state.friction_stress;
     }
 
     std::vector<double> equal_steps(double length, unsigned int count)
@@ -61,7 +62,7 @@ namespace anticrack::fem
 
   SymmetricTensor<2, 3> QuadraturePointState::cam_clay_stress() const
   {
-    return stress + lock_up_pressure * unit_symmetric_tensor<3>();
+    return stress + lock_up_pressure * unit_symmetric_tensor<3>() - friction_stress;
   }
 
   double QuadraturePointState::cam_clay_energy_density() const
@@ -340,6 +341,12 @@ namespace anticrack::fem
       else
         parameters.set_elastic_moduli(layer.material.youngs_modulus, layer.material.poisson_ratio);
       cell_parameters_.push_back(parameters);
+      // The friction acts only where the layer locks up (K_d > 0).
+      friction_parameters_.push_back(
+        layer.model == Layer::Model::cohesive_cam_clay && parameters.densification_modulus > 0
+          ? CollapsedFrictionParameters::of_layer(layer.friction_coefficient, parameters.bulk_modulus,
+                                                  parameters.shear_modulus, parameters.densification_modulus)
+          : CollapsedFrictionParameters());
     }
 
     FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values);
@@ -508,6 +515,7 @@ namespace anticrack::fem
     for (CellData &data : cells_)
     {
       const CamClayParameters &parameters = cell_parameters_[data.layer];
+      const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
       const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
       const double stress_factor = std::max(data.intact, cut_stiffness_floor);
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -589,21 +597,37 @@ namespace anticrack::fem
             tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
         }
         const bool locked = state.lock_up_pressure > 0;
+        // The friction of the collapsed grains on the lock-up pressure, in parallel (whole in a cut
+        // cell, like the lock-up).
+        double friction_dissipation = 0;
+        SymmetricTensor<4, 3> friction_tangent;
+        if (friction.active())
+        {
+          const CollapsedFrictionUpdate slip =
+            update_collapsed_friction(friction, dim - 1, previous.friction_stress, strain - previous.material.strain,
+                                      state.lock_up_pressure, request.tangent != nullptr);
+          state.friction_stress = slip.stress;
+          state.stress += slip.stress;
+          friction_dissipation = slip.dissipation;
+          friction_tangent = slip.tangent;
+        }
         SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);
         if (request.tangent)
         {
           tangent *= stress_factor;
           if (locked)
             tangent += (1 - stress_factor) * parameters.densification_modulus *
-                       outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>());
+                         outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>()) +
+                       friction_tangent;
         }
         cell_modulus = std::max(cell_modulus, stress_factor * (parameters.bulk_modulus + 4 * parameters.shear_modulus / 3) +
-                                                (locked ? parameters.densification_modulus : 0.));
-        // Dissipation of this step: trapezoidal f σ_cc : Δε_p (the lock-up does no plastic work).
+                                                (locked ? parameters.densification_modulus + friction.shear_modulus : 0.));
+        // Dissipation of this step: trapezoidal f σ_cc : Δε_p (the lock-up does no plastic work),
+        // and the frictional slip's.
         const SymmetricTensor<2, 3> plastic_increment = state.material.plastic_strain - previous.material.plastic_strain;
-        state.dissipation = previous.dissipation + stress_factor * 0.5 *
-                                                     (state.cam_clay_stress() + previous.cam_clay_stress()) *
-                                                     plastic_increment;
+        state.dissipation = previous.dissipation +
+                            stress_factor * 0.5 * (state.cam_clay_stress() + previous.cam_clay_stress()) * plastic_increment +
+                            friction_dissipation;
 
         if (request.velocity && volumetric_rate < 0)
         {
@@ -681,9 +705,15 @@ namespace anticrack::fem
     for (const CellData &data : cells_)
     {
       const double densification_modulus = cell_parameters_[data.layer].densification_modulus;
+      const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
       elastic += std::max(data.intact, cut_stiffness_floor) * cell_elastic_energy(data);
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
-        elastic += committed_[data.first_qp + q].lock_up_energy_density(densification_modulus) * JxW_[data.first_qp + q];
+      {
+        const QuadraturePointState &state = committed_[data.first_qp + q];
+        elastic += (state.lock_up_energy_density(densification_modulus) +
+                    friction_energy_density(friction, state.friction_stress)) *
+                   JxW_[data.first_qp + q];
+      }
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
         dissipated += committed_[data.first_qp + q].dissipation * JxW_[data.first_qp + q];
     }

@@ -31,6 +31,7 @@
 #pragma once
 
 #include "fem/material/cohesive_cam_clay.h"
+#include "fem/material/collapsed_layer_friction.h"
 #include "fem/model/layers.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/phase_timer.h"
@@ -60,9 +61,12 @@ namespace anticrack::fem
     CamClayState material;                 ///< strain, plastic strain, α, p0 (elastic cells: strain only)
     dealii::SymmetricTensor<2, 3> stress;  ///< stress of the material (without the intact fraction)
     double lock_up_pressure = 0;           ///< p_d of the densification lock-up, included in stress [Pa]
-    double dissipation = 0;                ///< plastic work dissipated so far per volume [J/m³]
+    /// s_f, the friction of the collapsed grains on p_d (fem/material/collapsed_layer_friction.h),
+    /// included in stress [Pa].
+    dealii::SymmetricTensor<2, 3> friction_stress;
+    double dissipation = 0;                ///< plastic and frictional work dissipated so far per volume [J/m³]
 
-    /// The Cam-Clay part of the stress (the lock-up is a parallel elastic spring).
+    /// The Cam-Clay part of the stress (the lock-up and the friction act in parallel with it).
     dealii::SymmetricTensor<2, 3> cam_clay_stress() const;
     /// Stored elastic energy per volume of the Cam-Clay part, ½ σ_cc : (ε − ε_p) [J/m³].
     double cam_clay_energy_density() const;
@@ -251,6 +255,7 @@ namespace anticrack::fem
 
     std::vector<Layer> layers_;                    ///< by layer id
     std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)
+    std::vector<CollapsedFrictionParameters> friction_parameters_; ///< per layer id
     std::vector<CellData> cells_;                  ///< locally owned cells, by active cell index order
     std::vector<QuadraturePointState> committed_, trial_;
     // Geometry cache (a flat array is ~10× faster than FEValues::reinit per cell in explicit loops):

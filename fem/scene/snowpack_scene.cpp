@@ -51,7 +51,35 @@ namespace anticrack::fem
                         "Thickness); this entry must then be 0. Units: m.");
       prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
                         "K_d: bulk modulus of the lock-up once the collapse height is used up. Units: Pa.");
+      prm.declare_entry("Friction coefficient", "", Anything(),
+                        "mu: Coulomb friction of the collapsed layer's grains on its lock-up pressure, |tau| <= mu "
+                        "p_d (q <= sqrt(3) mu p_d; docs/physics.md §2). Required, in [0, 2], when the layer locks "
+                        "up (a collapse height, here or from the material file); 0: the collapsed layer is "
+                        "frictionless. Dimensionless.");
       declare_material_entries(prm);
+    }
+
+    /// An entry that a layer must give only in some cases (so it has no default): NaN when empty.
+    double optional_number(ParameterHandler &prm, const std::string &entry, const std::string &section,
+                           const std::string &scene_file)
+    {
+      const std::string text = prm.get(entry);
+      if (text.empty())
+        return std::numeric_limits<double>::quiet_NaN();
+      std::size_t used = 0;
+      double value = 0;
+      try
+      {
+        value = std::stod(text, &used);
+      }
+      catch (const std::exception &)
+      {
+        used = 0;
+      }
+      if (used != text.size() || !std::isfinite(value))
+        throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/" + entry + " = " + text +
+                         " is not a number");
+      return value;
     }
 
     Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::string &section,
@@ -64,6 +92,7 @@ namespace anticrack::fem
       layer.model = layer_model_names().value(prm.get("Model"));
       layer.collapse_height = prm.get_double("Collapse height [m]");
       layer.densification_modulus = prm.get_double("Densification modulus [Pa]");
+      layer.friction_coefficient = optional_number(prm, "Friction coefficient", section, scene_file);
       layer.material = parse_material_entries(prm);
       const std::string file = prm.get("Material file");
       if (!file.empty())
@@ -115,6 +144,14 @@ namespace anticrack::fem
       if (layer.collapse_height > 0 && !(layer.densification_modulus > 0))
         problems.add(section + "/Densification modulus [Pa]",
                      "must be > 0 when a collapse height is given (is " + format_number(layer.densification_modulus) + ")");
+      if (layer.collapse_height > 0 && std::isnan(layer.friction_coefficient))
+        problems.add(section + "/Friction coefficient",
+                     "must be given, in [0, 2], when the layer locks up (collapse height " +
+                       format_number(layer.collapse_height) +
+                       " m): the Coulomb friction of the collapsed grains on the lock-up pressure (0: frictionless)");
+      if (!std::isnan(layer.friction_coefficient) && !(layer.friction_coefficient >= 0 && layer.friction_coefficient <= 2))
+        problems.add(section + "/Friction coefficient",
+                     "must be in [0, 2] (is " + format_number(layer.friction_coefficient) + ")");
       if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
         problems.add(section + "/Collapse height [m]",
                      "the band that collapses (the weak layer's thickness; one element row of another layer) "

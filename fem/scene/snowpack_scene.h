@@ -21,6 +21,7 @@
 #include "util/enum_table.h"
 
 #include <any>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,10 @@ namespace anticrack::fem
     MaterialInterval fracture_energy_density_interval; ///< its interval (NaN if the file has none)
     double confidence = 0.95;                          ///< level of the file's intervals
     double densification_modulus = 0;
+    /// μ: Coulomb friction of the collapsed layer on its lock-up pressure
+    /// (fem/material/collapsed_layer_friction.h); NaN when the scene does not give it, which is
+    /// refused for a layer that locks up.
+    double friction_coefficient = std::numeric_limits<double>::quiet_NaN();
   };
 
   /// The layered snowpack.

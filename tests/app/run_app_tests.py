@@ -1441,6 +1441,7 @@ def pst_scene(changes=None, insert=None, material_file=None):
         "    set Thickness [m] = 0.02", "    set Model = cohesive cam-clay",
         *("    " + line for line in material),
         "    set Collapse height [m] = 0.003", "    set Densification modulus [Pa] = 1e6",
+        "    set Friction coefficient = 0.5",
         "  end",
         "  subsection Substratum",
         "    set Thickness [m] = 0.04", "    set Density [kg/m^3] = 300", "    set Young's modulus [Pa] = 1e7",
@@ -1746,7 +1747,8 @@ def fem_numerical_failure(work):
 @case
 def fem_bad_input(work):
     """Snowpack scenes refused with exit 2, nothing written and the entry named: an unknown PST
-    entry, a cut as long as the column, a collapse height the crack band cannot close, a weak layer
+    entry, a cut as long as the column, a collapse height the crack band cannot close, a collapsed
+    layer without its friction coefficient or with one out of range, a weak layer
     without a reference thickness or with the signed hardening law under a saw test, a Q2 explicit
     step above its stability limit, a missing material file, an earlier run without --overwrite. `check` accepts a valid scene, writes nothing."""
     missing = os.path.join(work, "no_such_material.prm")
@@ -1760,6 +1762,11 @@ def fem_bad_input(work):
         ("other analysis", pst_scene({"Analysis/Type": "energy release rate", "Snowpack/Weak layer/Model": "elastic"}),
          ["Analysis/Explicit/End time [s] (line", "belongs to Analysis/Type = `explicit dynamics`, not to this "
           "scene's `energy release rate`", "PST/Saw (line", "Analysis/Crack detection/Self-propagation lead [m]"]),
+        # A layer that locks up must say how its collapsed grains rub (no default for that physics).
+        ("friction", pst_scene({"Snowpack/Weak layer/Friction coefficient": ""}),
+         ["Snowpack/Weak layer/Friction coefficient", "must be given, in [0, 2], when the layer locks up"]),
+        ("friction range", pst_scene({"Snowpack/Weak layer/Friction coefficient": "2.5"}),
+         ["Snowpack/Weak layer/Friction coefficient", "must be in [0, 2] (is 2.5)"]),
         # Without the thickness its softening was measured over, the crack band cannot scale xi.
         ("reference", pst_scene({"Snowpack/Weak layer/Reference thickness [m]": "0"}),
          ["Snowpack/Weak layer/Reference thickness [m]", "must be > 0 (is 0)"]),

@@ -3,6 +3,7 @@
 // release rate of a saw cut against the beam on an elastic foundation, the P-wave arrival time, and
 // small dynamic PSTs in which the crack runs through and in which it arrests. Serial (1 rank);
 // 1 vs 2 ranks is an app test (tests/app, fem_mpi_equals_serial).
+#include "fem/analysis/outputs.h"
 #include "fem/closed_forms.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
@@ -353,7 +354,7 @@ namespace
          << "    set Critical state slope M = 1\n    set Hardening law = collapse\n"
          << "    set Hardening factor xi = 4\n    set Residual strength ratio = 0.1\n"
          << "    set Reference thickness [m] = 0.02\n    set Collapse height [m] = " << collapse_height
-         << "\n    set Densification modulus [Pa] = 1e6\n";
+         << "\n    set Densification modulus [Pa] = 1e6\n    set Friction coefficient = 0.5\n";
     std::ostringstream text;
     text << "subsection Snowpack\n" << layer("Slab layer 1", 0.4, 250, 5e6, 0.25)
          << layer("Weak layer", 0.02, 150, 2e5, 0.2, weak.str()) << layer("Substratum", 0.04, 300, 1e7, 0.25)
@@ -608,5 +609,97 @@ namespace
     std::cout << "crack speed: 2D " << v2 << " m/s, 3D " << v3 << " m/s\n";
     EXPECT_NEAR(v3 / v2, 1.0, 0.10);
     EXPECT_LT(double(solid["energies_per_width"]["balance_error_relative"]), 0.02);
+  }
+} // namespace
+
+namespace
+{
+  // ------------------------------------------------------------------------------------------
+  // A slab on a collapsed layer slides like a block on an incline (fem/material/
+  // collapsed_layer_friction.h). The small PST's column (1 m, slab 0.4 m) rests in gravity
+  // equilibrium on its intact weak layer, whose collapse height is so small (0.02 mm) that the
+  // layer is already locked up under the slab; then the whole weak layer is sawn at once. The slab
+  // now rests on the lock-up alone, whose friction must carry its downslope weight: it stays
+  // (tan ψ < μ), or it slides with a = g (sin ψ − μ cos ψ), the block on an incline with Coulomb
+  // friction, the lock-up pressure ρ g D cos ψ being the normal traction. Without the friction
+  // (the collapsed layer with only its residual Cam-Clay strength, sawn away here) it would slide
+  // at g sin ψ on any slope.
+  //  * 35°, μ = 0.5: a = 1.61 m/s² (g sin ψ = 5.63). The slope of a least-squares line through
+  //    the slab's mean downslope velocity over [5, 50] ms; tolerance 5 % of g sin ψ (0.28 m/s²):
+  //    the nodes' mean is not the mass-weighted mean, and the elastic slab rocks on the
+  //    friction's stick stiffness. Later the rocking grows until the slab lifts off its base for
+  //    moments (friction-excited vibration, docs/fem.md "Friction of the collapsed layer"), and the
+  //    mean acceleration rises toward g sin ψ; the window ends before that.
+  //  * 20°, μ = 0.5 (tan ψ = 0.36): the slab stays; its velocity stays below 1 cm/s over 0.1 s
+  //    (frictionless: 0.34 m/s).
+  struct SlidingRun
+  {
+    double acceleration = 0;  ///< fitted over [5, 50] ms [m/s²]
+    double largest_speed = 0; ///< largest |mean downslope velocity| of the slab [m/s]
+  };
+
+  SlidingRun slide_on_collapsed_layer(double slope_degrees)
+  {
+    std::string text = small_pst(0.00002, 0.5); // the model is then sawn through (a scene may not)
+    text.replace(text.find("subsection Snowpack\n"), 20,
+                 "subsection Snowpack\n  set Slope angle [deg] = " + std::to_string(slope_degrees) + "\n");
+    const SnowpackScene scene = scene_from(text);
+    SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+    SnowpackModel<2>::VectorType u;
+    model.initialize_vector(u);
+    {
+      QuasiStaticSolver<2> solver(model);
+      anticrack::ConditionalStream log(nullptr, false);
+      gravity_equilibrium(model, solver, u, log);
+    }
+    const Energies at_rest = model.energies();
+    model.set_cut(1.0);
+    ExplicitDynamics<2> dynamics(model, u, at_rest.elastic + at_rest.dissipated);
+    // The slab's downslope dofs.
+    const dealii::MappingQ1<2> mapping;
+    std::map<dealii::types::global_dof_index, Point<2>> support_points;
+    dealii::DoFTools::map_dofs_to_support_points(mapping, model.dof_handler(), support_points);
+    const dealii::IndexSet downslope =
+      dealii::DoFTools::extract_dofs(model.dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}));
+    std::vector<dealii::types::global_dof_index> slab;
+    for (const auto &[dof, point] : support_points)
+      if (downslope.is_element(dof) && point[1] > 0.04 + 0.02 + 1e-9)
+        slab.push_back(dof);
+    auto slab_velocity = [&] {
+      double sum = 0;
+      for (const auto dof : slab)
+        sum += dynamics.velocity()(dof);
+      return sum / slab.size();
+    };
+    double st = 0, sv = 0, stt = 0, stv = 0, n = 0;
+    SlidingRun run;
+    while (dynamics.time() < 0.1)
+    {
+      dynamics.step();
+      // Leapfrog velocities belong to t − Δt/2.
+      const double t = dynamics.time() - dynamics.time_step() / 2, v = slab_velocity();
+      run.largest_speed = std::max(run.largest_speed, std::abs(v));
+      if (t >= 0.005 && t <= 0.05)
+        st += t, sv += v, stt += t * t, stv += t * v, n += 1;
+    }
+    run.acceleration = (n * stv - st * sv) / (n * stt - st * st);
+    return run;
+  }
+
+  TEST(FemCollapsedFriction, SlabSlidesLikeABlockOnAnIncline)
+  {
+    const double g = 9.81, mu = 0.5, psi = 35 * M_PI / 180;
+    const SlidingRun run = slide_on_collapsed_layer(35);
+    const double expected = g * (std::sin(psi) - mu * std::cos(psi));
+    std::cout << "35 deg: acceleration " << run.acceleration << " m/s^2, g (sin - mu cos) = " << expected << "\n";
+    EXPECT_NEAR(run.acceleration, expected, 0.05 * g * std::sin(psi));
+  }
+
+  TEST(FemCollapsedFriction, SlabStaysWhenFrictionExceedsTheDownslopeWeight)
+  {
+    const SlidingRun run = slide_on_collapsed_layer(20);
+    std::cout << "20 deg: largest slab speed " << run.largest_speed << " m/s (frictionless after 0.1 s: "
+              << 9.81 * std::sin(20 * M_PI / 180) * 0.1 << " m/s)\n";
+    EXPECT_LT(run.largest_speed, 0.01);
   }
 } // namespace
