@@ -1,5 +1,6 @@
 #include "fem/scene/snowpack_scene.h"
 
+#include "fem/material/column_collapse.h"
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
 #include "util/format.h"
@@ -169,7 +170,22 @@ namespace anticrack::fem
       {
         try
         {
-          cam_clay_parameters(layer, band_height);
+          const CamClayParameters parameters = cam_clay_parameters(layer, band_height);
+          // Small strain at collapse strains: the 1D column collapse against its finite-strain
+          // reference (fem/material/column_collapse.h) must stay within the stated bounds.
+          if (parameters.densification_strain > 0)
+          {
+            const ColumnCollapseComparison c = compare_column_collapse(parameters);
+            if (!(c.work_error() <= max_collapse_work_error && c.peak_error() <= max_collapse_peak_error))
+              problems.add(section + "/Collapse height [m]",
+                           "the collapse strain h_c / H = " + format_number(c.closure_ratio) +
+                             " is beyond the small-strain model's range: a 1D column collapse differs from its "
+                             "finite-strain (Hencky) reference by " + format_number(100 * c.work_error(), 3) +
+                             " % in the work to the lock-up and " + format_number(100 * c.peak_error(), 3) +
+                             " % in the peak stress (allowed " + format_number(100 * max_collapse_work_error) +
+                             " % and " + format_number(100 * max_collapse_peak_error) +
+                             " %); use a thicker layer or a smaller collapse height (docs/physics.md §2)");
+          }
         }
         catch (const std::exception &e)
         {
