@@ -117,7 +117,7 @@ namespace anticrack::coupling
       Json h{{"status", summary["status"]}};
       if (summary["results"].contains("mesh"))
         h["element_length_m"] = summary["results"]["mesh"].value("element_length_m", 0.0);
-      std::vector<const char *> keys = {"analysis", "crack", "arrest_position_m", "fracture_energy_J_per_m2",
+      std::vector<const char *> keys = {"analysis", "outcome", "arrest_position_m", "fracture_energy_J_per_m2",
                                         "critical_cut_length_interval", "gaume2017"};
       for (const PstAnswer &a : pst_answers())
         keys.push_back(a.key);
@@ -199,8 +199,8 @@ namespace anticrack::coupling
           else if (intervals.contains(key))
             out << " (" << intervals[key].value("status", std::string()) << ")";
         };
-        if (r.contains("crack"))
-          out << ", crack " << r["crack"].get<std::string>();
+        if (r.contains("outcome"))
+          out << ", outcome " << r["outcome"].get<std::string>();
         for (const PstAnswer &a : pst_answers())
           answer(a.key, a.label, a.unit);
         answer("arrest_position_m", "arrested at", "m");

@@ -225,11 +225,11 @@ namespace anticrack::coupling
       for (Eigen::Index k = 0; k < n; ++k)
       {
         const Json &r = perturbed[static_cast<std::size_t>(k)];
-        if (!r.contains(key) || !r[key].is_number() || r.value("crack", "") != base.value("crack", ""))
+        if (!r.contains(key) || !r[key].is_number() || r.value("outcome", "") != base.value("outcome", ""))
         {
           linear = false;
-          why = u.names[static_cast<std::size_t>(k)] + " + 1 standard error changes the outcome (crack " +
-                r.value("crack", std::string("?")) + ")";
+          why = u.names[static_cast<std::size_t>(k)] + " + 1 standard error changes the outcome (" +
+                r.value("outcome", std::string("?")) + ")";
           g(k) = 0;
           continue;
         }

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -33,7 +34,9 @@ namespace anticrack::fem
     class DynamicPst
     {
     public:
-      DynamicPst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
+      /// `preloaded_cut`: a bisection trial, whose column is cut by this much before the gravity ramp.
+      DynamicPst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm,
+                 std::optional<double> preloaded_cut = {})
         : scene_(scene)
         , options_(options)
         , comm_(comm)
@@ -51,7 +54,9 @@ namespace anticrack::fem
                              {"removed_by_saw", "J/m", "elastic energy of the material the saw removed"},
                              {"external_work", "J/m", "work of gravity"},
                              {"time_step", "s", "explicit time step"}}))
-      {}
+      {
+        preloaded_cut_ = preloaded_cut;
+      }
 
       Json run()
       {
@@ -81,10 +86,45 @@ namespace anticrack::fem
       /// Steps between the ranks' agreements on a stop signal (one reduction; ~10 ms of steps).
       static constexpr unsigned long stop_poll_steps = 200;
 
+      /// How the test ends (docs/fem.md "Outcomes"): END, the crack runs through the column; ARR, it
+      /// stops; SF, the slab breaks; no propagation, the cut never grows into a crack that runs by
+      /// itself; still running, none of these by the end time.
+      enum class Outcome
+      {
+        running,
+        end,
+        arrest,
+        slab_fracture,
+        no_propagation
+      };
+
+      /// Where and when the slab's tension reached its strength.
+      struct SlabFracture
+      {
+        double time = 0, cut = 0;
+        typename SnowpackModel<dim>::SlabTension tension;
+        bool crack_running = false;
+      };
+
       // The state of the run besides the model and the integrator (saved in checkpoints).
       double cut_ = 0, next_series_ = 0, next_field_ = 0, wall_ = 0;
       std::optional<double> critical_cut_, critical_time_, end_time_;
       CrackFronts fronts_;
+      /// When the saw stopped (the full cut made, or the crack running by itself).
+      std::optional<double> saw_stopped_;
+      /// The far end failing by itself before the crack got there: when, and over what length.
+      std::optional<double> free_end_time_;
+      double free_end_length_ = 0;
+      double largest_tension_ratio_ = 0;
+      /// Bisection trial: the cut made before the gravity ramp; the load factor at which the ramp failed.
+      std::optional<double> preloaded_cut_, ramp_lost_at_;
+      /// Quasi-static saw: the longest cut in equilibrium and the cut the dynamics start from.
+      std::optional<std::pair<double, double>> static_bracket_;
+      unsigned int static_phases_ = 0; ///< quasi-static saw phases so far
+      // Set once the run has ended (never checkpointed: the run stops there).
+      Outcome outcome_ = Outcome::running;
+      double arrest_position_ = 0, arrest_time_ = 0;
+      std::optional<SlabFracture> slab_fracture_;
 
       void start()
       {
@@ -92,14 +132,41 @@ namespace anticrack::fem
         model_.initialize_vector(u);
         {
           QuasiStaticSolver<dim> solver(model_);
-          gravity_equilibrium(model_, solver, u, log_);
+          if (preloaded_cut_)
+          {
+            // A bisection trial: the column is cut, then loaded. A ramp that cannot reach the full
+            // weight means there is no equilibrium with this cut; the dynamics then start from the
+            // last equilibrium under the full weight.
+            cut_ = *preloaded_cut_;
+            model_.set_cut(cut_);
+            try
+            {
+              solver.apply_gravity(u, scene_.analysis.gravity_steps, [](double, const NewtonResult &) {});
+            }
+            catch (const GravityRampFailure &e)
+            {
+              ramp_lost_at_ = e.load_factor;
+              log_.line("[fem] no equilibrium with the cut ", format_number(cut_, 4), " m: the gravity ramp fails at ",
+                        format_number(100 * e.load_factor, 4), " % of the weight");
+            }
+          }
+          else
+            gravity_equilibrium(model_, solver, u, log_);
+          if (scene_.pst.saw == SawTest::Saw::quasi_static)
+            saw_statically(solver, u);
         }
-        // The quasi-static ramp stored E_el and dissipated D; its external work is their sum.
+        // The static phases stored E_el, dissipated D and lost what the saw removed: the external
+        // work so far is their sum (a static saw step's vibration energy is not counted).
         const Energies at_rest = model_.energies();
         if (scene_.pst.saw == SawTest::Saw::fixed)
-          model_.set_cut(scene_.pst.cut_length);
-        cut_ = scene_.pst.saw == SawTest::Saw::fixed ? scene_.pst.cut_length : 0;
-        dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, at_rest.elastic + at_rest.dissipated);
+        {
+          cut_ = scene_.pst.cut_length;
+          model_.set_cut(cut_);
+        }
+        if (scene_.pst.saw != SawTest::Saw::advancing)
+          saw_stopped_ = 0.;
+        dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, at_rest.elastic + at_rest.dissipated +
+                                                                         at_rest.removed_by_saw);
         fields_.write(model_, dynamics_->displacement(), 0);
         fronts_ = model_.crack_fronts(scene_.analysis.failure_fraction);
         record();
@@ -126,6 +193,8 @@ namespace anticrack::fem
                 if (model_.set_cut(cut_))
                   dynamics.refresh_internal_force();
               }
+              if (cut_ >= scene_.pst.cut_length && !saw_stopped_)
+                saw_stopped_ = dynamics.time();
             }
             dynamics.step();
           }
@@ -141,18 +210,7 @@ namespace anticrack::fem
             fronts_ = model_.crack_fronts(analysis.failure_fraction);
             record();
             next_series_ += scene_.output.series_interval;
-            if (!critical_cut_ && fronts_.crack_tip - cut_ >= lead)
-            {
-              critical_cut_ = cut_;
-              critical_time_ = dynamics.time();
-              log_.line("[fem] t = ", format_number(dynamics.time(), 4), " s: the crack runs by itself (tip ",
-                        format_number(fronts_.crack_tip, 4), " m, cut ", format_number(cut_, 4), " m)");
-            }
-            if (fronts_.crack_tip >= scene_.pst.column_length - 0.5 * dx)
-            {
-              end_time_ = dynamics.time();
-              log_.line("[fem] t = ", format_number(dynamics.time(), 4), " s: the crack reached the end of the column");
-            }
+            detect(dx, lead);
           }
           if (next_field_ > 0 && dynamics.time() >= next_field_)
           {
@@ -186,6 +244,112 @@ namespace anticrack::fem
         }
         fields_.write(model_, dynamics.displacement(), dynamics.time());
       }
+
+      /// The outcome at a series row (the row just recorded). The rows are at most a tenth of the
+      /// arrest duration apart (checked), and the slab's tension is the largest since the last row.
+      void detect(double dx, double lead)
+      {
+        const double t = dynamics_->time(), column = scene_.pst.column_length;
+        const double remaining = column - cut_;
+        // Self-propagation: the tip leads the saw by the lead, or by what is left of the column.
+        if (!critical_cut_ && fronts_.crack_tip - cut_ >= std::min(lead, remaining - 0.5 * dx) &&
+            fronts_.crack_tip > cut_ + 0.5 * dx)
+        {
+          critical_cut_ = cut_;
+          critical_time_ = t;
+          if (!saw_stopped_)
+            saw_stopped_ = t; // the saw stops once the crack runs
+          log_.line("[fem] t = ", format_number(t, 4), " s: the crack runs by itself (tip ",
+                    format_number(fronts_.crack_tip, 4), " m, cut ", format_number(cut_, 4), " m)");
+        }
+        if (!free_end_time_ && fronts_.far_end_failed > 0 && fronts_.crack_tip + fronts_.far_end_failed < column - 0.5 * dx)
+        {
+          free_end_time_ = t;
+          free_end_length_ = fronts_.far_end_failed;
+          log_.line("[fem] t = ", format_number(t, 4), " s: the far end of the column fails by itself over ",
+                    format_number(fronts_.far_end_failed, 3), " m (not the crack)");
+        }
+        const typename SnowpackModel<dim>::SlabTension tension = model_.take_slab_tension();
+        largest_tension_ratio_ = std::max(largest_tension_ratio_, tension.ratio);
+        if (tension.ratio >= 1)
+        {
+          slab_fracture_ = SlabFracture{t, cut_, tension, critical_cut_.has_value()};
+          finish(Outcome::slab_fracture, "the slab fractures: sigma_1 = " + format_number(tension.stress, 4) +
+                                           " Pa reaches the tensile strength " + format_number(tension.strength, 4) +
+                                           " Pa in " + layer_label(tension.layer) + " at x = " +
+                                           format_number(tension.position[0], 4) + " m");
+          return;
+        }
+        if (fronts_.crack_tip >= column - 0.5 * dx)
+        {
+          finish(Outcome::end, "the crack reached the end of the column");
+          return;
+        }
+        // Arrest: the tip slower than v_arr over the last t_arr, with the saw stopped for as long.
+        const double window = scene_.analysis.arrest_duration;
+        if (saw_stopped_ && t - *saw_stopped_ >= window)
+        {
+          const auto &times = series_.values("time"), &tips = series_.values("crack_tip");
+          std::size_t k = times.size() - 1;
+          while (k > 0 && times[k] > t - window)
+            --k;
+          if (fronts_.crack_tip - tips[k] < scene_.analysis.arrest_speed * window)
+          {
+            arrest_position_ = fronts_.crack_tip;
+            arrest_time_ = times[k];
+            if (critical_cut_)
+              finish(Outcome::arrest, "the crack arrested at " + format_number(arrest_position_, 4) + " m");
+            else if (scene_.pst.saw == SawTest::Saw::quasi_static && cut_ < scene_.pst.cut_length - 1e-12)
+              saw_on(); // the loss of equilibrium was a local event that settled: the saw goes on
+            else
+              finish(Outcome::no_propagation, "the cut did not grow into a crack that runs by itself");
+          }
+        }
+      }
+
+      /// The quasi-static saw (PST/Saw = quasi-static): static saw steps from the state u (the
+      /// model's committed states) until equilibrium is lost, then the cut with which it was lost
+      /// and the explicit dynamics from that state at rest. Called at the start and whenever the
+      /// dynamics after a loss of equilibrium settle without a running crack.
+      void saw_statically(QuasiStaticSolver<dim> &solver, typename SnowpackModel<dim>::VectorType &u)
+      {
+        const QuasiStaticSawEnd end = quasi_static_saw(model_, solver, u, log_, [](double, const CrackFronts &, unsigned int) {});
+        cut_ = end.lost_at.value_or(end.cut);
+        model_.set_cut(cut_);
+        static_bracket_ = {end.cut, cut_};
+        ++static_phases_;
+        log_.line("[fem] quasi-static saw: ", end.reason, "; explicit dynamics from the cut ", format_number(cut_, 4), " m");
+      }
+
+      /// After dynamics that settled: equilibrium at the settled state, then the saw again.
+      void saw_on()
+      {
+        log_.line("[fem] t = ", format_number(dynamics_->time(), 4), " s: the event at the cut ", format_number(cut_, 4),
+                  " m settled without a running crack; the quasi-static saw goes on");
+        typename SnowpackModel<dim>::VectorType u = dynamics_->displacement();
+        QuasiStaticSolver<dim> solver(model_);
+        const NewtonResult settled = solver.solve(u, 1.0);
+        if (!settled.converged)
+        {
+          // Still no equilibrium: the dynamics go on (the arrest check runs again).
+          log_.line("[fem] no equilibrium at the settled state yet (", settled.failure, "); the dynamics continue");
+          return;
+        }
+        saw_statically(solver, u);
+        const Energies e = model_.energies();
+        const Energies d = dynamics_->energies();
+        dynamics_->restart_at_rest(u, e.elastic + e.dissipated + e.removed_by_saw + d.viscous);
+        saw_stopped_ = dynamics_->time();
+      }
+
+      void finish(Outcome outcome, const std::string &what)
+      {
+        outcome_ = outcome;
+        end_time_ = dynamics_->time();
+        log_.line("[fem] t = ", format_number(dynamics_->time(), 4), " s: ", what);
+      }
+
+      std::string layer_label(unsigned int layer) const { return layer_of(scene_.snowpack, layer).label; }
 
       /// The failure `what` at `where` (a cell, a node) now: summary.json's "failure" gets both and
       /// the step, time, time step and cut length; the series written up to here are kept.
@@ -268,7 +432,9 @@ namespace anticrack::fem
       void save_run_state(std::ostream &out) const
       {
         for (const double value : {cut_, next_series_, next_field_, wall_, fronts_.crack_tip, fronts_.touchdown,
-                                   critical_cut_.value_or(-1.), critical_time_.value_or(-1.)})
+                                   critical_cut_.value_or(-1.), critical_time_.value_or(-1.), saw_stopped_.value_or(-1.),
+                                   free_end_time_.value_or(-1.), free_end_length_, largest_tension_ratio_,
+                                   static_bracket_ ? static_bracket_->first : -1., static_bracket_ ? static_bracket_->second : -1.})
           checkpoint::write(out, value);
         for (const TimeSeries::Column &column : series_.columns())
           checkpoint::write_vector(out, column.values);
@@ -304,12 +470,19 @@ namespace anticrack::fem
           model_.load(in);
           dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, 0., true);
           dynamics_->load(in);
-          double critical_cut = 0, critical_time = 0;
+          double critical_cut = 0, critical_time = 0, saw_stopped = 0, free_end_time = 0, static_low = 0, static_high = 0;
           for (double *value : {&cut_, &next_series_, &next_field_, &wall_, &fronts_.crack_tip, &fronts_.touchdown,
-                                &critical_cut, &critical_time})
+                                &critical_cut, &critical_time, &saw_stopped, &free_end_time, &free_end_length_,
+                                &largest_tension_ratio_, &static_low, &static_high})
             checkpoint::read(in, *value);
+          if (static_low >= 0)
+            static_bracket_ = std::make_pair(static_low, static_high);
           if (critical_cut >= 0)
             critical_cut_ = critical_cut, critical_time_ = critical_time;
+          if (saw_stopped >= 0)
+            saw_stopped_ = saw_stopped;
+          if (free_end_time >= 0)
+            free_end_time_ = free_end_time;
           series_.replace_values([&](const TimeSeries::Column &column) {
             std::vector<double> values;
             checkpoint::read_vector(in, values, -1, "time series " + column.name);
@@ -329,11 +502,14 @@ namespace anticrack::fem
         const ExplicitDynamics<dim> &dynamics = *dynamics_;
         const double dx = scene_.pst.column_length / model_.n_columns();
         const double lead = self_propagation_lead(scene_);
-        const bool reached_end = end_time_.has_value();
-        // The crack ran by itself from the last row before the detection at which its tip was
-        // still within two element lengths of the saw: that cut is the critical cut length (the
-        // detection itself waits for a lead of one slab thickness, so that a tip that only jumps
-        // ahead of the saw by a few elements is not taken for a running crack).
+        const bool reached_end = outcome_ == Outcome::end;
+        // The saw's critical cut is bracketed by the rows: the crack ran by itself from a cut
+        // between the last row before the detection at which its tip was still within two element
+        // lengths of the saw and the cut at the detection (which waits for a lead of one slab
+        // thickness, so that a tip that only jumps ahead of the saw by a few elements is not taken
+        // for a running crack). The lower end is reported; the critical cut as practice defines
+        // it (independent of the saw speed) is the quasi-static PST's and the bisection's
+        // (docs/fem.md "The critical cut").
         const auto &t = series_.values("time"), &tip = series_.values("crack_tip"),
                    &td = series_.values("touchdown_front"), &cuts = series_.values("cut_length");
         std::optional<double> critical_cut = critical_cut_, critical_time = critical_time_;
@@ -345,12 +521,14 @@ namespace anticrack::fem
               critical_time = t[k];
             }
         // Steady propagation speed: least-squares slope of the tip position over the rows where
-        // the tip lies in the middle half of the distance it ran (from the critical cut to the end,
-        // or to where it arrested). Touchdown distance: median of tip − touchdown front there.
+        // the tip lies in the middle half of the distance it ran by itself (from the critical cut
+        // to the column end, less a far end that failed by itself, or to where it stopped).
+        // Touchdown distance: median of tip − touchdown front there.
         std::optional<double> speed, touchdown;
         if (critical_cut)
         {
-          const double from = *critical_cut, to = reached_end ? scene_.pst.column_length : fronts_.crack_tip;
+          const double from = *critical_cut,
+                       to = reached_end ? scene_.pst.column_length - free_end_length_ : fronts_.crack_tip;
           const double low = from + 0.25 * (to - from), high = from + 0.75 * (to - from);
           double st = 0, sx = 0, stt = 0, stx = 0, n = 0;
           std::vector<double> behind;
@@ -370,17 +548,106 @@ namespace anticrack::fem
           }
         }
         auto optional = [](const std::optional<double> &v) { return v ? Json(*v) : Json(nullptr); };
+        Json warnings = Json::array();
         Json r;
         r["analysis"] = scene_.analysis.type->name;
         r["mesh"] = mesh_json(model_, comm_);
         r["critical_cut_length_m"] = optional(critical_cut);
+        r["critical_cut_bracket_m"] = critical_cut ? Json::array({*critical_cut, *critical_cut_}) : Json(nullptr);
+        switch (scene_.pst.saw)
+        {
+          case SawTest::Saw::quasi_static:
+            // The longest cut in equilibrium and the one without: the crack runs from a cut in between.
+            r["critical_cut_method"] = "quasi-static saw, handed over to explicit dynamics when equilibrium is lost";
+            r["quasi_static_saw_phases"] = static_phases_;
+            if (critical_cut && static_bracket_)
+              r["critical_cut_bracket_m"] = Json::array({static_bracket_->first, static_bracket_->second});
+            break;
+          case SawTest::Saw::advancing:
+            r["critical_cut_method"] = "advancing saw: its position when the crack ran by itself (depends on the saw speed)";
+            break;
+          default:
+            r["critical_cut_method"] = "fixed cut";
+            break;
+        }
+        if (preloaded_cut_)
+          r["trial"] = {{"cut_length_m", *preloaded_cut_},
+                        {"gravity_ramp_failed_at_load_factor", ramp_lost_at_ ? Json(*ramp_lost_at_) : Json(nullptr)}};
         r["self_propagation_lead_m"] = lead;
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
-        r["crack"] = reached_end ? "reached the column end" : (critical_cut ? "arrested" : "did not start");
-        r["arrest_position_m"] = reached_end ? Json(nullptr) : Json(fronts_.crack_tip);
+        switch (outcome_)
+        {
+          case Outcome::end:
+            r["outcome"] = "END";
+            break;
+          case Outcome::arrest:
+            r["outcome"] = "ARR";
+            break;
+          case Outcome::slab_fracture:
+            r["outcome"] = "SF";
+            break;
+          case Outcome::no_propagation:
+            r["outcome"] = "no propagation";
+            break;
+          case Outcome::running:
+          {
+            r["outcome"] = "still running";
+            const double moved = tip.empty() ? 0. : tip.back() - tip[std::max<std::ptrdiff_t>(
+                                                                 0, std::ptrdiff_t(tip.size()) - 1 -
+                                                                      std::ptrdiff_t(scene_.analysis.arrest_duration /
+                                                                                     scene_.output.series_interval))];
+            std::string warning = "the PST has no outcome at the end time " + format_number(dynamics.time(), 4) + " s: ";
+            if (critical_cut_)
+              warning += "the crack runs by itself, its tip at " + format_number(fronts_.crack_tip, 4) + " m of " +
+                         format_number(scene_.pst.column_length, 4) + " m";
+            else if (scene_.pst.saw == SawTest::Saw::quasi_static)
+              warning += "the quasi-static saw is at " + format_number(cut_, 4) + " m after " +
+                         std::to_string(static_phases_) + " losses of equilibrium, each followed for at least "
+                         "Arrest duration";
+            else if (!saw_stopped_)
+              warning += "the saw is still cutting (at " + format_number(cut_, 4) + " m)";
+            else
+              warning += "the tip still moves (" + format_number(moved, 3) + " m over the last Arrest duration)";
+            warning += "; increase Analysis/Explicit/End time [s]";
+            if (speed && *speed > 0 && critical_cut_)
+              warning += " to at least " +
+                         format_number(dynamics.time() + (scene_.pst.column_length - fronts_.crack_tip) / *speed +
+                                         scene_.analysis.arrest_duration, 3) +
+                         " s (the rest of the column at " + format_number(*speed, 3) + " m/s, then the arrest check)";
+            warnings.push_back(warning);
+            log_.line("[fem] warning: ", warning);
+            break;
+          }
+        }
+        r["arrest_detection"] = {{"speed_m_per_s", scene_.analysis.arrest_speed},
+                                 {"duration_s", scene_.analysis.arrest_duration}};
+        r["arrest_position_m"] = outcome_ == Outcome::arrest ? Json(arrest_position_) : Json(nullptr);
+        r["arrest_time_s"] = outcome_ == Outcome::arrest ? Json(arrest_time_) : Json(nullptr);
+        if (slab_fracture_)
+        {
+          const SlabFracture &f = *slab_fracture_;
+          Json position = Json::array();
+          for (unsigned int d = 0; d < dim; ++d)
+            position.push_back(f.tension.position[d]);
+          r["slab_fracture"] = {{"time_s", f.time},
+                                {"time_resolution_s", scene_.output.series_interval},
+                                {"cut_length_m", f.cut},
+                                {"layer", layer_label(f.tension.layer)},
+                                {"cell_centre_m", position},
+                                {"largest_principal_stress_Pa", f.tension.stress},
+                                {"tensile_strength_Pa", f.tension.strength},
+                                {"crack_running", f.crack_running}};
+        }
+        else
+          r["slab_fracture"] = nullptr;
+        r["largest_slab_tension_over_strength"] = largest_tension_ratio_;
+        r["slab_tensile_strength"] = slab_strengths_json();
+        r["free_end_failure"] = free_end_time_ ? Json{{"time_s", *free_end_time_}, {"length_m", free_end_length_}}
+                                               : Json(nullptr);
+        r["warnings"] = warnings;
         r["time_crack_runs_s"] = optional(critical_time);
-        r["time_reached_end_s"] = optional(end_time_);
+        r["time_reached_end_s"] = reached_end ? optional(end_time_) : Json(nullptr);
         r["propagation_speed_m_per_s"] = optional(speed);
         r["touchdown_distance_m"] = optional(touchdown);
         r["final_crack_tip_m"] = fronts_.crack_tip;
@@ -406,6 +673,17 @@ namespace anticrack::fem
         return r;
       }
 
+      /// σ_t of every slab layer and where it comes from.
+      Json slab_strengths_json() const
+      {
+        Json layers = Json::array();
+        for (const Layer &layer : scene_.snowpack.slab_layers)
+          layers.push_back({{"layer", layer.label},
+                            {"tensile_strength_Pa", layer.tensile_strength},
+                            {"source", layer.tensile_strength_from_density ? "Sigrist 2006 density law" : "scene"}});
+        return layers;
+      }
+
       const SnowpackScene &scene_;
       const SnowpackRunOptions &options_;
       MPI_Comm comm_;
@@ -417,9 +695,72 @@ namespace anticrack::fem
     };
   } // namespace
 
+  namespace
+  {
+    /// PST/Saw = bisection (docs/fem.md "The critical cut"): fixed cuts, each made before the
+    /// gravity ramp and followed in time until an outcome; a trial propagates when its crack runs
+    /// by itself (a critical cut is detected). Bisection between 0 (the intact column holds) and
+    /// `Cut length` (which must propagate) down to one element length. The results are those of
+    /// the shortest propagating trial, with the bracket and every trial.
+    template <int dim>
+    Json run_bisection(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
+    {
+      if (options.resume)
+        throw InputError("a bisection (PST/Saw = bisection) cannot be resumed: run it again (each trial is short)");
+      ConditionalStream log = root_log(options.log, comm);
+      const unsigned int columns =
+        std::max(4u, static_cast<unsigned int>(std::lround(scene.pst.column_length / scene.mesh.element_length)));
+      const double dx = scene.pst.column_length / columns;
+      Json trials = Json::array(), shortest;
+      auto trial = [&](double cut) {
+        SnowpackRunOptions trial_options = options;
+        char name[64];
+        std::snprintf(name, sizeof name, "/bisection/trial_%02u_cut_%.4f", static_cast<unsigned int>(trials.size() + 1), cut);
+        trial_options.output_directory = options.output_directory + name;
+        log.line("[fem] bisection: trial ", trials.size() + 1, ", cut ", format_number(cut, 4), " m");
+        DynamicPst<dim> pst(scene, trial_options, comm, cut);
+        Json r = pst.run();
+        const bool propagates = !r["critical_cut_length_m"].is_null();
+        trials.push_back({{"cut_length_m", cut},
+                          {"outcome", r["outcome"]},
+                          {"propagates", propagates},
+                          {"gravity_ramp_failed_at_load_factor", r["trial"]["gravity_ramp_failed_at_load_factor"]},
+                          {"directory", std::string(name).substr(1)}});
+        log.line("[fem] bisection: cut ", format_number(cut, 4), " m ", propagates ? "propagates" : "does not propagate",
+                 " (", r["outcome"].get<std::string>(), ")");
+        if (propagates)
+          shortest = r;
+        return propagates;
+      };
+      double low = 0, high = scene.pst.cut_length;
+      const bool longest_propagates = trial(high);
+      while (longest_propagates && high - low > dx * (1 + 1e-9))
+      {
+        const double middle = 0.5 * (low + high);
+        (trial(middle) ? high : low) = middle;
+      }
+      Json r = longest_propagates ? shortest : Json::object();
+      if (!longest_propagates)
+      {
+        r["analysis"] = scene.analysis.type->name;
+        r["outcome"] = "no propagation";
+        r["warnings"] = Json::array({"no trial cut up to PST/Cut length [m] = " + format_number(scene.pst.cut_length) +
+                                     " m propagates: increase it"});
+      }
+      r["critical_cut_method"] = "bisection over fixed cuts, each loaded by gravity after the cut";
+      r["critical_cut_length_m"] = longest_propagates ? Json(0.5 * (low + high)) : Json(nullptr);
+      r["critical_cut_bracket_m"] = longest_propagates ? Json::array({low, high}) : Json(nullptr);
+      r["bisection"] = {{"element_length_m", dx}, {"trials", trials}};
+      r.erase("trial");
+      return r;
+    }
+  } // namespace
+
   template <int dim>
   Json run_dynamic_pst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
+    if (scene.pst.saw == SawTest::Saw::bisection)
+      return run_bisection<dim>(scene, options, comm);
     DynamicPst<dim> pst(scene, options, comm);
     return pst.run();
   }
@@ -444,6 +785,13 @@ namespace anticrack::fem
                           "Dimensionless.");
         prm.declare_entry("Mass damping [1/s]", "0", Patterns::Double(0),
                           "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
+        prm.declare_entry("Arrest speed [m/s]", "0.5", Patterns::Double(0),
+                          "v_arr: once the saw has stopped, the crack has arrested (ARR), or never started (no "
+                          "propagation), when its tip has advanced less than v_arr t_arr over the last t_arr; the "
+                          "run then ends. Units: m/s.");
+        prm.declare_entry("Arrest duration [s]", "0.1", Patterns::Double(0),
+                          "t_arr: the time over which the tip must stay slower than v_arr (see Arrest speed); "
+                          "Output/Series interval must be at most t_arr / 10. Units: s.");
         prm.leave_subsection();
       },
       [](ParameterHandler &prm, SnowpackScene &scene) {
@@ -454,11 +802,23 @@ namespace anticrack::fem
         analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
         analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
         analysis.mass_damping = prm.get_double("Mass damping [1/s]");
+        analysis.arrest_speed = prm.get_double("Arrest speed [m/s]");
+        analysis.arrest_duration = prm.get_double("Arrest duration [s]");
         prm.leave_subsection();
       },
       [](const SnowpackScene &scene, Problems &problems) {
         if (!(scene.analysis.end_time > 0))
           problems.add("Analysis/Explicit/End time [s]", "must be > 0");
+        if (!(scene.analysis.arrest_speed > 0))
+          problems.add("Analysis/Explicit/Arrest speed [m/s]", "must be > 0");
+        if (!(scene.analysis.arrest_duration > 0))
+          problems.add("Analysis/Explicit/Arrest duration [s]", "must be > 0");
+        else if (!(scene.output.series_interval <= scene.analysis.arrest_duration / 10 * (1 + 1e-12)))
+          problems.add("Output/Series interval [s]",
+                       "must be <= Analysis/Explicit/Arrest duration [s] / 10 = " +
+                         format_number(scene.analysis.arrest_duration / 10) + " (is " +
+                         format_number(scene.output.series_interval) +
+                         "): the arrest is read from the crack tip's rows over that duration");
         // The stable step is estimated as 1/(c sqrt(Σ (p/h_i)²)) (SnowpackModel::evaluate), exact
         // for Q1 with the lumped mass. Q2's lumped Gauss–Lobatto (Simpson) mass gives its 1D
         // element chain the highest frequency √24 c/h, so central differences need

@@ -12,6 +12,7 @@
 #include "util/time_series.h"
 
 
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -99,6 +100,29 @@ namespace anticrack::fem
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log);
+
+  /// Where the quasi-static saw stopped (quasi_static_saw()).
+  struct QuasiStaticSawEnd
+  {
+    double cut = 0;                ///< the longest cut in equilibrium [m]
+    std::optional<double> lost_at; ///< the cut with which equilibrium was lost (one halved step on) [m]
+    bool crack_leads = false;      ///< the crack tip led the saw by the self-propagation lead
+    std::string reason;            ///< why it stopped
+    double external_work = 0;      ///< gravity's work over the saw steps, f_g · Δu [J (per width in 2D: J/m)]
+  };
+
+  /// The quasi-static saw (docs/fem.md "The critical cut"): from the equilibrium u and the model's
+  /// cut, cut steps of
+  /// `Analysis/Newton/Saw step` (0: one element length), each solved by Newton, a failed step
+  /// halved down to 1/64 of it, until equilibrium is lost with the smallest step, the crack tip
+  /// leads the saw by the self-propagation lead, or the cut reaches `PST/Cut length`. u and the
+  /// model end in the last equilibrium (its cut set). `on_step(cut, fronts, iterations)` after
+  /// each converged step. Used by the quasi-static PST and, before it hands over to explicit
+  /// dynamics, by the dynamic PST's quasi-static saw.
+  template <int dim>
+  QuasiStaticSawEnd quasi_static_saw(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
+                                     typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log,
+                                     const std::function<void(double, const CrackFronts &, unsigned int)> &on_step);
 
   /// The crack runs by itself once its tip leads the saw by this distance [m] (both PSTs).
   double self_propagation_lead(const SnowpackScene &scene);

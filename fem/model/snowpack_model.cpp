@@ -53,6 +53,20 @@ namespace anticrack::fem
              state.friction_stress;
     }
 
+    /// σ_1 of a stress: in plane strain (dim 2) σ_xz = σ_yz = 0, so σ_zz and the in-plane pair
+    /// (a + b)/2 + sqrt(((a − b)/2)² + c²) are the eigenvalues (no cubic to solve in the slab loop).
+    template <int dim>
+    double largest_principal_stress(const SymmetricTensor<2, 3> &stress)
+    {
+      if constexpr (dim == 2)
+      {
+        const double mean = 0.5 * (stress[0][0] + stress[1][1]), half = 0.5 * (stress[0][0] - stress[1][1]);
+        return std::max(mean + std::sqrt(half * half + stress[0][1] * stress[0][1]), stress[2][2]);
+      }
+      else
+        return eigenvalues(stress)[0];
+    }
+
     std::vector<double> equal_steps(double length, unsigned int count)
     {
       return std::vector<double>(count, length / count);
@@ -518,6 +532,7 @@ namespace anticrack::fem
       const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
       const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
       const double stress_factor = std::max(data.intact, cut_stiffness_floor);
+      const double slab_strength = layers_[data.layer].tensile_strength; // NaN outside the slab
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
       {
         u_local[i] = u.local_element(data.local_dofs[i]);
@@ -595,6 +610,12 @@ namespace anticrack::fem
                          parameters.bulk_modulus * trace(strain) * unit_symmetric_tensor<3>();
           if (request.tangent)
             tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
+          if (request.velocity && slab_strength > 0)
+          {
+            const double sigma_1 = largest_principal_stress<dim>(state.stress);
+            if (sigma_1 / slab_strength > slab_tension_.ratio)
+              slab_tension_ = {sigma_1 / slab_strength, sigma_1, slab_strength, data.layer, data.cell->center()};
+          }
         }
         const bool locked = state.lock_up_pressure > 0;
         // The friction of the collapsed grains on the lock-up pressure, in parallel (whole in a cut
@@ -816,18 +837,21 @@ namespace anticrack::fem
     Utilities::MPI::sum(closure, communicator_, closure);
     Utilities::MPI::sum(across, communicator_, across);
     const double column_length = scene_.pst.column_length / n_columns_;
-    auto front = [&](const std::vector<int> &flags) {
+    // Contiguous flagged columns counted from the cut end (or from the far end).
+    auto front = [&](const std::vector<int> &flags, bool from_cut_end) {
+      const bool upslope_first = (scene_.pst.cut_side == SawTest::CutSide::upslope) == from_cut_end;
       unsigned int k = 0;
       for (; k < n_columns_; ++k)
       {
-        const unsigned int column = scene_.pst.cut_side == SawTest::CutSide::upslope ? k : n_columns_ - 1 - k;
+        const unsigned int column = upslope_first ? k : n_columns_ - 1 - k;
         if (!flags[column])
           break;
       }
       return k * column_length;
     };
     CrackFronts fronts;
-    fronts.crack_tip = front(failed);
+    fronts.crack_tip = front(failed, true);
+    fronts.far_end_failed = front(failed, false);
     for (unsigned int k = 0; k < n_columns_; ++k)
     {
       const unsigned int column = scene_.pst.cut_side == SawTest::CutSide::upslope ? k : n_columns_ - 1 - k;
@@ -846,6 +870,31 @@ namespace anticrack::fem
     }
     fronts.locked_closure = locked_count > 0 ? locked_sum / locked_count : 0.;
     return fronts;
+  }
+
+  template <int dim>
+  typename SnowpackModel<dim>::SlabTension SnowpackModel<dim>::take_slab_tension()
+  {
+    // The rank with the largest ratio (the lowest on ties) tells the others its point.
+    struct
+    {
+      double ratio;
+      int rank;
+    } local{slab_tension_.ratio, static_cast<int>(Utilities::MPI::this_mpi_process(communicator_))}, global{};
+    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, communicator_);
+    double data[3 + dim] = {slab_tension_.stress, slab_tension_.strength, double(slab_tension_.layer)};
+    for (unsigned int d = 0; d < dim; ++d)
+      data[3 + d] = slab_tension_.position[d];
+    MPI_Bcast(data, 3 + dim, MPI_DOUBLE, global.rank, communicator_);
+    SlabTension result;
+    result.ratio = global.ratio;
+    result.stress = data[0];
+    result.strength = data[1];
+    result.layer = static_cast<unsigned int>(data[2]);
+    for (unsigned int d = 0; d < dim; ++d)
+      result.position[d] = data[3 + d];
+    slab_tension_ = SlabTension();
+    return result;
   }
 
   template <int dim>

@@ -89,6 +89,9 @@ namespace anticrack::fem
   struct CrackFronts
   {
     double crack_tip = 0;  ///< far end of the contiguous failed (or cut) columns
+    /// Length of the contiguous failed columns from the other (far) end of the column, which a free
+    /// end can reach by failing by itself [m].
+    double far_end_failed = 0;
     double touchdown = 0;  ///< far end of the farthest column where the collapsed layer locked up
     bool failed_anywhere = false;
     /// Closure of the weak layer, ∫ −ε_nn dn through its thickness (mean over a column's width in
@@ -200,6 +203,21 @@ namespace anticrack::fem
     /// Crack and touchdown fronts of the committed states, over all ranks.
     CrackFronts crack_fronts(double failure_fraction) const;
 
+    /// The largest tension in the slab layers relative to their tensile strength.
+    struct SlabTension
+    {
+      double ratio = 0;     ///< σ_1 / σ_t (0: no tension anywhere)
+      double stress = 0;    ///< σ_1, the largest principal stress [Pa]
+      double strength = 0;  ///< σ_t of its layer [Pa]
+      unsigned int layer = 0;
+      dealii::Point<dim> position; ///< the centre of its cell
+    };
+
+    /// The largest σ_1 / σ_t over the slab layers' quadrature points and every explicit step
+    /// (evaluate() with a velocity) since the last call, which starts the next interval, so that no
+    /// peak between two calls is missed. Collective.
+    SlabTension take_slab_tension();
+
     /// How far the weak layer has softened, over all ranks: the mean over its quadrature points of
     /// (p0_initial − p0) / (p0_initial − p0_floor), the measure of crack_fronts() (0: intact, 1: at the
     /// residual strength everywhere; negative where a hardening law has hardened it).
@@ -265,6 +283,7 @@ namespace anticrack::fem
     std::vector<unsigned int> component_, node_; ///< of each cell dof
     double removed_by_saw_ = 0;
     unsigned int n_columns_ = 0;
+    SlabTension slab_tension_; ///< of this rank since the last take_slab_tension()
     double cut_length_ = 0;
     double viscous_power_ = 0;
 

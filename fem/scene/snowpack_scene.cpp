@@ -1,5 +1,6 @@
 #include "fem/scene/snowpack_scene.h"
 
+#include "fem/closed_forms.h"
 #include "fem/material/column_collapse.h"
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
@@ -35,8 +36,14 @@ namespace anticrack::fem
     constexpr unsigned int max_slab_layers = 8;
     constexpr double pi = 3.14159265358979323846;
 
-    void declare_layer(ParameterHandler &prm, const std::string &default_model, const std::string &default_thickness)
+    void declare_layer(ParameterHandler &prm, const std::string &default_model, const std::string &default_thickness,
+                       bool slab)
     {
+      if (slab)
+        prm.declare_entry("Tensile strength [Pa]", "", Anything(),
+                          "sigma_t: tensile strength of the slab layer; a dynamic PST ends with a slab fracture (SF) "
+                          "when the largest principal stress in the layer reaches it (detected, no tension "
+                          "cut-off). Empty: Sigrist 2006's density law, 240 kPa (rho / 917 kg/m^3)^2.44. Units: Pa.");
       prm.declare_entry("Thickness [m]", default_thickness, Double(0),
                         "h: layer thickness measured normal to the slope. Units: m.");
       prm.declare_entry("Model", default_model, Selection(layer_model_names().pattern()),
@@ -84,7 +91,7 @@ namespace anticrack::fem
     }
 
     Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::string &section,
-                      const std::string &scene_file)
+                      const std::string &scene_file, bool slab)
     {
       const std::filesystem::path scene_directory = std::filesystem::path(scene_file).parent_path();
       Layer layer;
@@ -131,6 +138,13 @@ namespace anticrack::fem
       }
       if (layer.material.name.empty())
         layer.material.name = label;
+      if (slab)
+      {
+        layer.tensile_strength = optional_number(prm, "Tensile strength [Pa]", section, scene_file);
+        layer.tensile_strength_from_density = std::isnan(layer.tensile_strength);
+        if (layer.tensile_strength_from_density && layer.material.density > 0)
+          layer.tensile_strength = closed_forms::tensile_strength_sigrist2006(layer.material.density);
+      }
       return layer;
     }
 
@@ -150,6 +164,9 @@ namespace anticrack::fem
                      "must be given, in [0, 2], when the layer locks up (collapse height " +
                        format_number(layer.collapse_height) +
                        " m): the Coulomb friction of the collapsed grains on the lock-up pressure (0: frictionless)");
+      if (!layer.tensile_strength_from_density && !std::isnan(layer.tensile_strength) && !(layer.tensile_strength > 0))
+        problems.add(section + "/Tensile strength [Pa]",
+                     "must be > 0, or empty for Sigrist 2006's density law (is " + format_number(layer.tensile_strength) + ")");
       if (!std::isnan(layer.friction_coefficient) && !(layer.friction_coefficient >= 0 && layer.friction_coefficient <= 2))
         problems.add(section + "/Friction coefficient",
                      "must be in [0, 2] (is " + format_number(layer.friction_coefficient) + ")");
@@ -230,7 +247,10 @@ namespace anticrack::fem
 
   const EnumTable<SawTest::Saw> &saw_names()
   {
-    static const EnumTable<SawTest::Saw> names{{"fixed", SawTest::Saw::fixed}, {"advancing", SawTest::Saw::advancing}};
+    static const EnumTable<SawTest::Saw> names{{"fixed", SawTest::Saw::fixed},
+                                               {"advancing", SawTest::Saw::advancing},
+                                               {"quasi-static", SawTest::Saw::quasi_static},
+                                               {"bisection", SawTest::Saw::bisection}};
     return names;
   }
 
@@ -274,14 +294,14 @@ namespace anticrack::fem
     for (unsigned int k = 0; k < max_slab_layers; ++k)
     {
       prm.enter_subsection(slab_layer_section(k));
-      declare_layer(prm, "elastic", "0.4");
+      declare_layer(prm, "elastic", "0.4", true);
       prm.leave_subsection();
     }
     prm.enter_subsection("Weak layer");
-    declare_layer(prm, "cohesive cam-clay", "0.02");
+    declare_layer(prm, "cohesive cam-clay", "0.02", false);
     prm.leave_subsection();
     prm.enter_subsection("Substratum");
-    declare_layer(prm, "elastic", "0.1");
+    declare_layer(prm, "elastic", "0.1", false);
     prm.leave_subsection();
     prm.leave_subsection();
 
@@ -299,7 +319,13 @@ namespace anticrack::fem
     if (dynamic)
       prm.declare_entry("Saw", "advancing", Selection(saw_names().pattern()),
                         "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
-                        "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself).");
+                        "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself); quasi-static: "
+                        "Newton saw steps of one element (halved down to 1/64) up to `Cut length` until equilibrium "
+                        "is lost, then explicit dynamics from the last equilibrium with the next cut (the critical cut "
+                        "as a field saw finds it, whatever its speed); bisection: fixed cuts, each made before the "
+                        "gravity ramp and followed in time until the crack runs or stops, bisected between 0 and "
+                        "`Cut length` to one element length (the critical cut's bracket; each trial in "
+                        "DIR/bisection/). docs/fem.md \"The critical cut\".");
     prm.declare_entry("Cut length [m]", "0.3", Double(0),
                       "a: the longest cut (energy release rate, quasi-static saw steps), the length of a fixed cut "
                       "or the longest cut of an advancing saw (explicit dynamics). Units: m.");
@@ -464,14 +490,14 @@ namespace anticrack::fem
     {
       prm.enter_subsection(slab_layer_section(k));
       s.slab_layers.push_back(
-        parse_layer(prm, "slab layer " + std::to_string(k + 1), "Snowpack/" + slab_layer_section(k), file));
+        parse_layer(prm, "slab layer " + std::to_string(k + 1), "Snowpack/" + slab_layer_section(k), file, true));
       prm.leave_subsection();
     }
     prm.enter_subsection("Weak layer");
-    s.weak_layer = parse_layer(prm, "weak layer", "Snowpack/Weak layer", file);
+    s.weak_layer = parse_layer(prm, "weak layer", "Snowpack/Weak layer", file, false);
     prm.leave_subsection();
     prm.enter_subsection("Substratum");
-    s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file);
+    s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file, false);
     prm.leave_subsection();
     prm.leave_subsection();
 

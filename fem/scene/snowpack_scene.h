@@ -61,6 +61,11 @@ namespace anticrack::fem
     /// (fem/material/collapsed_layer_friction.h); NaN when the scene does not give it, which is
     /// refused for a layer that locks up.
     double friction_coefficient = std::numeric_limits<double>::quiet_NaN();
+    /// σ_t [Pa] of a slab layer: a dynamic PST ends with a slab fracture when the largest
+    /// principal stress in the layer reaches it. From the scene, or (entry empty) the density law
+    /// of Sigrist 2006 (fem/closed_forms.h); NaN for the weak layer and the substratum.
+    double tensile_strength = std::numeric_limits<double>::quiet_NaN();
+    bool tensile_strength_from_density = false; ///< σ_t is Sigrist 2006's density law
   };
 
   /// The layered snowpack.
@@ -88,8 +93,10 @@ namespace anticrack::fem
     };
     enum class Saw
     {
-      fixed,    ///< the cut of `cut_length` is made at once (after the gravity equilibrium)
-      advancing ///< the saw advances at `saw_speed` from 0 up to `cut_length`
+      fixed,        ///< the cut of `cut_length` is made at once (after the gravity equilibrium)
+      advancing,    ///< the saw advances at `saw_speed` from 0 up to `cut_length`
+      quasi_static, ///< Newton saw steps until equilibrium is lost, then explicit dynamics
+      bisection     ///< fixed cuts, each loaded by gravity, bisected to the critical cut
     };
     enum class ColumnEnds
     {
@@ -158,6 +165,10 @@ namespace anticrack::fem
     double linear_bulk_viscosity = 0.06; ///< c_1 of the bulk viscosity pressure
     double quadratic_bulk_viscosity = 1.2; ///< c_2 of the bulk viscosity pressure
     double mass_damping = 0;             ///< α_M of the damping force −α_M M v [1/s]
+    /// ARR (or "no propagation"): once the saw has stopped, the crack tip has advanced less than
+    /// arrest_speed · arrest_duration over the last arrest_duration [m/s, s].
+    double arrest_speed = 0.5;
+    double arrest_duration = 0.1;
 
     // crack detection (both PSTs: subsection Analysis/Crack detection)
     /// A weak-layer element counts as failed when its softening has used this fraction of the way

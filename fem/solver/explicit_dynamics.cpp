@@ -17,13 +17,24 @@ namespace anticrack::fem
                                           double initial_external_work)
     : ExplicitDynamics(model, u0, initial_external_work, true)
   {
+    restart_at_rest(u0, initial_external_work);
+  }
+
+  template <int dim>
+  void ExplicitDynamics<dim>::restart_at_rest(const VectorType &u, double external_work)
+  {
+    u_ = u;
+    v_ = 0;
+    kinetic_ = 0;
+    external_work_ = external_work;
+    from_rest_ = true;
     u_.update_ghost_values();
     v_.update_ghost_values();
     typename SnowpackModel<dim>::Request request;
     request.velocity = &v_;
-    stable_dt_ = model.evaluate(u_, internal_force_, request);
-    dt_ = model.scene().analysis.cfl_safety * stable_dt_; // the first step's, reported before it
-    model.commit();
+    stable_dt_ = model_.evaluate(u_, internal_force_, request);
+    dt_ = model_.scene().analysis.cfl_safety * stable_dt_; // the first step's, reported before it
+    model_.commit();
   }
 
   template <int dim>
@@ -44,7 +55,8 @@ namespace anticrack::fem
     const Analysis &analysis = model_.scene().analysis;
     const VectorType &mass = model_.lumped_mass();
     const VectorType &gravity = model_.gravity_force();
-    const bool first = steps_ == 0;
+    const bool first = from_rest_;
+    from_rest_ = false;
     const double previous_dt = dt_;
     dt_ = analysis.cfl_safety * stable_dt_;
     // Central differences with a variable step: the velocity lives at the half steps, so the
@@ -114,6 +126,7 @@ namespace anticrack::fem
     for (const double value : {time_, dt_, stable_dt_, external_work_, viscous_work_, kinetic_})
       checkpoint::write(out, value);
     checkpoint::write(out, std::uint64_t(steps_));
+    checkpoint::write(out, std::uint64_t(from_rest_));
     for (const VectorType *vector : {&u_, &v_, &internal_force_})
       checkpoint::write_vector(out, std::vector<double>(vector->begin(), vector->end()));
   }
@@ -126,6 +139,8 @@ namespace anticrack::fem
     std::uint64_t steps = 0;
     checkpoint::read(in, steps);
     steps_ = steps;
+    checkpoint::read(in, steps);
+    from_rest_ = steps != 0;
     std::vector<double> values;
     for (VectorType *vector : {&u_, &v_, &internal_force_})
     {

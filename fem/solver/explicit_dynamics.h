@@ -38,6 +38,12 @@ namespace anticrack::fem
     /// after every step at no extra communication; finite() checks the fields themselves.
     void step();
 
+    /// Continues from displacement u at rest, at the current time and step count: the quasi-static
+    /// saw hands back to the explicit integrator after static saw steps. The energy ledger restarts
+    /// with `external_work` (the work done to reach u, as in the constructor); the viscous work so
+    /// far is kept.
+    void restart_at_rest(const VectorType &u, double external_work);
+
     /// Re-evaluates the internal force at the current state, after the model changed (a cut).
     void refresh_internal_force();
 
@@ -77,6 +83,7 @@ namespace anticrack::fem
     VectorType u_, v_, internal_force_;
     double time_ = 0, dt_ = 0, stable_dt_ = 0;
     unsigned long steps_ = 0;
+    bool from_rest_ = true; ///< the next step starts from rest (a half step for the velocity)
     double external_work_ = 0, viscous_work_ = 0, kinetic_ = 0;
   };
 } // namespace anticrack::fem

@@ -1555,9 +1555,15 @@ def fem_outputs(work):
     check(r["analysis"] == "explicit dynamics", f"analysis {r['analysis']!r}")
     check(r["mesh"]["dimension"] == 2 and r["mesh"]["cells"] == PST_CELLS and r["mesh"]["dofs"] == PST_DOFS
           and r["mesh"]["ranks"] == 1, f"mesh {r['mesh']}, expected 2D, {PST_CELLS} cells, {PST_DOFS} dofs, 1 rank")
-    check(r["crack"] in ("reached the column end", "arrested", "did not start"), f"crack {r['crack']!r}")
+    check(r["outcome"] in ("END", "ARR", "SF", "no propagation", "still running"), f"outcome {r['outcome']!r}")
     # The scene is made so that the crack runs through: a fixed saw makes the critical cut the cut.
-    check(r["crack"] == "reached the column end", f"the crack {r['crack']}; the scene no longer runs through")
+    check(r["outcome"] == "END", f"the outcome {r['outcome']}; the scene no longer runs through")
+    check(r["warnings"] == [] and r["slab_fracture"] is None, f"warnings {r['warnings']}, slab fracture {r['slab_fracture']}")
+    # The far end may fail by itself (its free edge, measured: one 2 cm column at 32 ms); the END
+    # is then the crack's arrival there, later.
+    free_end = r["free_end_failure"]
+    check(free_end is None or (free_end["length_m"] < 0.1 and free_end["time_s"] < r["time_reached_end_s"]),
+          f"free end {free_end}, reached the end at {r['time_reached_end_s']} s")
     check(r["critical_cut_length_m"] == PST_CUT,
           f"critical cut {r['critical_cut_length_m']} m, the fixed cut is {PST_CUT} m")
     # Bounds a wrong answer can miss: the crack runs slower than the slab's plane-strain P-wave,
@@ -1686,9 +1692,9 @@ def fem_mpi_equals_serial(work):
         check(results[label][0]["mesh"]["dofs"] == results[label][1]["mesh"]["dofs"], f"{label}: dofs differ")
         check_fields(parallel, ranks=2)
     a, b = results["pst"]
-    for key in ("crack", "critical_cut_length_m", "time_reached_end_s", "time_steps"):
+    for key in ("outcome", "critical_cut_length_m", "time_reached_end_s", "time_steps"):
         check(a[key] == b[key], f"dynamic PST {key}: serial {a[key]!r}, 2 ranks {b[key]!r}")
-    check(a["crack"] == "reached the column end", f"the crack {a['crack']}; the scene no longer runs through")
+    check(a["outcome"] == "END", f"the outcome {a['outcome']}; the scene no longer runs through")
     speeds = a["propagation_speed_m_per_s"], b["propagation_speed_m_per_s"]
     check(abs(speeds[0] - speeds[1]) <= 1e-6 * abs(speeds[0]),
           f"propagation speed: serial {speeds[0]}, 2 ranks {speeds[1]}")
@@ -1720,7 +1726,8 @@ def fem_numerical_failure(work):
     series interval is longer than the whole run."""
     scene = write(os.path.join(work, "unstable.prm"), pst_scene(
         {"Output/Field interval [s]": "0"},
-        insert={"Analysis/Explicit": ["set Mass damping [1/s] = 2e6"], "Output": ["set Series interval [s] = 1"]}))
+        insert={"Analysis/Explicit": ["set Mass damping [1/s] = 2e6", "set Arrest duration [s] = 10"],
+                "Output": ["set Series interval [s] = 1"]}))
     out = os.path.join(work, "run")
     _, stderr = anticrack("run", scene, "-o", out, expect=1)
     check("numerical failure" in stderr, f"stderr does not say what happened:\n{stderr}")
@@ -1839,10 +1846,10 @@ def fem_material_file(work):
     anticrack("run", inline, "-o", runs[0], cwd=work)
     anticrack("run", from_file, "-o", runs[1], cwd=work)
     a, b = (fem_summary(out) for out in runs)
-    for key in ("crack", "critical_cut_length_m", "time_reached_end_s", "time_steps", "final_crack_tip_m"):
+    for key in ("outcome", "critical_cut_length_m", "time_reached_end_s", "time_steps", "final_crack_tip_m"):
         check(a["results"][key] == b["results"][key],
               f"{key}: inline {a['results'][key]!r}, material file {b['results'][key]!r}")
-    check(a["results"]["crack"] == "reached the column end", f"the crack {a['results']['crack']}")
+    check(a["results"]["outcome"] == "END", f"the outcome {a['results']['outcome']}")
     series = [{name: v for name, (v, _) in read_columns(os.path.join(out, "series.h5")).items()} for out in runs]
     compare_exactly(*series, "series.h5, inline vs material file")
     files = b["scene"].get("material_files", {})
@@ -2005,7 +2012,7 @@ def pipeline_small(work):
         check(ma[name] == mb[name], f"{name}: {ma[name]} serially, {mb[name]} under mpirun")
     for stage in ["flat", "steep"]:
         ra, rb = a["analyses"][stage], b["analyses"][stage]
-        check(ra["crack"] == rb["crack"] and ra["critical_cut_length_m"] == rb["critical_cut_length_m"] and
+        check(ra["outcome"] == rb["outcome"] and ra["critical_cut_length_m"] == rb["critical_cut_length_m"] and
               abs(ra["propagation_speed_m_per_s"] / rb["propagation_speed_m_per_s"] - 1) < 1e-6,
               f"{stage}: serial {ra}, mpirun {rb}")
 
@@ -2052,7 +2059,7 @@ def crossval_chain_gaume(work):
         check(a_fe is not None, f"{stage}: no critical cut ({results['crack']!r})")
         check(band["lower_m"] - element <= a_fe <= band["upper_m"] + element,
               f"{stage}: FE critical cut {a_fe} m outside the band {band}")
-        if results["crack"] == "reached the column end":
+        if results["outcome"] == "END":
             speed = results["propagation_speed_m_per_s"]
             check(0.9 * 20 <= speed <= 1.1 * 50, f"{stage}: speed {speed} m/s outside Bergfeld et al.'s 20-50 m/s")
 
@@ -2217,7 +2224,7 @@ def fem_resume(work):
     anticrack("run", full, "-o", straight)
     stdout, _ = anticrack("run", part, "-o", resumed)
     check("checkpoint at step" in stdout, f"no checkpoint was written:\n{stdout}")
-    check(fem_summary(resumed)["results"]["crack"] != "reached the column end", "the first part ran to the end")
+    check(fem_summary(resumed)["results"]["outcome"] != "END", "the first part ran to the end")
     stdout, _ = anticrack("run", full, "-o", resumed, "--resume")
     check("resumed at step" in stdout, f"the run did not resume:\n{stdout}")
     a, b = fem_summary(straight)["results"], fem_summary(resumed)["results"]

@@ -34,9 +34,9 @@ namespace
   }
 
   /// The results of a run at parameters theta of the exact answer y = a . theta + 1 (in every key).
-  Json linear_results(const Eigen::Vector3d &a, const Eigen::Vector3d &theta, const char *crack = "reached the column end")
+  Json linear_results(const Eigen::Vector3d &a, const Eigen::Vector3d &theta, const char *outcome = "END")
   {
-    Json r{{"crack", crack}};
+    Json r{{"outcome", outcome}};
     for (const coupling::PstAnswer &answer : coupling::pst_answers())
       r[answer.key] = a.dot(theta) + 1;
     return r;
@@ -83,7 +83,7 @@ TEST(PipelineUncertainty, AChangedOutcomeIsNotLinearisedAndAnUnmovedAnswerHasNoD
   std::vector<Json> arrested, unmoved;
   for (int k = 0; k < 3; ++k)
   {
-    arrested.push_back(linear_results(a, u.value, k == 1 ? "arrested" : "reached the column end"));
+    arrested.push_back(linear_results(a, u.value, k == 1 ? "ARR" : "END"));
     unmoved.push_back(linear_results(none, u.value));
   }
   const Json out = coupling::linearised_intervals(u, linear_results(a, u.value), arrested, 0.01);

@@ -384,22 +384,64 @@ namespace
     return text;
   }
 
-  TEST(FemExplicit, CrackRunsThroughTheColumn)
+  /// Runs a snowpack scene's analysis in a fresh temporary directory `name`.
+  Json run_scene(const std::string &text, const std::string &name)
   {
     SnowpackRunOptions options;
-    options.output_directory = temporary_directory("pst_through");
-    const Json r = run_snowpack(scene_from(small_pst(0.003, 0.45)), options, MPI_COMM_WORLD);
-    EXPECT_EQ(r["crack"], "reached the column end") << r.dump(1);
+    options.output_directory = temporary_directory(name);
+    return run_snowpack(scene_from(text), options, MPI_COMM_WORLD);
+  }
+
+  TEST(FemExplicit, CrackRunsThroughTheColumn)
+  {
+    const Json r = run_scene(small_pst(0.003, 0.45), "pst_through");
+    EXPECT_EQ(r["outcome"], "END") << r.dump(1);
     EXPECT_TRUE(r["propagation_speed_m_per_s"].is_number()) << r.dump(1);
     EXPECT_LT(double(r["energies_per_width"]["balance_error_relative"]), 0.02) << r.dump(1);
   }
 
+  // The other outcomes of the same small PST (docs/fem.md "Outcomes"): a short cut (0.1 m, the
+  // tip fails under the slab's weight only near the cut) never runs by itself: "no propagation",
+  // declared Arrest duration (0.1 s) after the cut and the run ends there; an end time (0.03 s)
+  // before the crack reaches the end: "still running" with a warning naming the remedy; a slab of
+  // tensile strength 2 kPa (its bending stress over a 0.45 m cut is about 4 kPa): "SF", where and
+  // when.
+  TEST(FemExplicit, ShortCutDoesNotPropagate)
+  {
+    const Json r = run_scene(small_pst(0.003, 0.1), "pst_short_cut");
+    EXPECT_EQ(r["outcome"], "no propagation") << r.dump(1);
+    EXPECT_TRUE(r["critical_cut_length_m"].is_null()) << r.dump(1);
+    EXPECT_LT(double(r["simulated_time_s"]), 0.25) << "the run goes on after the outcome";
+  }
+
+  TEST(FemExplicit, EndTimeBeforeTheEndWarnsThatTheCrackStillRuns)
+  {
+    std::string text = small_pst(0.003, 0.45);
+    text.replace(text.find("set End time [s] = 0.25"), 23, "set End time [s] = 0.03");
+    const Json r = run_scene(text, "pst_still_running");
+    EXPECT_EQ(r["outcome"], "still running") << r.dump(1);
+    ASSERT_EQ(r["warnings"].size(), 1u) << r.dump(1);
+    EXPECT_NE(r["warnings"][0].get<std::string>().find("increase Analysis/Explicit/End time [s]"), std::string::npos);
+  }
+
+  TEST(FemExplicit, WeakSlabFractures)
+  {
+    std::string text = small_pst(0.003, 0.45);
+    text.replace(text.find("    set Poisson's ratio = 0.25\n"), 30,
+                 "    set Poisson's ratio = 0.25\n    set Tensile strength [Pa] = 2000\n");
+    const Json r = run_scene(text, "pst_slab_fracture");
+    ASSERT_EQ(r["outcome"], "SF") << r.dump(1);
+    const Json &f = r["slab_fracture"];
+    EXPECT_EQ(f["layer"], "slab layer 1");
+    EXPECT_GE(double(f["largest_principal_stress_Pa"]), 2000.);
+    EXPECT_EQ(double(f["tensile_strength_Pa"]), 2000.);
+    EXPECT_EQ(r["slab_tensile_strength"][0]["source"], "scene");
+  }
+
   TEST(FemExplicit, CrackArrestsWhenTheCollapseReleasesTooLittleEnergy)
   {
-    SnowpackRunOptions options;
-    options.output_directory = temporary_directory("pst_arrest");
-    const Json r = run_snowpack(scene_from(small_pst(0.0012, 0.45)), options, MPI_COMM_WORLD);
-    EXPECT_EQ(r["crack"], "arrested") << r.dump(1);
+    const Json r = run_scene(small_pst(0.0012, 0.45), "pst_arrest");
+    EXPECT_EQ(r["outcome"], "ARR") << r.dump(1);
     EXPECT_GT(double(r["arrest_position_m"]), 0.45 + 0.1) << r.dump(1);
     EXPECT_LT(double(r["arrest_position_m"]), 0.95) << r.dump(1);
     EXPECT_LT(double(r["energies_per_width"]["balance_error_relative"]), 0.02) << r.dump(1);
@@ -428,7 +470,7 @@ namespace
     SnowpackRunOptions options;
     options.output_directory = temporary_directory("band_" + std::to_string(rows));
     const Json r = run_snowpack(scene_from(small_pst(0.003, 0.45, rows)), options, MPI_COMM_WORLD);
-    EXPECT_EQ(r["crack"], "reached the column end") << r.dump(1);
+    EXPECT_EQ(r["outcome"], "END") << r.dump(1);
     const BandRun run{r["weak_layer_closure"]["mean_over_locked_columns_m"],
                       r["energies_per_width"]["dissipated_plastic_J"]};
     std::cout << rows << " rows: closure " << run.closure << " m, dissipated " << run.dissipated << " J/m\n";
@@ -496,7 +538,7 @@ namespace
 {
   // ------------------------------------------------------------------------------------------
   // Mirror symmetry: on flat ground a cut from the downslope end is the mirror image of one from
-  // the upslope end, so every result is the same: the discrete ones exactly (crack, critical cut,
+  // the upslope end, so every result is the same: the discrete ones exactly (outcome, critical cut,
   // the step the crack reaches the end). The meshes mirror each other but the order of
   // floating-point sums differs, and the softening's bifurcations (which row of the weak layer
   // localises first) amplify that: measured 5e-5 on the work of gravity, 0.4 % on the kinetic
@@ -511,7 +553,7 @@ namespace
     const Json up = run_snowpack(scene_from(small_pst(0.003, 0.45)), options, MPI_COMM_WORLD);
     options.output_directory = temporary_directory("mirror_down");
     const Json down = run_snowpack(scene_from(downslope), options, MPI_COMM_WORLD);
-    for (const char *key : {"crack", "critical_cut_length_m", "time_reached_end_s", "final_crack_tip_m", "time_steps"})
+    for (const char *key : {"outcome", "critical_cut_length_m", "time_reached_end_s", "final_crack_tip_m", "time_steps"})
       EXPECT_EQ(up[key], down[key]) << key;
     for (const char *key : {"elastic_J", "kinetic_J", "dissipated_plastic_J", "external_work_J"})
       EXPECT_NEAR(double(up["energies_per_width"][key]), double(down["energies_per_width"][key]),
@@ -560,6 +602,39 @@ namespace
   // and the dynamic one dates the onset back to the last row with the tip within two elements of
   // the saw. A quasi-static solve that lost equilibrium for another reason (a bad tangent, a line
   // search that stalls) would stop far earlier; a missing softening far later or never.
+  // ------------------------------------------------------------------------------------------
+  // The critical cut as practice defines it, the cut from which the crack runs by itself, found two
+  // ways (docs/fem.md "The critical cut"): a quasi-static saw (Newton steps of one element, halved
+  // to 1/64) that hands over to explicit dynamics when equilibrium is lost, and a bisection over
+  // fixed cuts, each made before the gravity ramp and followed in time (does the crack run?), to one
+  // element. Neither has a saw speed, an output interval or a lead in its answer; they load the
+  // weak layer along different paths (load, then cut; cut, then load). They must agree within one
+  // element length (0.02 m), the tolerance and the resolution of the bisection.
+  TEST(FemCriticalCut, QuasiStaticSawAgreesWithBisectionWithinOneElement)
+  {
+    auto run = [](const std::string &saw) {
+      std::string text = small_pst(0.003, 0.8);
+      text.replace(text.find("set Saw = fixed"), 15, "set Saw = " + saw);
+      // Each event the quasi-static saw hands over is followed for the arrest duration (0.1 s).
+      text.replace(text.find("set End time [s] = 0.25"), 23, "set End time [s] = 3");
+      SnowpackRunOptions options;
+      options.output_directory = temporary_directory("critical_cut_" + saw);
+      return run_snowpack(scene_from(text), options, MPI_COMM_WORLD);
+    };
+    const Json saw = run("quasi-static"), bisection = run("bisection");
+    ASSERT_TRUE(saw["critical_cut_length_m"].is_number()) << saw.dump(1);
+    ASSERT_TRUE(bisection["critical_cut_length_m"].is_number()) << bisection.dump(1);
+    const double a_saw = saw["critical_cut_length_m"], a_bisection = bisection["critical_cut_length_m"];
+    std::cout << "critical cut: quasi-static saw " << a_saw << " m " << saw["critical_cut_bracket_m"]
+              << ", outcome " << saw["outcome"] << "; bisection " << a_bisection << " m "
+              << bisection["critical_cut_bracket_m"] << " in " << bisection["bisection"]["trials"].size()
+              << " trials, outcome " << bisection["outcome"] << "\n";
+    EXPECT_NEAR(a_saw, a_bisection, 0.02);
+    EXPECT_LE(double(bisection["critical_cut_bracket_m"][1]) - double(bisection["critical_cut_bracket_m"][0]), 0.02 + 1e-12);
+    EXPECT_EQ(saw["outcome"], "END") << saw.dump(1);
+    EXPECT_EQ(bisection["outcome"], "END") << bisection.dump(1);
+  }
+
   TEST(FemQuasiStatic, CriticalCutAgreesWithASlowDynamicSaw)
   {
     std::string slow_saw = small_pst(0.003, 0.8);
@@ -602,8 +677,8 @@ namespace
     };
     const Json plane = run(2), solid = run(3);
     EXPECT_EQ(solid["mesh"]["dimension"], 3);
-    EXPECT_EQ(solid["crack"], "reached the column end") << solid.dump(1);
-    EXPECT_EQ(plane["crack"], "reached the column end") << plane.dump(1);
+    EXPECT_EQ(solid["outcome"], "END") << solid.dump(1);
+    EXPECT_EQ(plane["outcome"], "END") << plane.dump(1);
     ASSERT_TRUE(solid["propagation_speed_m_per_s"].is_number() && plane["propagation_speed_m_per_s"].is_number());
     const double v3 = solid["propagation_speed_m_per_s"], v2 = plane["propagation_speed_m_per_s"];
     std::cout << "crack speed: 2D " << v2 << " m/s, 3D " << v3 << " m/s\n";
