@@ -106,13 +106,13 @@ def snowpack_stages(summary):
 
 def stage_section(run_dir, summary):
     lines = ["## Snowpack analyses", "",
-             "| stage | analysis | status | crack | critical cut [m] | Gaume et al. (2017) [m] | first tip yield [m] | "
+             "| stage | analysis | status | outcome | critical cut [m] | Gaume et al. (2017) [m] | first tip yield [m] | "
              "speed [m/s] | touchdown distance [m] |",
              "|---|---|---|---|---|---|---|---|---|"]
     for s in snowpack_stages(summary):
         r = s.get("results", {})
         gaume = r.get("gaume2017") or {}
-        lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('crack', '—')} | "
+        lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('outcome', '—')} | "
                      f"{fmt(r.get('critical_cut_length_m'))} | {fmt(gaume.get('critical_cut_length_m'))} | "
                      f"{fmt(gaume.get('first_tip_yield_cut_length_m'))} | "
                      f"{fmt(r.get('propagation_speed_m_per_s'))} | {fmt(r.get('touchdown_distance_m'))} |")

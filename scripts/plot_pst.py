@@ -82,7 +82,7 @@ def main():
     if os.path.exists(series_path):
         figure, axes = plt.subplots(2, 1, figsize=(8, 8))
         plot_series(read(series_path), results, axes)
-        title = f"{results.get('analysis', 'PST')}: crack {results.get('crack', '')}"
+        title = f"{results.get('analysis', 'PST')}: outcome {results.get('outcome', '')}"
         speed = results.get("propagation_speed_m_per_s")
         if speed is not None:
             title += f", {speed:.1f} m/s"

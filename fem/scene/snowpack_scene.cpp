@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace anticrack::fem
@@ -152,6 +153,10 @@ namespace anticrack::fem
     void check_layer(const Layer &layer, const std::string &section, bool thickness_may_be_zero,
                      double band_height, Problems &problems)
     {
+      for (const std::string &entry : layer.unset_material_entries)
+        problems.add(section + "/" + entry,
+                     "must be given: an inline layer (no Material file) sets every entry its model (" +
+                       std::string(layer_model_names().name(layer.model)) + ") uses; there are no defaults for physics");
       if (!thickness_may_be_zero && !(layer.thickness > 0))
         problems.add(section + "/Thickness [m]", "must be > 0 (is " + format_number(layer.thickness) + ")");
       if (!(layer.material.youngs_modulus > 0))
@@ -500,6 +505,31 @@ namespace anticrack::fem
     s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file, false);
     prm.leave_subsection();
     prm.leave_subsection();
+    {
+      // An inline layer gives every entry its model uses: elasticity and density, and for a cohesive
+      // Cam-Clay layer its surface and softening (the material file's entries but the name and the
+      // yield surface plane, which has one value).
+      std::set<std::string> given;
+      for (const ParameterSetting &setting : scan_parameter_settings(text))
+        given.insert(setting.path_text());
+      auto note_unset = [&](Layer &layer, const std::string &section) {
+        if (!layer.material_file.empty())
+          return;
+        for (const MaterialEntry &e : material_entries())
+        {
+          const bool elastic_entry = e.number == &ContinuumMaterial::density || e.number == &ContinuumMaterial::youngs_modulus ||
+                                     e.number == &ContinuumMaterial::poisson_ratio;
+          const bool used = elastic_entry || (layer.model == Layer::Model::cohesive_cam_clay && e.number) ||
+                            (layer.model == Layer::Model::cohesive_cam_clay && e.text == &ContinuumMaterial::hardening_law);
+          if (used && !given.count(section + "/" + e.name()))
+            layer.unset_material_entries.push_back(e.name());
+        }
+      };
+      for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
+        note_unset(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
+      note_unset(s.weak_layer, "Snowpack/Weak layer");
+      note_unset(s.substratum, "Snowpack/Substratum");
+    }
 
     SawTest &pst = scene.pst;
     prm.enter_subsection("PST");

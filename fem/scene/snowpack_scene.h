@@ -66,6 +66,9 @@ namespace anticrack::fem
     /// of Sigrist 2006 (fem/closed_forms.h); NaN for the weak layer and the substratum.
     double tensile_strength = std::numeric_limits<double>::quiet_NaN();
     bool tensile_strength_from_density = false; ///< σ_t is Sigrist 2006's density law
+    /// Entries of subsection Material that the layer's model uses and that an inline layer (no
+    /// material file) left unset: refused by the scene check (no defaults for physics).
+    std::vector<std::string> unset_material_entries;
   };
 
   /// The layered snowpack.

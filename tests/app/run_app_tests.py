@@ -2054,9 +2054,9 @@ def crossval_chain_gaume(work):
         a_fe = results["critical_cut_length_m"]
         print(f"{stage}: FE critical cut {a_fe} m, band [{band['lower_m']:.4f}, {band['upper_m']:.4f}] m "
               f"(energy side {band['energy_cut_length_m']:.4f} m at {band['full_collapse_energy_J_per_m2']:.3f} J/m^2), "
-              f"Gaume et al. (2017) {reference['critical_cut_length_m']:.4f} m; crack {results['crack']!r}, "
+              f"Gaume et al. (2017) {reference['critical_cut_length_m']:.4f} m; outcome {results['outcome']!r}, "
               f"speed {results.get('propagation_speed_m_per_s')} m/s")
-        check(a_fe is not None, f"{stage}: no critical cut ({results['crack']!r})")
+        check(a_fe is not None, f"{stage}: no critical cut ({results['outcome']!r})")
         check(band["lower_m"] - element <= a_fe <= band["upper_m"] + element,
               f"{stage}: FE critical cut {a_fe} m outside the band {band}")
         if results["outcome"] == "END":
