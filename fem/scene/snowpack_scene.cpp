@@ -164,7 +164,10 @@ namespace anticrack::fem
       if (layer.collapse_height > 0 && !(layer.densification_modulus > 0))
         problems.add(section + "/Densification modulus [Pa]",
                      "must be > 0 when a collapse height is given (is " + format_number(layer.densification_modulus) + ")");
-      if (layer.collapse_height > 0 && std::isnan(layer.friction_coefficient))
+      // The lock-up and its friction belong to the cohesive Cam-Clay model (an elastic layer, as in
+      // an energy release rate, ignores a material file's collapse).
+      if (layer.model == Layer::Model::cohesive_cam_clay && layer.collapse_height > 0 &&
+          std::isnan(layer.friction_coefficient))
         problems.add(section + "/Friction coefficient",
                      "must be given, in [0, 2], when the layer locks up (collapse height " +
                        format_number(layer.collapse_height) +
