@@ -269,12 +269,12 @@ namespace anticrack::fem
           log_.line("[fem] t = ", format_number(t, 4), " s: the far end of the column fails by itself over ",
                     format_number(fronts_.far_end_failed, 3), " m (not the crack)");
         }
-        const typename SnowpackModel<dim>::SlabTension tension = model_.take_slab_tension();
+        const typename SnowpackModel<dim>::SlabTension tension = model_.slab_tension();
         largest_tension_ratio_ = std::max(largest_tension_ratio_, tension.ratio);
         if (tension.ratio >= 1)
         {
           slab_fracture_ = SlabFracture{t, cut_, tension, critical_cut_.has_value()};
-          finish(Outcome::slab_fracture, "the slab fractures: sigma_1 = " + format_number(tension.stress, 4) +
+          finish(Outcome::slab_fracture, "the slab fractures: its fibre stress " + format_number(tension.stress, 4) +
                                            " Pa reaches the tensile strength " + format_number(tension.strength, 4) +
                                            " Pa in " + layer_label(tension.layer) + " at x = " +
                                            format_number(tension.position[0], 4) + " m");
@@ -634,8 +634,8 @@ namespace anticrack::fem
                                 {"time_resolution_s", scene_.output.series_interval},
                                 {"cut_length_m", f.cut},
                                 {"layer", layer_label(f.tension.layer)},
-                                {"cell_centre_m", position},
-                                {"largest_principal_stress_Pa", f.tension.stress},
+                                {"position_m", position},
+                                {"fibre_stress_Pa", f.tension.stress},
                                 {"tensile_strength_Pa", f.tension.strength},
                                 {"crack_running", f.crack_running}};
         }

@@ -53,20 +53,6 @@ namespace anticrack::fem
              state.friction_stress;
     }
 
-    /// σ_1 of a stress: in plane strain (dim 2) σ_xz = σ_yz = 0, so σ_zz and the in-plane pair
-    /// (a + b)/2 + sqrt(((a − b)/2)² + c²) are the eigenvalues (no cubic to solve in the slab loop).
-    template <int dim>
-    double largest_principal_stress(const SymmetricTensor<2, 3> &stress)
-    {
-      if constexpr (dim == 2)
-      {
-        const double mean = 0.5 * (stress[0][0] + stress[1][1]), half = 0.5 * (stress[0][0] - stress[1][1]);
-        return std::max(mean + std::sqrt(half * half + stress[0][1] * stress[0][1]), stress[2][2]);
-      }
-      else
-        return eigenvalues(stress)[0];
-    }
-
     std::vector<double> equal_steps(double length, unsigned int count)
     {
       return std::vector<double>(count, length / count);
@@ -363,7 +349,7 @@ namespace anticrack::fem
           : CollapsedFrictionParameters());
     }
 
-    FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values);
+    FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values | update_quadrature_points);
     const unsigned int n_q = quadrature_.size();
     const double column_length = scene_.pst.column_length / n_columns_;
     // Dof i of a cell is component component_[i] of the scalar shape function node_[i]; the
@@ -404,6 +390,7 @@ namespace anticrack::fem
       for (unsigned int q = 0; q < n_q; ++q)
       {
         JxW_.push_back(fe_values.JxW(q));
+        normal_coordinate_.push_back(fe_values.quadrature_point(q)[dim - 1]);
         for (unsigned int node = 0; node < n_nodes; ++node)
           gradients_.push_back(fe_values.shape_grad_component(node_dof[node], q, 0));
       }
@@ -532,7 +519,6 @@ namespace anticrack::fem
       const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
       const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
       const double stress_factor = std::max(data.intact, cut_stiffness_floor);
-      const double slab_strength = layers_[data.layer].tensile_strength; // NaN outside the slab
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
       {
         u_local[i] = u.local_element(data.local_dofs[i]);
@@ -610,12 +596,6 @@ namespace anticrack::fem
                          parameters.bulk_modulus * trace(strain) * unit_symmetric_tensor<3>();
           if (request.tangent)
             tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
-          if (request.velocity && slab_strength > 0)
-          {
-            const double sigma_1 = largest_principal_stress<dim>(state.stress);
-            if (sigma_1 / slab_strength > slab_tension_.ratio)
-              slab_tension_ = {sigma_1 / slab_strength, sigma_1, slab_strength, data.layer, data.cell->center()};
-          }
         }
         const bool locked = state.lock_up_pressure > 0;
         // The friction of the collapsed grains on the lock-up pressure, in parallel (whole in a cut
@@ -873,28 +853,48 @@ namespace anticrack::fem
   }
 
   template <int dim>
-  typename SnowpackModel<dim>::SlabTension SnowpackModel<dim>::take_slab_tension()
+  typename SnowpackModel<dim>::SlabTension SnowpackModel<dim>::slab_tension() const
   {
-    // The rank with the largest ratio (the lowest on ties) tells the others its point.
-    struct
+    // Per column and slab layer the sums Σ w, Σ w z, Σ w z², Σ w σ_xx, Σ w σ_xx z (w = JxW) of the
+    // committed states; their least-squares line σ_xx ≈ a + b (z − z̄) gives the fibre stresses
+    // a ± |b| h/2 at the layer's faces: the slab's stretching and bending, without the stress
+    // concentrations at the column's corners that a pointwise σ_1 would pick up.
+    constexpr unsigned int n_sums = 5;
+    const unsigned int n_slab = layers_.size() - layer_first_slab;
+    std::vector<double> sums(n_columns_ * n_slab * n_sums, 0.);
+    for (const CellData &data : cells_)
     {
-      double ratio;
-      int rank;
-    } local{slab_tension_.ratio, static_cast<int>(Utilities::MPI::this_mpi_process(communicator_))}, global{};
-    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, communicator_);
-    double data[3 + dim] = {slab_tension_.stress, slab_tension_.strength, double(slab_tension_.layer)};
-    for (unsigned int d = 0; d < dim; ++d)
-      data[3 + d] = slab_tension_.position[d];
-    MPI_Bcast(data, 3 + dim, MPI_DOUBLE, global.rank, communicator_);
-    SlabTension result;
-    result.ratio = global.ratio;
-    result.stress = data[0];
-    result.strength = data[1];
-    result.layer = static_cast<unsigned int>(data[2]);
-    for (unsigned int d = 0; d < dim; ++d)
-      result.position[d] = data[3 + d];
-    slab_tension_ = SlabTension();
-    return result;
+      if (data.layer < layer_first_slab)
+        continue;
+      double *column = &sums[(data.column * n_slab + data.layer - layer_first_slab) * n_sums];
+      for (unsigned int q = 0; q < quadrature_.size(); ++q)
+      {
+        const double w = JxW_[data.first_qp + q], z = normal_coordinate_[data.first_qp + q],
+                     sigma = committed_[data.first_qp + q].stress[0][0];
+        column[0] += w, column[1] += w * z, column[2] += w * z * z, column[3] += w * sigma, column[4] += w * sigma * z;
+      }
+    }
+    Utilities::MPI::sum(sums, communicator_, sums);
+    SlabTension largest;
+    const double column_length = scene_.pst.column_length / n_columns_;
+    for (unsigned int c = 0; c < n_columns_; ++c)
+      for (unsigned int l = 0; l < n_slab; ++l)
+      {
+        const double *m = &sums[(c * n_slab + l) * n_sums];
+        const Layer &layer = layers_[layer_first_slab + l];
+        if (!(m[0] > 0) || !(layer.tensile_strength > 0))
+          continue;
+        const double z_mean = m[1] / m[0], spread = m[2] - m[0] * z_mean * z_mean;
+        const double mean = m[3] / m[0], slope = spread > 0 ? (m[4] - m[3] * z_mean) / spread : 0.;
+        const double fibre = mean + std::abs(slope) * layer.thickness / 2;
+        if (fibre / layer.tensile_strength > largest.ratio)
+        {
+          largest = {fibre / layer.tensile_strength, fibre, layer.tensile_strength, layer_first_slab + l, {}};
+          largest.position[0] = (c + 0.5) * column_length;
+          largest.position[dim - 1] = z_mean + (slope >= 0 ? 0.5 : -0.5) * layer.thickness;
+        }
+      }
+    return largest;
   }
 
   template <int dim>

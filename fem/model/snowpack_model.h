@@ -206,17 +206,19 @@ namespace anticrack::fem
     /// The largest tension in the slab layers relative to their tensile strength.
     struct SlabTension
     {
-      double ratio = 0;     ///< σ_1 / σ_t (0: no tension anywhere)
-      double stress = 0;    ///< σ_1, the largest principal stress [Pa]
+      double ratio = 0;     ///< σ_f / σ_t (0: no tension anywhere)
+      double stress = 0;    ///< σ_f, the largest fibre stress [Pa]
       double strength = 0;  ///< σ_t of its layer [Pa]
       unsigned int layer = 0;
-      dealii::Point<dim> position; ///< the centre of its cell
+      dealii::Point<dim> position; ///< its column's centre along the slope, and the face (top or bottom)
     };
 
-    /// The largest σ_1 / σ_t over the slab layers' quadrature points and every explicit step
-    /// (evaluate() with a velocity) since the last call, which starts the next interval, so that no
-    /// peak between two calls is missed. Collective.
-    SlabTension take_slab_tension();
+    /// The largest fibre stress σ_f over the slab layers and the columns, relative to the layer's
+    /// tensile strength, of the committed states: per column and layer the least-squares line of
+    /// σ_xx through the layer's thickness (its stretching and bending, as a beam), at the face where
+    /// it is largest. A quadrature point's σ_1 would instead grow without bound at the column's
+    /// corners as the elements shrink. Collective.
+    SlabTension slab_tension() const;
 
     /// How far the weak layer has softened, over all ranks: the mean over its quadrature points of
     /// (p0_initial − p0) / (p0_initial − p0_floor), the measure of crack_fronts() (0: intact, 1: at the
@@ -279,11 +281,11 @@ namespace anticrack::fem
     // Geometry cache (a flat array is ~10× faster than FEValues::reinit per cell in explicit loops):
     // JxW per quadrature point and the gradients of the scalar shape functions per (point, node).
     std::vector<double> JxW_;
+    std::vector<double> normal_coordinate_; ///< of each quadrature point (slope-normal) [m]
     std::vector<dealii::Tensor<1, dim>> gradients_;
     std::vector<unsigned int> component_, node_; ///< of each cell dof
     double removed_by_saw_ = 0;
     unsigned int n_columns_ = 0;
-    SlabTension slab_tension_; ///< of this rank since the last take_slab_tension()
     double cut_length_ = 0;
     double viscous_power_ = 0;
 
