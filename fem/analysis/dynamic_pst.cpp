@@ -434,7 +434,8 @@ namespace anticrack::fem
         for (const double value : {cut_, next_series_, next_field_, wall_, fronts_.crack_tip, fronts_.touchdown,
                                    critical_cut_.value_or(-1.), critical_time_.value_or(-1.), saw_stopped_.value_or(-1.),
                                    free_end_time_.value_or(-1.), free_end_length_, largest_tension_ratio_,
-                                   static_bracket_ ? static_bracket_->first : -1., static_bracket_ ? static_bracket_->second : -1.})
+                                   static_bracket_ ? static_bracket_->first : -1., static_bracket_ ? static_bracket_->second : -1.,
+                                   double(static_phases_)})
           checkpoint::write(out, value);
         for (const TimeSeries::Column &column : series_.columns())
           checkpoint::write_vector(out, column.values);
@@ -470,11 +471,13 @@ namespace anticrack::fem
           model_.load(in);
           dynamics_ = std::make_unique<ExplicitDynamics<dim>>(model_, u, 0., true);
           dynamics_->load(in);
-          double critical_cut = 0, critical_time = 0, saw_stopped = 0, free_end_time = 0, static_low = 0, static_high = 0;
+          double critical_cut = 0, critical_time = 0, saw_stopped = 0, free_end_time = 0, static_low = 0, static_high = 0,
+                 static_phases = 0;
           for (double *value : {&cut_, &next_series_, &next_field_, &wall_, &fronts_.crack_tip, &fronts_.touchdown,
                                 &critical_cut, &critical_time, &saw_stopped, &free_end_time, &free_end_length_,
-                                &largest_tension_ratio_, &static_low, &static_high})
+                                &largest_tension_ratio_, &static_low, &static_high, &static_phases})
             checkpoint::read(in, *value);
+          static_phases_ = static_cast<unsigned int>(static_phases);
           if (static_low >= 0)
             static_bracket_ = std::make_pair(static_low, static_high);
           if (critical_cut >= 0)
