@@ -3,9 +3,11 @@
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/model/checkpoint.h"
+#include "fem/model/layers.h"
 #include "util/atomic_file.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
+#include "util/enum_table.h"
 #include "util/input_error.h"
 #include "util/problems.h"
 #include "util/stop_signals.h"
@@ -342,6 +344,17 @@ namespace anticrack::fem
         saw_stopped_ = dynamics_->time();
       }
 
+      /// The outcomes' names in summary.json (PST practice's labels).
+      static const EnumTable<Outcome> &outcome_names()
+      {
+        static const EnumTable<Outcome> names{{"END", Outcome::end},
+                                              {"ARR", Outcome::arrest},
+                                              {"SF", Outcome::slab_fracture},
+                                              {"no propagation", Outcome::no_propagation},
+                                              {"still running", Outcome::running}};
+        return names;
+      }
+
       void finish(Outcome outcome, const std::string &what)
       {
         outcome_ = outcome;
@@ -579,23 +592,11 @@ namespace anticrack::fem
         r["self_propagation_lead_m"] = lead;
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
+        r["outcome"] = outcome_names().name(outcome_);
         switch (outcome_)
         {
-          case Outcome::end:
-            r["outcome"] = "END";
-            break;
-          case Outcome::arrest:
-            r["outcome"] = "ARR";
-            break;
-          case Outcome::slab_fracture:
-            r["outcome"] = "SF";
-            break;
-          case Outcome::no_propagation:
-            r["outcome"] = "no propagation";
-            break;
           case Outcome::running:
           {
-            r["outcome"] = "still running";
             const double moved = tip.empty() ? 0. : tip.back() - tip[std::max<std::ptrdiff_t>(
                                                                  0, std::ptrdiff_t(tip.size()) - 1 -
                                                                       std::ptrdiff_t(scene_.analysis.arrest_duration /
@@ -622,6 +623,8 @@ namespace anticrack::fem
             log_.line("[fem] warning: ", warning);
             break;
           }
+          default:
+            break;
         }
         r["arrest_detection"] = {{"speed_m_per_s", scene_.analysis.arrest_speed},
                                  {"duration_s", scene_.analysis.arrest_duration}};
@@ -711,9 +714,7 @@ namespace anticrack::fem
       if (options.resume)
         throw InputError("a bisection (PST/Saw = bisection) cannot be resumed: run it again (each trial is short)");
       ConditionalStream log = root_log(options.log, comm);
-      const unsigned int columns =
-        std::max(4u, static_cast<unsigned int>(std::lround(scene.pst.column_length / scene.mesh.element_length)));
-      const double dx = scene.pst.column_length / columns;
+      const double dx = scene.pst.column_length / column_count(scene);
       Json trials = Json::array(), shortest;
       auto trial = [&](double cut) {
         SnowpackRunOptions trial_options = options;

@@ -60,4 +60,9 @@ namespace anticrack::fem
   {
     return layer_of(scene.snowpack, layer_id).thickness / element_rows(scene, layer_id);
   }
+
+  unsigned int column_count(const SnowpackScene &scene)
+  {
+    return std::max(4u, static_cast<unsigned int>(std::lround(scene.pst.column_length / scene.mesh.element_length)));
+  }
 } // namespace anticrack::fem

@@ -43,4 +43,7 @@ namespace anticrack::fem
 
   /// Height normal to the slope of the elements of layer `layer_id`, thickness / element_rows() [m].
   double element_height(const SnowpackScene &scene, unsigned int layer_id);
+
+  /// Element columns along the slope: the column length over `Element length`, rounded, at least 4.
+  unsigned int column_count(const SnowpackScene &scene);
 } // namespace anticrack::fem

@@ -129,7 +129,7 @@ namespace anticrack::fem
     const MeshParameters &m = scene_.mesh;
     const Snowpack &s = scene_.snowpack;
     const double length = scene_.pst.column_length;
-    n_columns_ = std::max(4u, (unsigned int)std::lround(length / m.element_length));
+    n_columns_ = column_count(scene_);
 
     // Through the thickness, layer by layer from the base (layer ids), element_rows() equal rows.
     std::vector<double> normal_steps;
