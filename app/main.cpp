@@ -17,6 +17,7 @@
 #include "dem/core/types.h"
 #include "util/input_error.h"
 #include "util/mpi_session.h"
+#include "util/source_version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -24,10 +25,6 @@
 #include <iterator>
 #include <iostream>
 #include <string>
-
-#ifndef ANTICRACK_GIT_VERSION
-#  define ANTICRACK_GIT_VERSION "unknown"
-#endif
 
 namespace
 {
@@ -88,7 +85,7 @@ int main(int argc, char **argv)
 {
   CLI::App app{"anticrack: bonded-particle DEM of snow and rock, calibration and finite elements.\n"
                "Scenes are deal.II parameter files; `anticrack params` lists every entry."};
-  app.set_version_flag("--version", ANTICRACK_GIT_VERSION);
+  app.set_version_flag("--version", source_version());
   app.require_subcommand(1);
 
   // --- run

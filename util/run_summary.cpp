@@ -1,6 +1,7 @@
 #include "util/run_summary.h"
 
 #include "util/atomic_file.h"
+#include "util/source_version.h"
 
 #include <Eigen/Core>
 #include <hdf5.h>
@@ -8,10 +9,7 @@
 
 #include <stdexcept>
 
-// Both come from CMake (util/CMakeLists.txt): util links neither deal.II nor git.
-#ifndef ANTICRACK_GIT_VERSION
-#  define ANTICRACK_GIT_VERSION "unknown"
-#endif
+// From CMake (util/CMakeLists.txt): util links no deal.II.
 #ifndef ANTICRACK_DEAL_II_VERSION
 #  define ANTICRACK_DEAL_II_VERSION "unknown"
 #endif
@@ -23,7 +21,7 @@ namespace anticrack
     unsigned major = 0, minor = 0, release = 0;
     H5get_libversion(&major, &minor, &release);
     Json v;
-    v["anticrack"] = ANTICRACK_GIT_VERSION;
+    v["anticrack"] = source_version();
     v["deal.II"] = ANTICRACK_DEAL_II_VERSION;
     v["eigen"] = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                  std::to_string(EIGEN_MINOR_VERSION);
