@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstdint>
 #include <iomanip>
 #include <sstream>
@@ -388,20 +389,140 @@ namespace anticrack::fem::closed_forms
     return upper;
   }
 
+  namespace
+  {
+    /// D_f = E H³ / 12 of Heierli (2005)'s slab (Eq. 16: E, not E'), after checking every input of
+    /// Eqs. 16 and 23.
+    double heierli2005_flexural_rigidity(double youngs_modulus,
+                                         double slab_thickness,
+                                         double slab_density,
+                                         double collapse_height,
+                                         double gravity)
+    {
+      require_positive("youngs_modulus [Pa]", youngs_modulus);
+      require_positive("slab_thickness [m]", slab_thickness);
+      require_positive("slab_density [kg/m^3]", slab_density);
+      require_positive("collapse_height [m]", collapse_height);
+      require_positive("gravity [m/s^2]", gravity);
+      return youngs_modulus * std::pow(slab_thickness, 3) / 12;
+    }
+  } // namespace
+
   double flexural_wave_speed_heierli2005(double youngs_modulus,
                                          double slab_thickness,
                                          double slab_density,
                                          double collapse_height,
                                          double gravity)
   {
-    require_positive("youngs_modulus [Pa]", youngs_modulus);
-    require_positive("slab_thickness [m]", slab_thickness);
-    require_positive("slab_density [kg/m^3]", slab_density);
-    require_positive("collapse_height [m]", collapse_height);
-    require_positive("gravity [m/s^2]", gravity);
-    // Eq. 16 (docs/physics.md §3 uses E, not E', in D_f).
-    const double flexural_rigidity = youngs_modulus * std::pow(slab_thickness, 3) / 12;
+    const double flexural_rigidity =
+      heierli2005_flexural_rigidity(youngs_modulus, slab_thickness, slab_density, collapse_height, gravity);
+    // Eq. 16.
     return std::pow(gravity * flexural_rigidity / (2 * collapse_height * slab_density * slab_thickness), 0.25);
+  }
+
+  double touchdown_distance_heierli2005(double youngs_modulus,
+                                        double slab_thickness,
+                                        double slab_density,
+                                        double collapse_height,
+                                        double gravity)
+  {
+    const double flexural_rigidity =
+      heierli2005_flexural_rigidity(youngs_modulus, slab_thickness, slab_density, collapse_height, gravity);
+    // Eq. 23.
+    return heierli2005_touchdown_factor *
+           std::pow(2 * collapse_height * flexural_rigidity / (gravity * slab_density * slab_thickness), 0.25);
+  }
+
+  // --- Eqs. 24–26: steady-state touchdown --------------------------------------------------------------
+
+  double steady_state_touchdown_distance(const SlabOnFoundation &s, double collapse_height, SlabShear shear)
+  {
+    s.check();
+    require_positive("collapse_height [m]", collapse_height);
+    const double D = slab_bending_stiffness(s), k = normal_foundation_stiffness(s), q = normal_load(s);
+    if (!(collapse_height > q / k))
+    {
+      std::ostringstream out;
+      out << std::setprecision(6) << "closed forms: the settlement q_n / k_n = " << q / k
+          << " m of the slab on the weak layer already fills the collapse height " << collapse_height
+          << " m: the slab rests on the collapsed layer right behind the tip";
+      throw std::domain_error(out.str());
+    }
+    // 1/S: the slab's shear compliance (0 for Euler–Bernoulli).
+    const double shear_compliance =
+      shear == SlabShear::timoshenko
+        ? 1 / (rectangular_shear_correction * shear_modulus(s.slab_youngs_modulus, s.slab_poisson_ratio) *
+               s.slab_thickness)
+        : 0.;
+
+    // The supported part x <= 0, Eq. 24: w = q/k + w̃, with w̃ = Σ c_j φ_j decaying as x → −∞, each
+    // mode e^{rx} a root of D r⁴ − D k r²/S + k = 0 with Re r > 0. A mode carries the state
+    // (w̃, θ, M, V) = (1, −k/(D r³), k/r², k/r) e^{rx} (w' = θ + V/S, θ' = −M/D, M' = V, V' = k w̃).
+    using Complex = std::complex<double>;
+    const Complex discriminant = std::sqrt(Complex(std::pow(D * k * shear_compliance, 2) - 4 * D * k));
+    const std::array<Complex, 2> roots = {{std::sqrt((D * k * shear_compliance + discriminant) / (2 * D)),
+                                           std::sqrt((D * k * shear_compliance - discriminant) / (2 * D))}};
+    const auto mode_state = [&](Complex r) {
+      return std::array<Complex, 4>{{1., -k / (D * r * r * r), k / (r * r), k / r}};
+    };
+    // Two real modes: Re and Im of one complex root (the pair is conjugate), or the two real roots.
+    std::array<std::array<double, 4>, 2> modes;
+    const bool oscillating = std::abs(roots[0].imag()) > 1e-12 * std::abs(roots[0]);
+    for (unsigned int i = 0; i < 4; ++i)
+    {
+      const std::array<Complex, 4> first = mode_state(roots[0]), second = mode_state(roots[1]);
+      modes[0][i] = first[i].real();
+      modes[1][i] = oscillating ? first[i].imag() : second[i].real();
+    }
+
+    // The unsupported span 0 <= x <= λ under q (Eq. 25), from the tip state (w0, θ0, M0, V0):
+    // V = V0 − q x, M = M0 + V0 x − q x²/2, θ = θ0 − (M0 x + V0 x²/2 − q x³/6)/D,
+    // w = w0 + θ0 x − (M0 x²/2 + V0 x³/6 − q x⁴/24)/D + (V0 x − q x²/2)/S.
+    struct SpanEnd
+    {
+      double w, theta, moment, shear_force;
+    };
+    const auto span_end = [&](const std::array<double, 4> &tip, double x, bool with_load) {
+      const double load = with_load ? q : 0.;
+      const double w0 = tip[0] + (with_load ? q / k : 0.), theta0 = tip[1], M0 = tip[2], V0 = tip[3];
+      return SpanEnd{w0 + theta0 * x - (M0 * x * x / 2 + V0 * x * x * x / 6 - load * std::pow(x, 4) / 24) / D +
+                       (V0 * x - load * x * x / 2) * shear_compliance,
+                     theta0 - (M0 * x + V0 * x * x / 2 - load * x * x * x / 6) / D, M0 + V0 * x - load * x * x / 2,
+                     V0 - load * x};
+    };
+    // At the touchdown x = λ (Eq. 26): w' = θ + V/S = 0 and M = sqrt(D S) θ, i.e. M + sqrt(D/S) V = 0
+    // (the rested slab, w' = 0 on the base, is a rotational spring sqrt(D S); M = 0 without shear).
+    // Both are linear in the two mode amplitudes; the deflection there, less h_c, is the residual.
+    const double rested_arm = std::sqrt(D * shear_compliance);
+    const auto conditions = [&](const SpanEnd &e) {
+      return std::array<double, 2>{{e.theta + e.shear_force * shear_compliance, e.moment + rested_arm * e.shear_force}};
+    };
+    const std::array<double, 4> no_tip_state = {{0., 0., 0., 0.}};
+    const auto touchdown_gap = [&](double span) {
+      const SpanEnd load_part = span_end(no_tip_state, span, true);
+      const SpanEnd first = span_end(modes[0], span, false), second = span_end(modes[1], span, false);
+      const std::array<double, 2> b = conditions(load_part), a0 = conditions(first), a1 = conditions(second);
+      const double det = a0[0] * a1[1] - a1[0] * a0[1];
+      const double c0 = (-b[0] * a1[1] + a1[0] * b[1]) / det, c1 = (-a0[0] * b[1] + b[0] * a0[1]) / det;
+      return load_part.w + c0 * first.w + c1 * second.w - collapse_height;
+    };
+    // The gap (negative at λ = 0, where the slab sits q/k < h_c deep) closes as the span grows: a
+    // bracket doubled from the bending length, then TOMS 748.
+    const double bending_length = std::pow(4 * D / k, 0.25);
+    double lower = 0, upper = bending_length;
+    while (touchdown_gap(upper) < 0)
+    {
+      lower = upper;
+      upper *= 2;
+      if (upper > 1e9 * bending_length)
+        throw std::domain_error("closed forms: no touchdown within 1e9 bending lengths (4D/k)^{1/4}");
+    }
+    std::uintmax_t iterations = 200;
+    const auto [left, right] =
+      boost::math::tools::toms748_solve(touchdown_gap, lower, upper, touchdown_gap(lower), touchdown_gap(upper),
+                                        boost::math::tools::eps_tolerance<double>(50),
+                                        iterations);
+    return (left + right) / 2;
   }
 
   // --- Eqs. 18–22: model error -----------------------------------------------------------------------

@@ -182,6 +182,39 @@ namespace anticrack::fem::closed_forms
                                          double collapse_height,
                                          double gravity = standard_gravity);
 
+  /// Heierli (2005)'s touchdown distance of the same wave, the length from the front to where the
+  /// slab rests again on the collapsed layer:
+  ///   λ = γ (2 h_f D_f / (g ρ H))^{1/4},   γ = heierli2005_touchdown_factor   [m]   (Eq. 23).
+  /// c λ / γ = sqrt(D_f / ρH): the steady flexural wave of Eq. 16. Same argument checks.
+  double touchdown_distance_heierli2005(double youngs_modulus,
+                                        double slab_thickness,
+                                        double slab_density,
+                                        double collapse_height,
+                                        double gravity = standard_gravity);
+
+  /// γ of Eq. 23 (Heierli 2005, as the SLF's crack-speed scripts use it).
+  inline constexpr double heierli2005_touchdown_factor = 2.331;
+
+  /// The slab of the steady-state touchdown: Euler–Bernoulli (no shear deformation) or Timoshenko
+  /// (shear stiffness κ G H, κ = rectangular_shear_correction, G of the slab's E and ν).
+  enum class SlabShear
+  {
+    euler_bernoulli,
+    timoshenko
+  };
+
+  /// The static touchdown distance of a long cut (a → ∞): the slab on the elastic foundation ahead
+  /// of the tip (x < 0), unsupported over 0 < x < λ, and resting on a rigid base h_c below its
+  /// unloaded position beyond λ, where it lies flat (w = h_c, w' = 0) without a concentrated
+  /// reaction (M = sqrt(D S) θ, the moment of the rested slab; M = 0 for Euler–Bernoulli)
+  /// (Eqs. 24–26). This is the steady state of the slab-touchdown model of Rosendahl et al. (2025,
+  /// mode C), with the rested slab on a rigid base instead of a stiff collapsed layer. Static: no
+  /// inertia, so a running crack's touchdown is longer (Eq. 23 is the dynamic counterpart). Throws
+  /// On a slope it takes the slope-normal load q_n and leaves out the slope-parallel load's coupling
+  /// with bending (as Eq. 21 estimates for G). Throws std::invalid_argument unless collapse_height is
+  /// finite and > 0, std::domain_error if the settlement q_n / k_n already fills it.
+  double steady_state_touchdown_distance(const SlabOnFoundation &s, double collapse_height, SlabShear shear);
+
   // ---------------------------------------------------------------------------------------------
   // Error of the beam-on-springs model against a 2D plane-strain continuum (docs/fem_closed_forms.md
   // §6). Each returns a first-order bound of |ΔG|/G over all cut lengths a >= 0.

@@ -591,6 +591,7 @@ namespace anticrack::fem
                         {"gravity_ramp_failed_at_load_factor", ramp_lost_at_ ? Json(*ramp_lost_at_) : Json(nullptr)}};
         r["self_propagation_lead_m"] = lead;
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
+        r["flexural_wave"] = flexural_wave_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
         r["outcome"] = outcome_names().name(outcome_);
         switch (outcome_)

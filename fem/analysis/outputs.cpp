@@ -231,6 +231,40 @@ namespace anticrack::fem
     return j;
   }
 
+  Json flexural_wave_reference(const Snowpack &s)
+  {
+    Json j;
+    j["what"] = "closed forms for the running crack with this snowpack's slab and weak layer: Heierli (2005)'s "
+                "solitary flexural wave (Euler-Bernoulli slab, E not E'), and the static touchdown of a long cut "
+                "(the steady state of Rosendahl et al. 2025's slab-touchdown model, rigid collapsed layer)";
+    const auto beam = beam_model(s);
+    const double collapse_height = s.weak_layer.collapse_height;
+    if (!beam || !(collapse_height > 0))
+    {
+      j["note"] = !beam ? "several slab layers have no single E: not evaluated"
+                        : "the weak layer has no collapse height: not evaluated";
+      return j;
+    }
+    j["collapse_height_m"] = collapse_height;
+    j["heierli2005_speed_m_per_s"] = closed_forms::flexural_wave_speed_heierli2005(
+      beam->slab_youngs_modulus, beam->slab_thickness, beam->slab_density, collapse_height, beam->gravity);
+    j["heierli2005_touchdown_distance_m"] = closed_forms::touchdown_distance_heierli2005(
+      beam->slab_youngs_modulus, beam->slab_thickness, beam->slab_density, collapse_height, beam->gravity);
+    for (const auto &[key, shear] : {std::pair{"steady_state_touchdown_distance_m", closed_forms::SlabShear::timoshenko},
+                                     std::pair{"steady_state_touchdown_distance_euler_bernoulli_m",
+                                               closed_forms::SlabShear::euler_bernoulli}})
+      try
+      {
+        j[key] = closed_forms::steady_state_touchdown_distance(*beam, collapse_height, shear);
+      }
+      catch (const std::exception &e)
+      {
+        j[key] = nullptr;
+        j["note"] = std::string("not evaluated: ") + e.what();
+      }
+    return j;
+  }
+
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)

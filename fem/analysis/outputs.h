@@ -96,6 +96,12 @@ namespace anticrack::fem
   /// layer, τ_p <= τ_g).
   Json gaume2017_reference(const Snowpack &s);
 
+  /// The running crack's references (docs/fem.md "Measured"): Heierli (2005)'s flexural-wave speed
+  /// and touchdown distance, and the static touchdown of a long cut (Timoshenko and Euler–Bernoulli
+  /// slab, closed_forms::steady_state_touchdown_distance), with the weak layer's collapse height;
+  /// or a "note" saying why they do not apply (several slab layers, no collapse height).
+  Json flexural_wave_reference(const Snowpack &s);
+
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,

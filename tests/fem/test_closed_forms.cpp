@@ -684,6 +684,70 @@ namespace
                                                "collapse_height");
   }
 
+  /// λ = 2.331 (2 h_f D_f / (g ρ H))^{1/4} = 2.331 (2 · 0.004 · 26 666.7 / 981)^{1/4} = 2.331 · 0.682 887
+  /// = 1.591 81 m; and c λ / γ = sqrt(D_f / ρH) (the flexural wave of Eq. 16).
+  TEST(ClosedFormsHeierli2005, TouchdownHandValue)
+  {
+    EXPECT_NEAR(touchdown_distance_heierli2005(5e6, 0.4, 250, 0.004), 2.331 * std::pow(2 * 0.004 * 5e6 * 0.064 / 12 / 981, 0.25),
+                1e-12);
+    EXPECT_NEAR(touchdown_distance_heierli2005(5e6, 0.4, 250, 0.004), 1.59181, 1e-5);
+    const double c = flexural_wave_speed_heierli2005(5e6, 0.4, 250, 0.004);
+    EXPECT_NEAR(c * touchdown_distance_heierli2005(5e6, 0.4, 250, 0.004) / 2.331, std::sqrt(5e6 * 0.064 / 12 / 100),
+                1e-9);
+    expect_throw_naming<std::invalid_argument>([] { touchdown_distance_heierli2005(5e6, 0.4, 0, 0.004); }, "slab_density");
+  }
+
+  // =============================================================================================
+  // Steady-state touchdown (Eqs. 24–26)
+
+  /// Euler–Bernoulli: a second derivation. With s = βλ, β = (k/4D)^{1/4} and the gap h_t = h_c − q/k
+  /// under the settled slab, eliminating the tip amplitudes by hand from w''(λ) = 0 and w'(λ) = 0
+  /// leaves s²(s+3)(s³+3s²+6s+6) / (18 (s+1)²) = k h_t / q; solved here by bisection. A stiff
+  /// foundation (k → ∞) clamps the slab at the tip: λ → (72 D h_t / q)^{1/4} (1 − 1/s + ...), here
+  /// s ≈ 2400.
+  TEST(ClosedFormsTouchdown, EulerBernoulliMatchesTheHandReducedEquation)
+  {
+    for (const double collapse_height : {0.002, 0.003, 0.01})
+    {
+      const SlabOnFoundation s = typical();
+      const double D = hand_bending_stiffness(s), k = hand_normal_stiffness(s), q = hand_normal_load(s);
+      const double beta = std::pow(k / (4 * D), 0.25), target = k * (collapse_height - q / k) / q;
+      const auto reduced = [](double x) {
+        return x * x * (x + 3) * (x * x * x + 3 * x * x + 6 * x + 6) / (18 * (x + 1) * (x + 1));
+      };
+      double lo = 0, hi = 100;
+      for (int i = 0; i < 200; ++i)
+        (reduced((lo + hi) / 2) < target ? lo : hi) = (lo + hi) / 2;
+      EXPECT_NEAR(steady_state_touchdown_distance(s, collapse_height, SlabShear::euler_bernoulli), lo / beta,
+                  1e-9 * lo / beta)
+        << "h_c = " << collapse_height;
+    }
+    SlabOnFoundation stiff = typical();
+    stiff.weak_layer_youngs_modulus = 2e16;
+    const double D = hand_bending_stiffness(stiff), q = hand_normal_load(stiff);
+    EXPECT_NEAR(steady_state_touchdown_distance(stiff, 0.003, SlabShear::euler_bernoulli) /
+                  std::pow(72 * D * 0.003 / q, 0.25),
+                1, 1e-3);
+  }
+
+  /// Timoshenko: an independent implementation (transfer matrices of the first-order system
+  /// (w, θ, M, V) by matrix exponentials, the supported part's decaying eigenvectors, the same three
+  /// touchdown conditions, Brent's root) gives 0.986 224 646 m for the slab of Rosendahl-type PSTs
+  /// E = 5 MPa, ν = 0.25, H = 0.4 m, ρ = 250 kg/m³ on E_wl = 0.2 MPa, ν_wl = 0, h = 2 cm, h_c = 3 mm
+  /// (Euler–Bernoulli, 1.234 63 m, is checked above). The slab's shear shortens the span by 20 % here.
+  TEST(ClosedFormsTouchdown, TimoshenkoMatchesAnIndependentTransferMatrixSolution)
+  {
+    SlabOnFoundation s = typical();
+    s.weak_layer_poisson_ratio = 0;
+    EXPECT_NEAR(steady_state_touchdown_distance(s, 0.003, SlabShear::timoshenko), 0.9862246455, 1e-8);
+    // A settlement that already fills the collapse height, and a zero collapse height, are refused.
+    expect_throw_naming<std::domain_error>(
+      [&] { steady_state_touchdown_distance(s, 0.5 * hand_normal_load(s) / hand_normal_stiffness(s), SlabShear::timoshenko); },
+      "settlement");
+    expect_throw_naming<std::invalid_argument>(
+      [&] { steady_state_touchdown_distance(s, 0, SlabShear::timoshenko); }, "collapse_height");
+  }
+
   // =============================================================================================
   // Model-error estimates
 

@@ -350,7 +350,19 @@ namespace
   // residual flow, about 1 J/m² here). With h_c = 3 mm the slab releases ~3 J/m²: the crack
   // reaches the end (so it does from h_c = 1.4 mm up, measured). With h_c = 1.2 mm (1.2 J/m²) it
   // runs ahead of the cut and stops: arrest (1.0 mm: it stops 0.09 m ahead, within the lead).
-  std::string small_pst(double collapse_height, double cut, unsigned int weak_layer_elements = 2)
+  /// What small_pst() may change besides the collapse height, the cut and the rows.
+  struct PstVariant
+  {
+    double column_length = 1.0;         ///< [m]
+    double slab_youngs_modulus = 5e6;   ///< [Pa]
+    double slab_element_height = 0.08;  ///< [m]
+    double saw_speed = 0;               ///< [m/s]; 0: the cut is made at once
+    double end_time = 0.25;             ///< [s]
+    double slab_tensile_strength = 0;   ///< [Pa]; 0: the default (Sigrist 2006)
+  };
+
+  std::string small_pst(double collapse_height, double cut, unsigned int weak_layer_elements = 2,
+                        const PstVariant &variant = PstVariant())
   {
     std::ostringstream weak;
     weak << "    set Compressive strength p0 [Pa] = 5000\n    set Tensile strength ratio beta = 0.5\n"
@@ -359,14 +371,22 @@ namespace
          << "    set Reference thickness [m] = 0.02\n    set Collapse height [m] = " << collapse_height
          << "\n    set Densification modulus [Pa] = 1e6\n    set Friction coefficient = 0.5\n";
     std::ostringstream text;
-    text << "subsection Snowpack\n" << layer("Slab layer 1", 0.4, 250, 5e6, 0.25)
+    const std::string slab_strength =
+      variant.slab_tensile_strength > 0
+        ? "    set Tensile strength [Pa] = " + std::to_string(variant.slab_tensile_strength) + "\n"
+        : "";
+    text << "subsection Snowpack\n" << layer("Slab layer 1", 0.4, 250, variant.slab_youngs_modulus, 0.25, slab_strength)
          << layer("Weak layer", 0.02, 150, 2e5, 0.2, weak.str()) << layer("Substratum", 0.04, 300, 1e7, 0.25)
-         << "end\nsubsection PST\n  set Column length [m] = 1.0\n  set Saw = fixed\n  set Cut length [m] = " << cut
+         << "end\nsubsection PST\n  set Column length [m] = " << variant.column_length
+         << (variant.saw_speed > 0 ? "\n  set Saw = advancing\n  set Saw speed [m/s] = " + std::to_string(variant.saw_speed)
+                                   : std::string("\n  set Saw = fixed"))
+         << "\n  set Cut length [m] = " << cut
          << "\nend\nsubsection Mesh\n  set Element length [m] = 0.02\n  set Weak layer elements = " << weak_layer_elements
-         << "\n  set Slab element height [m] = 0.08\n  set Substratum element height [m] = 0.04\nend\n"
+         << "\n  set Slab element height [m] = " << variant.slab_element_height
+         << "\n  set Substratum element height [m] = 0.04\nend\n"
             "subsection Analysis\n  set Type = explicit dynamics\n  subsection Crack detection\n"
-            "    set Self-propagation lead [m] = 0.1\n  end\n  subsection Explicit\n    set End time [s] = 0.25\n"
-            "  end\nend\n"
+            "    set Self-propagation lead [m] = 0.1\n  end\n  subsection Explicit\n    set End time [s] = "
+         << variant.end_time << "\n  end\nend\n"
             "subsection Output\n  set Field interval [s] = 0\n  set Progress interval = 0\nend\n";
     return text.str();
   }
@@ -453,6 +473,61 @@ namespace
 
 namespace
 {
+  // ------------------------------------------------------------------------------------------
+  // The running crack against two closed forms that know nothing of the FE (docs/fem.md
+  // "Independent references"): Heierli (2005)'s solitary flexural wave (speed, Eq. 16) and the
+  // static steady-state touchdown of the slab on its foundation (Rosendahl et al. 2025's model for
+  // a long cut, Eqs. 24–26, Timoshenko slab). small_pst() as `pst_flat.prm` on 2 cm elements: a
+  // 2.5 m column, the slab's E = 7.8 MPa on 4 cm elements, the saw at 2 m/s (a cut made at once
+  // overdrives the crack and breaks the slab), the weak layer as one row, h_c = 3 and 6 mm (lock-up
+  // strains 0.15 and 0.30, inside the small-strain bound). The slab is elastic, as both closed forms
+  // take it (its tensile strength 1 GPa: with 6 mm it would otherwise break, SF, at x ≈ 2 m).
+  // Tolerances:
+  // - Touchdown within 15 % of the static steady state: the running slab's inertia lengthens the
+  //   span by O((c/c_s)²) (Heierli's dynamic beam: the speed enters as (c/c_s)² against 1; here
+  //   c/c_s = 0.23–0.31 here, so 5–9 %), plus one element (2 cm, 1.5 %) of detection.
+  // - Speed within a factor 1.5 of Heierli's: his slab is an Euler–Bernoulli beam on a layer that
+  //   is rigid until it collapses at the front, without strength or fracture energy; the FE's is a
+  //   continuum with shear (which alone shortens the static span by ~20 % here, Eqs. 24–26, and
+  //   c ∝ 1/λ at a fixed flexural wave) on an elastic layer that must be crushed at the tip.
+  // - Heierli's trends: a larger collapse height gives a slower wave and a longer touchdown.
+  struct FlexuralWaveRun
+  {
+    double speed, touchdown, heierli_speed, steady_touchdown;
+  };
+
+  FlexuralWaveRun flexural_wave_run(double collapse_height)
+  {
+    constexpr double slab_modulus = 7.8e6;
+    const std::string name = "flexural_wave_" + std::to_string(int(std::round(collapse_height * 1e4)));
+    const Json r = run_scene(small_pst(collapse_height, 1.0, 1, {2.5, slab_modulus, 0.04, 2.0, 0.6, 1e9}), name);
+    EXPECT_EQ(r["outcome"], "END") << r.dump(1);
+    closed_forms::SlabOnFoundation beam{0.4, slab_modulus, 0.25, 250, 0.02, 2e5, 0.2};
+    const FlexuralWaveRun run{r["propagation_speed_m_per_s"], r["touchdown_distance_m"],
+                              closed_forms::flexural_wave_speed_heierli2005(slab_modulus, 0.4, 250, collapse_height),
+                              closed_forms::steady_state_touchdown_distance(beam, collapse_height,
+                                                                            closed_forms::SlabShear::timoshenko)};
+    // The summary reports the same references.
+    EXPECT_DOUBLE_EQ(r["flexural_wave"]["heierli2005_speed_m_per_s"], run.heierli_speed);
+    EXPECT_DOUBLE_EQ(r["flexural_wave"]["steady_state_touchdown_distance_m"], run.steady_touchdown);
+    std::cout << "h_c = " << collapse_height << " m: speed " << run.speed << " m/s (Heierli 2005: " << run.heierli_speed
+              << "), touchdown " << run.touchdown << " m (static steady state: " << run.steady_touchdown << ")\n";
+    return run;
+  }
+
+  TEST(FemFlexuralWave, SpeedAndTouchdownAgainstHeierli2005AndTheSteadyTouchdown)
+  {
+    const FlexuralWaveRun shallow = flexural_wave_run(0.003), deep = flexural_wave_run(0.006);
+    for (const FlexuralWaveRun &run : {shallow, deep})
+    {
+      EXPECT_NEAR(run.touchdown / run.steady_touchdown, 1.0, 0.15);
+      EXPECT_GT(run.speed / run.heierli_speed, 1 / 1.5);
+      EXPECT_LT(run.speed / run.heierli_speed, 1.5);
+    }
+    EXPECT_LT(deep.speed, shallow.speed);
+    EXPECT_GT(deep.touchdown, shallow.touchdown);
+  }
+
   // ------------------------------------------------------------------------------------------
   // The weak layer collapses as one band through its thickness (its inner nodes are tied), so a
   // collapsed column closes by the collapse height whatever the rows, and the crack dissipates the
