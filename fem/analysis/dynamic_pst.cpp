@@ -202,11 +202,10 @@ namespace anticrack::fem
           }
           catch (const ReturnMappingError &e)
           {
-            throw failure("return mapping", e.what());
+            throw failure("return mapping", failure_site_of(e));
           }
           if (!dynamics.step_finite())
-            throw failure("non-finite value", "a non-finite force, velocity or time step: " +
-                                                  dynamics.non_finite_location());
+            throw failure("non-finite value", non_finite_site("a non-finite force, velocity or time step"));
           if (dynamics.time() >= next_series_)
           {
             fronts_ = model_.crack_fronts(analysis.failure_fraction);
@@ -364,9 +363,21 @@ namespace anticrack::fem
 
       std::string layer_label(unsigned int layer) const { return layer_of(scene_.snowpack, layer).label; }
 
-      /// The failure `what` at `where` (a cell, a node) now: summary.json's "failure" gets both and
-      /// the step, time, time step and cut length; the series written up to here are kept.
-      NumericalFailure failure(const std::string &what, const std::string &where) const
+      /// The site of `found` (a non-finite value) from the model: the first non-finite node, or only
+      /// the description where no displacement, velocity or force is (the time step alone).
+      Json non_finite_site(const std::string &found) const
+      {
+        Json site = dynamics_->non_finite_location();
+        if (site.is_null())
+          return failure_site(found + " (every displacement, velocity and force is finite)");
+        site["description"] = found + ": " + site["description"].get<std::string>();
+        return site;
+      }
+
+      /// The failure `what` at `where` (a failure site: a cell, a node) now: summary.json's
+      /// "failure" gets both and the step, time, time step and cut length; the series written up to
+      /// here are kept.
+      NumericalFailure failure(const std::string &what, const Json &where) const
       {
         const ExplicitDynamics<dim> &dynamics = *dynamics_;
         Json details = {{"what", what},
@@ -377,7 +388,8 @@ namespace anticrack::fem
                                   {"time_step_s", dynamics.time_step()},
                                   {"cut_length_m", cut_}}}};
         return NumericalFailure("dynamic PST: " + what + " at t = " + format_number(dynamics.time(), 6) + " s (step " +
-                                  std::to_string(dynamics.steps()) + ", cut " + format_number(cut_, 4) + " m): " + where,
+                                  std::to_string(dynamics.steps()) + ", cut " + format_number(cut_, 4) +
+                                  " m): " + where.value("description", std::string()),
                                 details);
       }
 
@@ -385,7 +397,7 @@ namespace anticrack::fem
       {
         const ExplicitDynamics<dim> &dynamics = *dynamics_;
         if (!dynamics.finite())
-          throw failure("non-finite value", "a non-finite displacement or velocity: " + dynamics.non_finite_location());
+          throw failure("non-finite value", non_finite_site("a non-finite displacement or velocity"));
         const Energies e = per_width<dim>(dynamics.energies(), scene_);
         series_.append({dynamics.time(), cut_, fronts_.crack_tip, fronts_.touchdown, e.elastic, e.kinetic,
                         e.dissipated, e.viscous, e.removed_by_saw, e.external_work, dynamics.time_step()});

@@ -3,6 +3,7 @@
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/solver/quasi_static.h"
+#include "util/stop_signals.h"
 #include "util/format.h"
 #include "util/problems.h"
 
@@ -22,6 +23,7 @@ namespace anticrack::fem
   template <int dim>
   Json run_energy_release_rate(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
+    const StopSignals stop_signals;
     ConditionalStream log = root_log(options.log, comm);
     SnowpackModel<dim> model(scene, comm, options.timer);
     QuasiStaticSolver<dim> solver(model);
@@ -35,12 +37,17 @@ namespace anticrack::fem
     std::vector<double> cuts, potentials;
     for (unsigned int k = 0; k <= n_cuts; ++k)
     {
+      if (k > 0)
+        stop_if_signalled("energy release rate", "cut " + format_number((k - 1) * dx, 4) + " m", comm);
       model.set_cut(k * dx);
       u = 0;
       const NewtonResult result = solver.solve(u, 1.0);
       if (!result.converged)
         throw NumericalFailure("energy release rate: the elastic solve at cut length " + format_number(k * dx, 4) +
-                               " m failed: " + result.failure);
+                                 " m failed: " + result.failure,
+                               {{"what", "elastic solve"},
+                                {"where", result.failure_site},
+                                {"when", {{"phase", "energy release rate"}, {"cut_length_m", k * dx}}}});
       cuts.push_back(k * dx);
       potentials.push_back(-0.5 * (model.gravity_force() * u) / width);
     }

@@ -12,6 +12,7 @@
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/solver/quasi_static.h"
+#include "util/stop_signals.h"
 #include "util/problems.h"
 
 #include <deal.II/base/mpi.h>
@@ -88,6 +89,7 @@ namespace anticrack::fem
     // to ψ, g = g (sin ψ, −cos ψ) in the layer's frame.
     SnowpackScene scene = given;
     scene.snowpack.slope_angle = settings.load_angle;
+    const StopSignals stop_signals;
     ConditionalStream log = root_log(options.log, comm);
     SnowpackModel<dim> model(scene, comm, options.timer);
     QuasiStaticSolver<dim> solver(model);
@@ -126,6 +128,7 @@ namespace anticrack::fem
     typename SnowpackModel<dim>::VectorType before = u;
     while (load < settings.maximum_load_factor)
     {
+      stop_if_signalled("load to failure", "load factor " + format_number(load, 6), comm);
       step = std::min(step, settings.maximum_load_factor - load);
       std::stringstream history;
       model.save(history);

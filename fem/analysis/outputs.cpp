@@ -2,6 +2,7 @@
 
 #include "fem/model/checkpoint.h"
 #include "fem/solver/quasi_static.h"
+#include "util/stop_signals.h"
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
@@ -231,6 +232,17 @@ namespace anticrack::fem
     return j;
   }
 
+  void stop_if_signalled(const std::string &analysis, const std::string &where, MPI_Comm comm,
+                         const std::function<void()> &before_stopping)
+  {
+    if (!Utilities::MPI::logical_or(StopSignals::requested(), comm))
+      return;
+    if (before_stopping)
+      before_stopping();
+    throw RunInterrupted(analysis + " stopped by a signal at " + where +
+                           "; this analysis writes no checkpoint: run it again to redo it");
+  }
+
   Json flexural_wave_reference(const Snowpack &s)
   {
     Json j;
@@ -282,7 +294,7 @@ namespace anticrack::fem
       // Newton's reason names the cell of a failed return mapping, or the linear solver.
       throw NumericalFailure(std::string("gravity equilibrium: ") + e.what(),
                              {{"what", "gravity ramp"},
-                              {"where", e.what()},
+                              {"where", e.site.is_null() ? failure_site(e.what()) : e.site},
                               {"when", {{"phase", "gravity equilibrium"}, {"load_factor", e.load_factor}}}});
     }
     log.line("[fem] gravity equilibrium in ",

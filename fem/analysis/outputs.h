@@ -102,6 +102,15 @@ namespace anticrack::fem
   /// or a "note" saying why they do not apply (several slab layers, no collapse height).
   Json flexural_wave_reference(const Snowpack &s);
 
+  /// Ends a run that writes no checkpoint (quasi-static PST, energy release rate, load to failure)
+  /// between two of its steps when a stop signal (Ctrl-C, SIGTERM; a StopSignals object of the run
+  /// installs the handler) has arrived on any rank (collective): throws RunInterrupted naming the
+  /// analysis and `where` it stopped; anticrack writes summary.json "interrupted" and exits 130. A
+  /// rerun starts over (these runs take minutes, not hours). `before_stopping` (e.g. writing the
+  /// series so far) runs on every rank before the throw.
+  void stop_if_signalled(const std::string &analysis, const std::string &where, MPI_Comm comm,
+                         const std::function<void()> &before_stopping = {});
+
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,

@@ -3,6 +3,7 @@
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/solver/quasi_static.h"
+#include "util/stop_signals.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -18,6 +19,7 @@ namespace anticrack::fem
   template <int dim>
   Json run_quasi_static_pst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
+    const StopSignals stop_signals; // before the first line, which tells a caller it may signal
     ConditionalStream log = root_log(options.log, comm);
     SnowpackModel<dim> model(scene, comm, options.timer);
     QuasiStaticSolver<dim> solver(model);
@@ -34,6 +36,10 @@ namespace anticrack::fem
                                    {"elastic_energy", "J/m", "stored elastic energy"},
                                    {"dissipated_energy", "J/m", "plastic dissipation"},
                                    {"newton_iterations", "1", "Newton iterations of the step"}});
+    const auto write_series = [&] {
+      write_on_root(series, options.output_directory + "/series.h5", "quasi-static PST, one row per converged saw step",
+                    comm);
+    };
     // External work: the ramp's is what it stored and dissipated (quasi-static), then the
     // constant weight's f_g · Δu over the saw steps.
     const Energies after_gravity = model.energies();
@@ -41,6 +47,7 @@ namespace anticrack::fem
       quasi_static_saw(model, solver, u, log, [&](double cut, const CrackFronts &fronts, unsigned int iterations) {
         const Energies e = per_width<dim>(model.energies(), scene);
         series.append({cut, fronts.crack_tip, fronts.touchdown, e.elastic, e.dissipated, (double)iterations});
+        stop_if_signalled("quasi-static PST", "cut " + format_number(cut, 4) + " m", comm, write_series);
       });
     const double external_work = after_gravity.elastic + after_gravity.dissipated + saw.external_work;
     std::optional<double> critical;
@@ -51,8 +58,7 @@ namespace anticrack::fem
     const std::string reason = saw.reason;
     u.update_ghost_values();
     fields.write(model, u, 1);
-    write_on_root(series, options.output_directory + "/series.h5", "quasi-static PST, one row per converged saw step",
-                comm);
+    write_series();
 
     Json results;
     results["analysis"] = scene.analysis.type->name;

@@ -511,7 +511,7 @@ namespace anticrack::fem
     internal_force = 0;
     double max_rate2 = 0; // max over cells of c_p² Σ (p/h_i)²
     double viscous_power = 0;
-    std::string failure; // the first failed return mapping of this rank
+    Json failure; // the site of this rank's first failed return mapping (null: none)
 
     for (CellData &data : cells_)
     {
@@ -576,12 +576,19 @@ namespace anticrack::fem
           catch (const ReturnMappingError &e)
           {
             // Finish the loop (and the collective compress below) on every rank, then throw on all.
-            if (failure.empty())
+            if (failure.is_null())
             {
+              const Point<dim> centre = data.cell->center();
               std::ostringstream where;
-              where << "in the " << layers_[data.layer].label << " at cell centre " << data.cell->center()
+              where << "in the " << layers_[data.layer].label << " at cell centre " << centre
                     << ", quadrature point " << q << ": " << e.what();
-              failure = where.str();
+              failure = {{"description", where.str()},
+                         {"layer", layers_[data.layer].label},
+                         {"cell", data.cell->id().to_string()},
+                         {"cell_centre_m", std::vector<double>(centre.begin_raw(), centre.end_raw())},
+                         {"quadrature_point", q},
+                         {"rank", Utilities::MPI::this_mpi_process(communicator_)},
+                         {"material", e.what()}};
             }
             cell_failed = true;
             break;
@@ -684,8 +691,8 @@ namespace anticrack::fem
     zero_fixed(internal_force);
     if (request.tangent)
       request.tangent->compress(VectorOperation::add);
-    if (Utilities::MPI::logical_or(!failure.empty(), communicator_))
-      throw ReturnMappingError(failure.empty() ? std::string("the return mapping failed on another rank") : failure);
+    if (Utilities::MPI::logical_or(!failure.is_null(), communicator_))
+      throw ModelReturnMappingError(first_failure_site_on_any_rank(failure, communicator_));
     viscous_power_ = Utilities::MPI::sum(viscous_power, communicator_);
     max_rate2 = Utilities::MPI::max(max_rate2, communicator_);
     // Central differences are stable for Δt ≤ 2/ω_max; ω_max ≤ c sqrt(Σ (2/h_i)²) for Q1 with a
@@ -749,10 +756,10 @@ namespace anticrack::fem
   }
 
   template <int dim>
-  std::string SnowpackModel<dim>::locate_non_finite(const std::vector<const VectorType *> &vectors) const
+  Json SnowpackModel<dim>::locate_non_finite(const std::vector<const VectorType *> &vectors) const
   {
-    std::string found;
-    for (unsigned int i = 0; i < partitioner_->locally_owned_size() && found.empty(); ++i)
+    Json found;
+    for (unsigned int i = 0; i < partitioner_->locally_owned_size() && found.is_null(); ++i)
       for (const VectorType *vector : vectors)
         if (!std::isfinite(vector->local_element(i)))
         {
@@ -768,18 +775,20 @@ namespace anticrack::fem
             if (DoFTools::extract_dofs(dof_handler_, mask).is_element(dof))
               component = c;
           }
+          const std::string &layer = layers_[layer_id_at(layer_tops(scene_.snowpack), x[dim - 1])].label;
+          const unsigned int rank = Utilities::MPI::this_mpi_process(communicator_);
           std::ostringstream where;
           where << "node at (" << x << ") m (along the slope" << (dim == 3 ? ", across" : "")
-                << ", normal), displacement component " << component << ", in the "
-                << layers_[layer_id_at(layer_tops(scene_.snowpack), x[dim - 1])].label << " (rank "
-                << Utilities::MPI::this_mpi_process(communicator_) << ")";
-          found = where.str();
+                << ", normal), displacement component " << component << ", in the " << layer << " (rank " << rank
+                << ")";
+          found = {{"description", where.str()},
+                   {"layer", layer},
+                   {"node_m", std::vector<double>(x.begin_raw(), x.end_raw())},
+                   {"component", component},
+                   {"rank", rank}};
           break;
         }
-    for (const std::string &from_rank : Utilities::MPI::all_gather(communicator_, found))
-      if (!from_rank.empty())
-        return from_rank;
-    return "";
+    return first_failure_site_on_any_rank(found, communicator_);
   }
 
   template <int dim>

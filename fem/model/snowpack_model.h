@@ -32,6 +32,7 @@
 
 #include "fem/material/cohesive_cam_clay.h"
 #include "fem/material/collapsed_layer_friction.h"
+#include "fem/model/failure_site.h"
 #include "fem/model/layers.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/phase_timer.h"
@@ -182,8 +183,8 @@ namespace anticrack::fem
     /// Evaluates every locally owned cell at displacement u (ghosted): trial states from the
     /// committed ones, internal force f_int (ghosted layout, compressed, fixed dofs zero), and what
     /// `request` asks for. Returns the largest stable explicit time step of the trial states
-    /// (CFL estimate, before the safety factor) over all ranks. Throws ReturnMappingError with the
-    /// cell and quadrature point when the return mapping fails.
+    /// (CFL estimate, before the safety factor) over all ranks. Throws ModelReturnMappingError with
+    /// the site (layer, cell, quadrature point; the same on every rank) when a return mapping fails.
     double evaluate(const VectorType &u, VectorType &internal_force, const Request &request);
 
     /// The trial states of the last evaluate() become the committed history.
@@ -195,10 +196,11 @@ namespace anticrack::fem
     /// Elastic and dissipated energies of the committed states, over all ranks.
     Energies energies() const;
 
-    /// Where the first non-finite entry of the given vectors (same layout, ghosted) lies: its node's
-    /// position, component and layer, on the lowest rank that has one ("" if none). Collective;
-    /// for failure reports only (it maps every dof to its support point).
-    std::string locate_non_finite(const std::vector<const VectorType *> &vectors) const;
+    /// Where the first non-finite entry of the given vectors (same layout, ghosted) lies, as a
+    /// failure site (fem/model/failure_site.h): its node's position, component and layer, on the
+    /// lowest rank that has one (null if none). Collective; for failure reports only (it maps every
+    /// dof to its support point).
+    Json locate_non_finite(const std::vector<const VectorType *> &vectors) const;
 
     /// Crack and touchdown fronts of the committed states, over all ranks.
     CrackFronts crack_fronts(double failure_fraction) const;

@@ -66,7 +66,7 @@ namespace anticrack::fem
     bool finite() const;
     /// Where the first non-finite displacement, velocity or force lies (SnowpackModel::
     /// locate_non_finite(); collective).
-    std::string non_finite_location() const { return model_.locate_non_finite({&u_, &v_, &internal_force_}); }
+    Json non_finite_location() const { return model_.locate_non_finite({&u_, &v_, &internal_force_}); }
     /// True when the last step's force, velocity, kinetic energy, external work and next step are
     /// finite on every rank (from the step's own reductions).
     bool step_finite() const

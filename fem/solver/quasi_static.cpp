@@ -100,6 +100,10 @@ namespace anticrack::fem
         if (!std::isfinite(norm))
         {
           result.failure = "the residual is not finite";
+          // Collective: the norm is the same on every rank.
+          result.failure_site = model_.locate_non_finite({&residual});
+          if (!result.failure_site.is_null())
+            result.failure += ": " + result.failure_site["description"].get<std::string>();
           break;
         }
         if (norm < analysis.newton_tolerance)
@@ -189,7 +193,12 @@ namespace anticrack::fem
     {
       result.converged = false;
       result.failure = e.what();
+      result.failure_site = failure_site_of(e);
     }
+    if (!result.converged && result.failure_site.is_null())
+      result.failure_site = failure_site(result.failure);
+    else if (!result.converged)
+      result.failure_site["description"] = result.failure;
     if (result.converged)
       model_.commit();
     else
@@ -217,7 +226,7 @@ namespace anticrack::fem
           std::ostringstream message;
           message << "the gravity ramp failed at load factor " << load + step << " with the smallest step "
                   << step << ": " << result.failure;
-          throw GravityRampFailure(message.str(), load + step);
+          throw GravityRampFailure(message.str(), load + step, result.failure_site);
         }
         step /= 2;
         continue;

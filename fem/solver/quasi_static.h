@@ -20,6 +20,7 @@ namespace anticrack::fem
     unsigned int iterations = 0;
     double relative_residual = 0; ///< |r| / (max(|λ|, 1) |f_gravity|) at the end
     std::string failure;          ///< why it did not converge (empty when it did)
+    Json failure_site;            ///< where (fem/model/failure_site.h), null when it converged
   };
 
   /// The gravity ramp could not be continued: Newton failed at `load_factor` even with the
@@ -27,11 +28,13 @@ namespace anticrack::fem
   class GravityRampFailure : public std::runtime_error
   {
   public:
-    GravityRampFailure(const std::string &message, double load_factor)
+    GravityRampFailure(const std::string &message, double load_factor, Json site)
       : std::runtime_error(message)
       , load_factor(load_factor)
+      , site(std::move(site))
     {}
     double load_factor;
+    Json site; ///< where Newton failed (NewtonResult::failure_site)
   };
 
   template <int dim>

@@ -391,6 +391,30 @@ def resume_clump(work):
 
 
 @case
+def dem_interrupt(work):
+    """Ctrl-C during a DEM run: it stops at the end of its chunk (<= 1000 steps), writes a checkpoint
+    at that step whatever its interval, summary.json "interrupted" and exit 130; --resume starts
+    from that step."""
+    scene = write(os.path.join(work, "long.prm"), walls_scene(
+        2_000_000, checkpoint=1_000_000, snapshot=1_000_000, history=1000, velocity="0.01",
+        **{"Output/Progress interval [steps]": "5000"}))
+    out = os.path.join(work, "run")
+    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--threads", "1"], "5000")
+    check(returncode == 130, f"Ctrl-C: exit {returncode}, expected 130\n{stderr}")
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    steps = summary.get("dem", {}).get("steps", 0)
+    check(summary.get("status") == "interrupted" and 5000 <= steps < 1_000_000,
+          f"Ctrl-C: summary.json status {summary.get('status')!r}, {steps} steps")
+    with open(os.path.join(out, "checkpoint.json")) as f:
+        checkpoint_step = json.load(f)["step"]
+    check(checkpoint_step == steps, f"the checkpoint is at step {checkpoint_step}, the run stopped at {steps}")
+    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--resume", "--threads", "1"],
+                                           f"resuming at step {steps}")
+    check(returncode == 130, f"the resume did not start from step {steps} (exit {returncode})\n{stderr}")
+
+
+@case
 def checkpoint_invariance(work):
     """Writing checkpoints is output: a run with checkpoints every 150 steps ends exactly where one
     without checkpoints does (an interrupted run resumes from a checkpoint at any step)."""
@@ -1426,9 +1450,21 @@ ERR_UNITS = {"cut_length": "m", "potential_energy": "J/m", "midpoint_cut_length"
              "energy_release_rate": "J/m^2", "energy_release_rate_beam": "J/m^2"}
 
 
-def pst_scene(changes=None, insert=None, material_file=None):
-    """The tiny dynamic PST; `changes` and `insert` as in edit_scene. With `material_file` the weak
-    layer's material comes from that file instead of the inline entries."""
+def interrupt_at_line(arguments, marker, timeout=300):
+    """Runs anticrack with `arguments`, sends Ctrl-C (SIGINT) when a line of its standard output
+    contains `marker`, and returns its exit code and standard error."""
+    process = subprocess.Popen([ANTICRACK, *arguments], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    for line in process.stdout:
+        if marker in line:
+            process.send_signal(signal.SIGINT)
+            break
+    _, stderr = process.communicate(timeout=timeout)
+    return process.returncode, stderr
+
+
+def pst_scene(changes=None, insert=None, material_file=None, remove=()):
+    """The tiny dynamic PST; `changes`, `insert` and `remove` as in edit_scene. With `material_file`
+    the weak layer's material comes from that file instead of the inline entries."""
     material = ([f"set Material file = {material_file}"] if material_file else
                 [f"set {name} = {value}" for name, value in WEAK_LAYER_MATERIAL.items()])
     text = "\n".join([
@@ -1467,7 +1503,7 @@ def pst_scene(changes=None, insert=None, material_file=None):
         "subsection Output",
         "  set Field interval [s] = 0.01", "  set Progress interval = 0",
         "end"]) + "\n"
-    return edit_scene(text, changes or {}, insert)
+    return edit_scene(text, changes or {}, insert, remove)
 
 
 def err_scene():
@@ -1742,10 +1778,17 @@ def fem_numerical_failure(work):
     check(when.get("phase") == "explicit dynamics" and 0 < when.get("step", 0) < 1000 and
           0 < when.get("time_s", 0) < 0.02 and when.get("cut_length_m") == PST_CUT,
           f"failure 'when' {when!r}: expected the explicit phase within its first 1000 steps, cut {PST_CUT} m")
-    where = failure.get("where", "")
-    check(("cell centre" in where or "node at (" in where) and
-          any(layer in where for layer in ("weak layer", "slab layer", "substratum")),
-          f"failure 'where' {where!r} names no cell or node and no layer")
+    # where: an object with a description and, for a return mapping, the cell (its id and centre)
+    # and quadrature point, for a non-finite value the node and component; both name the layer and
+    # the rank, and the position lies inside the column.
+    where = failure.get("where", {})
+    place = where.get("cell_centre_m") if failure.get("what") == "return mapping" else where.get("node_m")
+    check(isinstance(where, dict) and isinstance(where.get("description"), str) and
+          any(layer in where.get("layer", "") for layer in ("weak layer", "slab layer", "substratum")) and
+          isinstance(where.get("rank"), int) and isinstance(place, list) and len(place) == 2 and
+          0 <= place[0] <= PST_COLUMN_LENGTH and (where.get("cell") if failure.get("what") == "return mapping"
+                                    else where.get("component") in (0, 1)) is not None,
+          f"failure 'where' {where!r}: expected the layer, rank and the cell or node inside the column")
     check("results" not in summary, "a failed run reports results")
     with h5py.File(os.path.join(out, "series.h5"), "r") as f:
         check(len(f["time"][()]) >= 1, "series.h5 lost the rows before the failure")
@@ -2263,15 +2306,10 @@ def fem_resume(work):
 
     # Ctrl-C: a checkpoint, exit 130, summary.json "interrupted"; the resume ends as the straight run.
     interrupted = os.path.join(work, "interrupted")
-    process = subprocess.Popen([ANTICRACK, "run", full, "-o", interrupted], stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-    for line in process.stdout:
-        if "dynamic PST" in line:  # the stop handler is in place from this line on
-            process.send_signal(signal.SIGINT)
-            break
-    _, stderr = process.communicate(timeout=300)
-    check(process.returncode == 130 and "stopped by a signal" in stderr,
-          f"Ctrl-C: exit {process.returncode}, expected 130\n{stderr}")
+    # The stop handler is in place from the run's first line on.
+    returncode, stderr = interrupt_at_line(["run", full, "-o", interrupted], "dynamic PST")
+    check(returncode == 130 and "stopped by a signal" in stderr,
+          f"Ctrl-C: exit {returncode}, expected 130\n{stderr}")
     with open(os.path.join(interrupted, "summary.json")) as f:
         status = json.load(f).get("status")
     check(status == "interrupted" and os.path.exists(os.path.join(interrupted, "checkpoint.json")),
@@ -2282,6 +2320,25 @@ def fem_resume(work):
     for key in a:
         if "wall" not in key and "per_s" not in key:
             check(a[key] == c[key], f"after Ctrl-C, {key}: straight {a[key]!r}, resumed {c[key]!r}")
+
+
+@case
+def fem_quasi_static_interrupt(work):
+    """Ctrl-C stops a quasi-static PST (no checkpoint) between two saw steps: exit 130, summary.json
+    "interrupted" with a message naming the cut, and series.h5 with the steps made."""
+    scene = write(os.path.join(work, "qs.prm"), pst_scene(
+        {"Analysis/Type": "quasi-static"}, remove=["PST/Saw", "Analysis/Explicit", "Output"]))
+    out = os.path.join(work, "run")
+    returncode, stderr = interrupt_at_line(["run", scene, "-o", out], "[fem] cut")  # after the first saw step
+    check(returncode == 130 and "quasi-static PST stopped by a signal at cut" in stderr,
+          f"Ctrl-C: exit {returncode}, expected 130\n{stderr}")
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    check(summary.get("status") == "interrupted" and "no checkpoint" in summary.get("message", ""),
+          f"Ctrl-C: summary.json {summary.get('status')!r}, {summary.get('message')!r}")
+    with h5py.File(os.path.join(out, "series.h5"), "r") as f:
+        rows = len(f["cut_length"][()])
+    check(rows >= 1, f"series.h5 has {rows} rows after the interrupt")
 
 
 @case
