@@ -399,7 +399,8 @@ def dem_interrupt(work):
         2_000_000, checkpoint=1_000_000, snapshot=1_000_000, history=1000, velocity="0.01",
         **{"Output/Progress interval [steps]": "5000"}))
     out = os.path.join(work, "run")
-    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--threads", "1"], "5000")
+    progress_line = "/2000000 ("  # "step    5000/2000000 (  0.2%) ...": the first is at step 5000
+    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--threads", "1"], progress_line)
     check(returncode == 130, f"Ctrl-C: exit {returncode}, expected 130\n{stderr}")
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
@@ -409,9 +410,14 @@ def dem_interrupt(work):
     with open(os.path.join(out, "checkpoint.json")) as f:
         checkpoint_step = json.load(f)["step"]
     check(checkpoint_step == steps, f"the checkpoint is at step {checkpoint_step}, the run stopped at {steps}")
-    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--resume", "--threads", "1"],
-                                           f"resuming at step {steps}")
-    check(returncode == 130, f"the resume did not start from step {steps} (exit {returncode})\n{stderr}")
+    # Interrupted again at its first progress line (the handler is installed after the line that
+    # says where it resumes, so that line is too early).
+    returncode, stderr = interrupt_at_line(["run", scene, "-o", out, "--resume", "--threads", "1"], progress_line)
+    with open(os.path.join(out, "summary.json")) as f:
+        resumed = json.load(f)
+    check(returncode == 130 and resumed.get("resumed_from_step") == steps and resumed["dem"]["steps"] > steps,
+          f"the resume: exit {returncode}, resumed from {resumed.get('resumed_from_step')} (expected {steps}), "
+          f"stopped at {resumed['dem']['steps']}\n{stderr}")
 
 
 @case
