@@ -389,34 +389,19 @@ namespace anticrack::fem::closed_forms
     return upper;
   }
 
-  namespace
-  {
-    /// D_f = E H³ / 12 of Heierli (2005)'s slab (Eq. 16: E, not E'), after checking every input of
-    /// Eqs. 16 and 23.
-    double heierli2005_flexural_rigidity(double youngs_modulus,
-                                         double slab_thickness,
-                                         double slab_density,
-                                         double collapse_height,
-                                         double gravity)
-    {
-      require_positive("youngs_modulus [Pa]", youngs_modulus);
-      require_positive("slab_thickness [m]", slab_thickness);
-      require_positive("slab_density [kg/m^3]", slab_density);
-      require_positive("collapse_height [m]", collapse_height);
-      require_positive("gravity [m/s^2]", gravity);
-      return youngs_modulus * std::pow(slab_thickness, 3) / 12;
-    }
-  } // namespace
-
   double flexural_wave_speed_heierli2005(double youngs_modulus,
                                          double slab_thickness,
                                          double slab_density,
                                          double collapse_height,
                                          double gravity)
   {
-    const double flexural_rigidity =
-      heierli2005_flexural_rigidity(youngs_modulus, slab_thickness, slab_density, collapse_height, gravity);
-    // Eq. 16.
+    require_positive("youngs_modulus [Pa]", youngs_modulus);
+    require_positive("slab_thickness [m]", slab_thickness);
+    require_positive("slab_density [kg/m^3]", slab_density);
+    require_positive("collapse_height [m]", collapse_height);
+    require_positive("gravity [m/s^2]", gravity);
+    // Eq. 16 (docs/physics.md §3 uses E, not E', in D_f).
+    const double flexural_rigidity = youngs_modulus * std::pow(slab_thickness, 3) / 12;
     return std::pow(gravity * flexural_rigidity / (2 * collapse_height * slab_density * slab_thickness), 0.25);
   }
 
@@ -426,11 +411,11 @@ namespace anticrack::fem::closed_forms
                                         double collapse_height,
                                         double gravity)
   {
-    const double flexural_rigidity =
-      heierli2005_flexural_rigidity(youngs_modulus, slab_thickness, slab_density, collapse_height, gravity);
-    // Eq. 23.
-    return heierli2005_touchdown_factor *
-           std::pow(2 * collapse_height * flexural_rigidity / (gravity * slab_density * slab_thickness), 0.25);
+    // Eq. 23 written through Eq. 16: λ_H = γ sqrt(D_f / ρH) / c (the speed checks the arguments).
+    const double speed =
+      flexural_wave_speed_heierli2005(youngs_modulus, slab_thickness, slab_density, collapse_height, gravity);
+    const double flexural_rigidity = youngs_modulus * std::pow(slab_thickness, 3) / 12;
+    return heierli2005_touchdown_factor * std::sqrt(flexural_rigidity / (slab_density * slab_thickness)) / speed;
   }
 
   // --- Eqs. 24–26: steady-state touchdown --------------------------------------------------------------
