@@ -2,6 +2,7 @@
 
 #include "coupling/calibration_scene.h"
 #include "coupling/pipeline.h"
+#include "coupling/study.h"
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "dem/scene/run.h"
@@ -55,8 +56,10 @@ namespace anticrack::app
       int (*run)(const RunOptions &options);
     };
 
+    coupling::SceneRunner scene_runner();
+
     // One row per kind; a new kind is a row here and its module's declare / check / run.
-    const std::array<SceneKind, 5> scene_kinds{{
+    const std::array<SceneKind, 6> scene_kinds{{
       {"dem", "one DEM run: a virtual-laboratory test or a free simulation (subsection DEM)",
        [](dealii::ParameterHandler &prm, const std::string &file, const bool every)
        { declare_dem(prm, dem::SceneKind::dem, file, every); },
@@ -89,6 +92,10 @@ namespace anticrack::app
        fem::run_snowpack_scene},
       {"pipeline", "a DEM weak layer calibrated and put under the snowpacks of FE scenes, with a report (subsection Pipeline)",
        coupling::declare_pipeline, coupling::check_pipeline_scene, coupling::run_pipeline_scene},
+      {"study", "a scene of another kind run again with entries set to other values: errors, orders, run times (subsection Study)",
+       coupling::declare_study,
+       [](const std::string &file, const int threads) { coupling::check_study_scene(file, threads, scene_runner()); },
+       [](const RunOptions &options) { return coupling::run_study_scene(options, scene_runner()); }},
     }};
 
     const SceneKind &kind_named(const std::string &name, const std::string &where)
@@ -126,6 +133,12 @@ namespace anticrack::app
         std::cerr << "anticrack: note: " << file << " does not say what it is; read as a `" << inferred
                   << "` scene (add `set Scene = " << inferred << "` to say so)\n";
       return kind_named(inferred, "");
+    }
+    /// The study's access to the other kinds: this table's run and check.
+    coupling::SceneRunner scene_runner()
+    {
+      return {[](const RunOptions &options) { return kind_of(options.scene_file).run(options); },
+              [](const std::string &file, const int threads) { kind_of(file).check(file, threads); }};
     }
   } // namespace
 

@@ -3,6 +3,7 @@
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
 #include "dem/scene/run.h"
+#include "util/parameter_files.h"
 #include "util/input_error.h"
 #include "util/problems.h"
 
@@ -73,7 +74,7 @@ namespace anticrack::coupling
         prm.parse_input(in, file, "", /*skip_undefined=*/true);
         for (const auto &[path, value] : overrides)
         {
-          const std::vector<std::string> parts = dem::split_parameter_path(path);
+          const std::vector<std::string> parts = split_parameter_path(path);
           if (parts.size() != 2 || parts.front() != "Calibration")
             continue; // the DEM's and the campaign's: read_campaign's
           prm.enter_subsection(parts.front());

@@ -31,48 +31,6 @@ namespace anticrack::coupling
       const std::string kind = scene_kind_in_file(file);
       return kind.empty() ? "a scene that does not say its kind" : "a scene of kind `" + kind + "`";
     }
-
-    /// `text` with a block at its end that sets each of `changes` (the last setting of an entry
-    /// wins), under a comment naming the pipeline's entry they come from.
-    std::string with_changes(std::string text, const std::vector<std::pair<std::string, std::string>> &changes,
-                             const std::string &origin)
-    {
-      if (changes.empty())
-        return text;
-      text += "\n# Added by the pipeline " + origin + ".\n";
-      for (const auto &[path, value] : changes)
-      {
-        const std::vector<std::string> parts = dem::split_parameter_path(path);
-        for (std::size_t k = 0; k + 1 < parts.size(); ++k)
-          text += std::string(2 * k, ' ') + "subsection " + parts[k] + "\n";
-        text += std::string(2 * (parts.size() - 1), ' ') + "set " + parts.back() + " = " + value + "\n";
-        for (std::size_t k = parts.size() - 1; k-- > 0;)
-          text += std::string(2 * k, ' ') + "end\n";
-      }
-      return text;
-    }
-
-    /// The `path = value` items of a comma-separated list entry; a malformed item is a problem.
-    std::vector<std::pair<std::string, std::string>> changes_of(const std::string &list, const std::string &entry,
-                                                                Problems &problems)
-    {
-      std::vector<std::pair<std::string, std::string>> changes;
-      for (const std::string &item : dealii::Utilities::split_string_list(list, ','))
-      {
-        const auto equal = item.find('=');
-        if (equal == std::string::npos)
-          problems.add(entry, "'" + item + "' is not of the form `path = value`");
-        else
-          changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)), dealii::Utilities::trim(item.substr(equal + 1)));
-      }
-      return changes;
-    }
-
-    std::string resolved(const std::string &path, const std::string &scene_file)
-    {
-      const fs::path p(path);
-      return (p.is_absolute() ? p : fs::absolute(fs::path(scene_file).parent_path() / p)).lexically_normal().string();
-    }
   } // namespace
 
   void declare_pipeline_scene(dealii::ParameterHandler &prm)
@@ -132,14 +90,17 @@ namespace anticrack::coupling
 
   std::string weak_layer_scene_text(const PipelineScene &scene)
   {
-    return with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
-                        scene.file + ": Pipeline/Weak layer scene changes, on " + scene.weak_layer_scene);
+    return scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
+                                   "by the pipeline " + scene.file + ": Pipeline/Weak layer scene changes, on " +
+                                     scene.weak_layer_scene);
   }
 
   std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file)
   {
-    std::string text = with_changes(read_scene_file(file), scene.snowpack_changes,
-                                    scene.file + ": Pipeline/Snowpack scene changes");
+    // The stage runs a copy of the scene from its own folder: relocatable_scene_text makes the
+    // material files of its other layers absolute.
+    std::string text = scene_text_with_changes(relocatable_scene_text(file), scene.snowpack_changes,
+                                               "by the pipeline " + scene.file + ": Pipeline/Snowpack scene changes");
     if (material_file.empty())
       return text;
     text += "\n# Added by the pipeline: the weak layer is the calibrated material (the inline\n"
@@ -184,13 +145,13 @@ namespace anticrack::coupling
     PipelineScene scene;
     scene.file = file;
     prm.enter_subsection("Pipeline");
-    scene.weak_layer_scene = resolved(dealii::Utilities::trim(prm.get(weak_layer_entry)), file);
+    scene.weak_layer_scene = path_relative_to_scene(dealii::Utilities::trim(prm.get(weak_layer_entry)), file);
     for (const std::string &s : dealii::Utilities::split_string_list(prm.get(snowpack_entry)))
-      scene.snowpack_scenes.push_back(resolved(s, file));
+      scene.snowpack_scenes.push_back(path_relative_to_scene(s, file));
     scene.uncertainty = prm.get("Uncertainty") == "sensitivities";
-    scene.snowpack_changes = changes_of(prm.get("Snowpack scene changes"), "Pipeline/Snowpack scene changes", problems);
+    scene.snowpack_changes = entry_changes_in_list(prm.get("Snowpack scene changes"), "Pipeline/Snowpack scene changes", problems);
     scene.weak_layer_changes =
-      changes_of(prm.get("Weak layer scene changes"), "Pipeline/Weak layer scene changes", problems);
+      entry_changes_in_list(prm.get("Weak layer scene changes"), "Pipeline/Weak layer scene changes", problems);
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
     scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
@@ -228,15 +189,6 @@ namespace anticrack::coupling
         problems.add(entry, "names " + s + ", " + kind_text(s) + "; it must be of kind `snowpack` (set Scene = snowpack)");
         continue;
       }
-      // The pipeline runs a copy of the scene from its stage folder: a material file of another
-      // layer named relative to the scene's folder would not be found there.
-      for (const ParameterSetting &setting : scan_parameter_settings(read_scene_file(s)))
-        if (setting.path.back() == "Material file" && !setting.value.empty() &&
-            setting.path != std::vector<std::string>{"Snowpack", "Weak layer", "Material file"} &&
-            !fs::path(setting.value).is_absolute())
-          problems.add(entry, "names " + s + ", whose " + setting.path_text() + " = " + setting.value +
-                                " (line " + std::to_string(setting.line) + ") is relative; in a pipeline it must be "
-                                "absolute (the stage runs a copy of the scene from its own folder)");
       // As the pipeline runs it: with the changes (an unknown entry or value is refused here).
       const fem::SnowpackScene snowpack = fem::read_snowpack_scene_text(snowpack_scene_text(scene, s, ""), s);
       // The calibrated weak layer is a cohesive Cam-Clay material; an elastic one takes only its

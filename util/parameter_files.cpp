@@ -2,12 +2,16 @@
 
 #include "util/atomic_file.h"
 #include "util/input_error.h"
+#include "util/problems.h"
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <sstream>
@@ -142,6 +146,99 @@ namespace anticrack
     {
       throw InputError("Cannot read the scene file <" + file + ">.");
     }
+  }
+
+  std::vector<std::string> split_parameter_path(const std::string &path)
+  {
+    std::vector<std::string> parts(1);
+    int bracket_depth = 0;
+    for (const char c : path)
+    {
+      bracket_depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+      if (c == '/' && bracket_depth == 0)
+        parts.emplace_back();
+      else
+        parts.back() += c;
+    }
+    for (std::string &part : parts)
+      part = dealii::Utilities::trim(part);
+    return parts;
+  }
+
+  std::string scene_text_with_changes(std::string text, const std::vector<EntryChange> &changes,
+                                      const std::string &origin)
+  {
+    if (changes.empty())
+      return text;
+    if (!text.empty() && text.back() != '\n')
+      text += '\n';
+    text += "\n# Added " + origin + ".\n";
+    for (const auto &[path, value] : changes)
+    {
+      const std::vector<std::string> parts = split_parameter_path(path);
+      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+        text += std::string(2 * k, ' ') + "subsection " + parts[k] + "\n";
+      text += std::string(2 * (parts.size() - 1), ' ') + "set " + parts.back() + " = " + value + "\n";
+      for (std::size_t k = parts.size() - 1; k-- > 0;)
+        text += std::string(2 * k, ' ') + "end\n";
+    }
+    return text;
+  }
+
+  std::vector<EntryChange> entry_changes_in_list(const std::string &list, const std::string &entry, Problems &problems)
+  {
+    std::vector<EntryChange> changes;
+    for (const std::string &item : dealii::Utilities::split_string_list(list, ','))
+    {
+      const auto equal = item.find('=');
+      if (equal == std::string::npos)
+        problems.add(entry, "'" + item + "' is not of the form `path = value`");
+      else
+        changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
+                             dealii::Utilities::trim(item.substr(equal + 1)));
+    }
+    return changes;
+  }
+
+  const std::vector<std::string> &scene_relative_file_entries()
+  {
+    static const std::vector<std::string> names{"Material file", "Weak layer scene", "Snowpack scenes", "Base scene"};
+    return names;
+  }
+
+  std::string path_relative_to_scene(const std::string &path, const std::string &scene_file)
+  {
+    namespace fs = std::filesystem;
+    const fs::path p(dealii::Utilities::trim(path));
+    return (p.is_absolute() ? p : fs::absolute(fs::path(scene_file).parent_path() / p)).lexically_normal().string();
+  }
+
+  std::string relocatable_scene_text(const std::string &file)
+  {
+    namespace fs = std::filesystem;
+    const std::string text = read_scene_file(file);
+    const auto absolute = [&](const std::string &path) {
+      return dealii::Utilities::trim(path).empty() ? std::string() : path_relative_to_scene(path, file);
+    };
+    std::vector<EntryChange> changes;
+    for (const ParameterSetting &setting : scan_parameter_settings(text))
+    {
+      const auto &names = scene_relative_file_entries();
+      if (std::find(names.begin(), names.end(), setting.path.back()) == names.end())
+        continue;
+      std::string value;
+      for (const std::string &item : dealii::Utilities::split_string_list(setting.value, ','))
+        value += (value.empty() ? "" : ", ") + absolute(item);
+      if (value != setting.value)
+      {
+        std::string path;
+        for (const std::string &part : setting.path)
+          path += (path.empty() ? "" : "/") + part;
+        changes.emplace_back(path, value);
+      }
+    }
+    return scene_text_with_changes(text, changes, "so that this copy of " + fs::absolute(fs::path(file)).lexically_normal().string() +
+                                                    " finds the files it names relative to its folder");
   }
 
   std::string scene_kind_in_file(const std::string &file)

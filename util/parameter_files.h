@@ -7,6 +7,7 @@
 #include <iosfwd>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dealii
@@ -16,6 +17,8 @@ namespace dealii
 
 namespace anticrack
 {
+  class Problems;
+
   enum class ParameterFormat
   {
     prm,
@@ -41,6 +44,37 @@ namespace anticrack
   /// this tells what a file sets, so that a reader can say which kind or variant an entry belongs
   /// to, and refuse a file that sets nothing.
   std::vector<ParameterSetting> scan_parameter_settings(const std::string &text);
+
+  /// "DEM/Boundary particles/Clump force rate [N/s]" -> {"DEM", "Boundary particles", "Clump force
+  /// rate [N/s]"}: subsections are separated by '/', except inside a unit's brackets.
+  std::vector<std::string> split_parameter_path(const std::string &path);
+
+  /// A change of one entry of a scene: its path ("Mesh/Element length [m]") and the value to set.
+  using EntryChange = std::pair<std::string, std::string>;
+
+  /// `text` with a block at its end that sets each of `changes` (in deal.II's syntax the last
+  /// setting of an entry wins), under a comment saying where they come from (`origin`).
+  std::string scene_text_with_changes(std::string text, const std::vector<EntryChange> &changes,
+                                      const std::string &origin);
+
+  /// The `path = value` items of a comma-separated list entry (e.g. Pipeline/Snowpack scene
+  /// changes); an item without `=` is a problem of `entry`.
+  std::vector<EntryChange> entry_changes_in_list(const std::string &list, const std::string &entry,
+                                                 Problems &problems);
+
+  /// The text of scene `file` as it must read when run from another folder: the entries that name
+  /// files relative to the scene's own folder (scene_relative_file_entries) set again at its end
+  /// with absolute paths. A study's variants and a pipeline's stages run such copies.
+  std::string relocatable_scene_text(const std::string &file);
+
+  /// `path` as the reader of scene `scene_file` resolves a file it names: as it is if absolute, else
+  /// relative to the scene's folder; absolute and normalised.
+  std::string path_relative_to_scene(const std::string &path, const std::string &scene_file);
+
+  /// The entry names (last path component) whose values name files relative to the folder of the
+  /// scene that sets them, as their readers resolve them: a layer's `Material file`, a pipeline's
+  /// `Weak layer scene` and `Snowpack scenes` (a comma-separated list), a study's `Base scene`.
+  const std::vector<std::string> &scene_relative_file_entries();
 
   /// The bytes of a scene file; throws InputError naming the file if it cannot be read.
   std::string read_scene_file(const std::string &file);

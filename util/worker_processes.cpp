@@ -23,9 +23,12 @@ namespace anticrack
     constexpr int max_workers = 1024;
     volatile pid_t worker_pids[max_workers];
     volatile std::sig_atomic_t worker_count = 0;
+    // Set by a stop signal: run_jobs_in_worker_processes starts no further job after it.
+    volatile std::sig_atomic_t stop_forwarded = 0;
 
     extern "C" void forward_to_workers(int signal)
     {
+      stop_forwarded = 1;
       for (int k = 0; k < worker_count; ++k)
         if (worker_pids[k] > 0)
           kill(worker_pids[k], signal);
@@ -122,9 +125,12 @@ namespace anticrack
       throw std::invalid_argument("run_jobs_in_worker_processes: " + std::to_string(jobs) + " jobs, " +
                                   std::to_string(concurrent) + " at a time (1 to " + std::to_string(max_workers) + ")");
     flush_streams();
+    stop_forwarded = 0;
     void (*previous_int)(int) = std::signal(SIGINT, forward_to_workers);
     void (*previous_term)(int) = std::signal(SIGTERM, forward_to_workers);
     std::vector<WorkerExit> exits(static_cast<std::size_t>(jobs));
+    for (WorkerExit &exit : exits)
+      exit.started = false;
     std::vector<Started> running(static_cast<std::size_t>(jobs));
     std::vector<int> open_pipes;
     std::string fork_error;
@@ -139,7 +145,7 @@ namespace anticrack
     };
     while (next < jobs || active > 0)
     {
-      while (fork_error.empty() && next < jobs && active < concurrent)
+      while (fork_error.empty() && stop_forwarded == 0 && next < jobs && active < concurrent)
       {
         const Started w = start_worker(next, job, open_pipes, previous_int, previous_term, fork_error);
         if (w.pid < 0)

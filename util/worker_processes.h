@@ -30,6 +30,7 @@ namespace anticrack
     int signal = 0;    ///< the signal that ended it (0: it returned)
     std::string report; ///< what the job put in its `report` (empty if it did not return)
     double wall_s = 0;  ///< from its fork to its end, as the parent saw it [s]
+    bool started = true; ///< false: a stop signal came before its turn (run_jobs_in_worker_processes)
   };
 
   /// The largest report a worker can send back [bytes] (a pipe's atomic write; longer ones are cut).
@@ -48,7 +49,8 @@ namespace anticrack
   /// The same for `jobs` jobs of which at most `concurrent` run at a time: a worker is forked for
   /// the next job whenever one ends (each job its own process, e.g. an FE analysis, which
   /// initialises MPI and can do so once per process). `on_exit(job, exit)` is called in the parent
-  /// as each ends, in the order they end.
+  /// as each ends, in the order they end. After SIGINT or SIGTERM (passed on to the running workers)
+  /// no further job is started: those left have `started` false.
   std::vector<WorkerExit> run_jobs_in_worker_processes(int jobs, int concurrent,
                                                        const std::function<int(int job, std::string &report)> &job,
                                                        const std::function<void(int job, const WorkerExit &exit)> &on_exit = {});

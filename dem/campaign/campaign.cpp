@@ -6,6 +6,7 @@
 #include "dem/scene/lab_tests.h"
 #include "dem/scene/model.h"
 #include "dem/scene/parameters.h"
+#include "util/parameter_files.h"
 #include "util/console.h"
 #include "util/hdf5_file.h"
 #include "util/input_error.h"

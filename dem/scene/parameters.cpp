@@ -835,23 +835,6 @@ namespace anticrack::dem
     }
   } // namespace
 
-  std::vector<std::string> split_parameter_path(const std::string &path)
-  {
-    std::vector<std::string> parts(1);
-    int bracket_depth = 0;
-    for (const char c : path)
-    {
-      bracket_depth += c == '[' ? 1 : c == ']' ? -1 : 0;
-      if (c == '/' && bracket_depth == 0)
-        parts.emplace_back();
-      else
-        parts.back() += c;
-    }
-    for (std::string &part : parts)
-      part = dealii::Utilities::trim(part);
-    return parts;
-  }
-
   namespace
   {
     using Overrides = std::vector<std::pair<std::string, std::string>>;

@@ -383,10 +383,6 @@ namespace anticrack::dem
     void check(Problems &problems) const;
   };
 
-  /// "DEM/Boundary particles/Clump force rate [N/s]" -> {"DEM", "Boundary particles", "Clump force
-  /// rate [N/s]"}: subsections are separated by '/', except inside a unit's brackets.
-  std::vector<std::string> split_parameter_path(const std::string &path);
-
   /// Reads, parses and validates a scene file; throws InputError with a complete message.
   /// `overrides` (entry path with '/' between subsections, value) are set after the file is read,
   /// as if the file said so: a campaign's microstructures are the scene with other sample entries.

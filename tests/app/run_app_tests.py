@@ -1976,6 +1976,56 @@ def pipeline_files(work):
 
 
 @case
+def study_small(work):
+    """scenes/studies/err_flat_mesh.prm (the CI's tiny study): every variant runs, study.json's errors
+    are those of the variants' own summaries against the finest of each line (recomputed here),
+    study.csv and the plots are written; --resume runs nothing again; a variant whose value its kind
+    refuses stops the study before anything is written, naming the variant and the entry."""
+    scene = os.path.join(SOURCE, "scenes", "studies", "err_flat_mesh.prm")
+    out = os.path.join(work, "study")
+    stdout, _ = anticrack("run", scene, "-o", out)
+    study = json.load(open(os.path.join(out, "study.json")))
+    check([v["status"] for v in study["variants"]] == ["completed"] * 6, f"variants: {study['variants']}")
+    pointer = "/results/critical_cut_length_m"
+    for line in study["lines"]:
+        r = line["results"]["critical_cut_length_m"]
+        answers = []
+        for variant in line["variants"]:
+            summary = json.load(open(os.path.join(out, "variants", variant, "run", "summary.json")))
+            answers.append(summary["results"]["critical_cut_length_m"])
+        check(r["values"] == answers, f"{line['entry']}: study.json {r['values']} against the runs' {answers}")
+        finest = answers[-1]  # the line is sorted coarsest first
+        errors = [abs(a - finest) / abs(finest) for a in answers]
+        check(all(abs(a - b) <= 1e-12 for a, b in zip(r["errors"], errors)), f"errors {r['errors']} != {errors}")
+        check(r["error_against"].startswith("the finest variant"), r["error_against"])
+        # the elastic G(a) is resolved on 4 cm elements: every variant within 1 % of the finest
+        check(r["cheapest_within_1_percent"] is not None and r["cheapest_within_1_percent"]["value"] == line["values"][0],
+              f"{line['entry']}: cheapest within 1 %: {r['cheapest_within_1_percent']}")
+        check("observed_order" in r, f"{line['entry']}: no observed order for a discretisation entry")
+    lengths = study["lines"][0]
+    check(lengths["values"] == ["0.04", "0.02", "0.01"] and lengths["base_value"] == "0.01", f"line {lengths}")
+    rows = open(os.path.join(out, "study.csv")).read().splitlines()
+    check(len(rows) == 7 and rows[0].startswith("variant,"), f"study.csv:\n{rows}")
+    for name in ("work_precision.png", "results.png", "summary.json"):
+        check(os.path.getsize(os.path.join(out, name)) > 0, f"{name} missing")
+    text = open(os.path.join(out, "variants", "v000", "scene.prm")).read()
+    check("set Element length [m] = 0.04" in text and "set Cut length [m] = 0.4" in text, "variant scene:\n" + text)
+
+    stdout, _ = anticrack("run", scene, "-o", out, "--resume")
+    check("0 to run" in stdout, f"--resume ran variants again:\n{stdout}")
+    again = json.load(open(os.path.join(out, "study.json")))
+    check(again["lines"] == study["lines"], "--resume changed the lines' analysis")
+    _, stderr = anticrack("run", scene, "-o", out, expect=2)
+    check("already holds a study" in stderr, stderr)
+
+    bad = write(os.path.join(work, "bad_study.prm"),
+                open(scene).read().replace("../err_flat.prm", os.path.join(SOURCE, "scenes", "err_flat.prm"))
+                .replace("set Values = 0.04; 0.02; 0.01\n    set Refinement = size",
+                         "set Values = 0.04; -0.02\n    set Refinement = none"))
+    expect_bad_input(work, bad, "variant v001", "Element length", "-0.02")
+
+
+@case
 def pipeline_small(work):
     """`run` of a pipeline scene: the weak layer's campaign and calibration, its material in snow units
     (E and p0 times 2e5/1e6 = 0.2, the density phi 917 kg/m^3), both PSTs run from a scene.prm that

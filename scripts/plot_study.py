@@ -1,0 +1,100 @@
+#!/usr/bin/python3
+"""Plot a study's run directory (`set Scene = study`, coupling/study.h).
+
+Usage: scripts/plot_study.py DIR
+
+Reads DIR/study.json and writes
+  DIR/work_precision.png  error against wall time, log-log, one panel per result and one curve per
+                          varied entry (its line of variants, coarsest first); the 5 % and 1 % lines;
+                          variants without an error (the reference itself, a missing answer) are left out
+  DIR/results.png         each result against each varied entry's values, with the reference value
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+
+
+def numeric(values):
+    try:
+        return [float(v) for v in values]
+    except ValueError:
+        return None
+
+
+def main(directory):
+    with open(os.path.join(directory, "study.json")) as f:
+        study = json.load(f)
+    results = study["results"]
+    lines = study["lines"]
+    markers = "osd^v<>"
+
+    fig, axes = plt.subplots(1, len(results), figsize=(5.2 * len(results), 4.4), squeeze=False)
+    for ax, result in zip(axes[0], results):
+        label = result["label"]
+        plotted = False
+        for k, line in enumerate(lines):
+            r = line["results"][label]
+            points = [(t, e, v) for t, e, v in zip(line["wall_s"], r["errors"], line["values"])
+                      if e is not None and e > 0 and t > 0]
+            if not points:
+                continue
+            plotted = True
+            ax.loglog([p[0] for p in points], [p[1] for p in points], marker=markers[k % len(markers)],
+                      label=f"{line['entry']} ({line['refinement']})")
+            for t, e, v in points:
+                ax.annotate(v, (t, e), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        for tolerance, style in ((0.05, "--"), (0.01, ":")):
+            ax.axhline(tolerance, color="grey", lw=0.8, ls=style)
+        given = result["reference_value"]
+        against = f"the reference value {given:g}" if given is not None else "the finest variant of each entry"
+        ax.set_title(f"{label}\nerror against {against}", fontsize=8)
+        ax.set_xlabel("wall time of the variant [s]")
+        ax.set_ylabel("relative error")
+        if plotted:
+            ax.legend(fontsize=7)
+    fig.suptitle(f"{os.path.basename(study['base_scene'])}: error against run time\n({study['cost']})", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, "work_precision.png"), dpi=120)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(len(results), len(lines), figsize=(4.6 * len(lines), 3.6 * len(results)), squeeze=False)
+    for i, result in enumerate(results):
+        label = result["label"]
+        for j, line in enumerate(lines):
+            ax = axes[i][j]
+            r = line["results"][label]
+            x = numeric(line["values"])
+            positions = x if x is not None else list(range(len(line["values"])))
+            ys = [(p, y) for p, y in zip(positions, r["values"]) if y is not None]
+            ax.plot([p for p, _ in ys], [y for _, y in ys], marker="o")
+            if x is None:
+                ax.set_xticks(positions)
+                ax.set_xticklabels(line["values"], rotation=30, fontsize=7)
+            elif line["refinement"] in ("size", "count") and min(x) > 0:
+                ax.set_xscale("log")
+            if result["reference_value"] is not None:
+                ax.axhline(result["reference_value"], color="grey", lw=0.8, ls="--", label="reference")
+                ax.legend(fontsize=7)
+            if line["base_value"] is not None and x is not None:
+                try:
+                    ax.axvline(float(line["base_value"]), color="tab:red", lw=0.8, ls=":")
+                except ValueError:
+                    pass
+            ax.set_xlabel(line["entry"])
+            ax.set_ylabel(label)
+    fig.suptitle(f"{os.path.basename(study['base_scene'])}: answers against the varied entries\n"
+                 "(red: the base scene's value)", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(directory, "results.png"), dpi=120)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
