@@ -4,6 +4,7 @@
 #include "dem/scene/parameters.h"
 #include "dem/scene/run.h"
 #include "util/parameter_files.h"
+#include "util/parameter_input.h"
 #include "util/input_error.h"
 #include "util/problems.h"
 
@@ -70,8 +71,7 @@ namespace anticrack::coupling
       CalibrateOptions options;
       try
       {
-        std::ifstream in(file);
-        prm.parse_input(in, file, "", /*skip_undefined=*/true);
+        parse_parameter_text(prm, read_scene_file(file), file, "scene file", /*skip_undefined=*/true);
         for (const auto &[path, value] : overrides)
         {
           const std::vector<std::string> parts = split_parameter_path(path);
@@ -88,6 +88,10 @@ namespace anticrack::coupling
         std::ostringstream info;
         e.print_info(info);
         throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
+      }
+      catch (const InputError &)
+      {
+        throw;
       }
       catch (const std::exception &e)
       {

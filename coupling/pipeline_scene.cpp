@@ -5,6 +5,7 @@
 #include "fem/scene/snowpack_scene.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
+#include "util/parameter_input.h"
 #include "util/problems.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -122,21 +123,9 @@ namespace anticrack::coupling
 
   PipelineScene read_pipeline_scene(const std::string &file)
   {
-    std::ifstream in(file);
-    if (!in)
-      throw InputError("The scene file <" + file + "> cannot be read.");
     dealii::ParameterHandler prm;
     declare_pipeline_scene(prm);
-    try
-    {
-      prm.parse_input(in, file);
-    }
-    catch (const dealii::ExceptionBase &e)
-    {
-      std::ostringstream info;
-      e.print_info(info);
-      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
-    }
+    parse_parameter_text(prm, read_scene_file(file), file);
     Problems problems("scene file <" + file + ">");
     for (const std::string &missing : prm.get_entries_wrongly_not_set())
       problems.add(demangled_parameter_path(missing), "must be set (a pipeline has no defaults for it)");

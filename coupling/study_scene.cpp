@@ -2,6 +2,7 @@
 
 #include "util/enum_table.h"
 #include "util/input_error.h"
+#include "util/parameter_input.h"
 #include "util/problems.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -207,17 +208,7 @@ namespace anticrack::coupling
     const std::string text = read_scene_file(file);
     dealii::ParameterHandler prm;
     declare_study_scene(prm);
-    try
-    {
-      std::istringstream in(text);
-      prm.parse_input(in, file);
-    }
-    catch (const dealii::ExceptionBase &e)
-    {
-      std::ostringstream info;
-      e.print_info(info);
-      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
-    }
+    parse_parameter_text(prm, text, file);
     Problems problems("scene file <" + file + ">");
     for (const std::string &missing : prm.get_entries_wrongly_not_set())
       problems.add(demangled_parameter_path(missing), "must be set (a study has no default for it)");

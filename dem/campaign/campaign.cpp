@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -414,6 +415,33 @@ namespace anticrack::dem
     // looked later would take rank 0's new folder for an earlier campaign and refuse (exit 2).
     mpi.barrier();
     PhaseTimer timer; // rank 0's phases: its own tests, then campaign.h5 and summary.json
+    // Bad input that only building a sample finds (a sticky-hard-sphere sample that does not
+    // percolate) comes after the folders are made: until the first test has run, such an error
+    // removes what this run created, so that "nothing was written" holds.
+    struct RemoveCreatedOnBadInput
+    {
+      std::vector<fs::path> created;
+      bool armed = true;
+      ~RemoveCreatedOnBadInput()
+      {
+        if (armed && std::uncaught_exceptions() > 0)
+          for (const fs::path &path : created)
+          {
+            std::error_code ignored;
+            fs::remove_all(path, ignored);
+          }
+      }
+    } created_on_bad_input;
+    if (root)
+    {
+      // The outermost folder this run creates holds the rest: `tests`, the output folder, or an
+      // ancestor of it that does not exist yet.
+      fs::path outermost = fs::exists(directory, error) ? directory / "tests" : fs::absolute(directory);
+      while (!fs::exists(outermost.parent_path(), error) && outermost.has_parent_path() && outermost.parent_path() != outermost)
+        outermost = outermost.parent_path();
+      if (!fs::exists(outermost, error))
+        created_on_bad_input.created.push_back(outermost);
+    }
     if (root)
     {
       if (options.overwrite && !options.resume)
@@ -527,6 +555,7 @@ namespace anticrack::dem
           const auto phase = timer.scope("tests");
           return run_dem_model(test_scene, std::move(model), o);
         }();
+        created_on_bad_input.armed = false; // a test has run: its files are results, not half-writing
         share.any_failed = share.any_failed || run.exit_code != exit_success;
         share.interrupted = run.exit_code == exit_interrupted;
         const TestOutcome &outcome = share.outcomes[t.id] = outcome_of(t, run.summary, run.failure_analysis);
@@ -577,11 +606,22 @@ namespace anticrack::dem
           const auto k = static_cast<std::size_t>(taken.next());
           return k < queue.size() ? queue[k] : tests.size();
         };
-        const Share share = run_share("[worker " + std::to_string(member) + "]", next,
-                                      [] { return std::numeric_limits<double>::quiet_NaN(); });
-        report = std::to_string(timer.seconds("samples"));
-        return share.interrupted ? exit_interrupted : share.any_failed ? exit_numerical_failure : exit_success;
+        try
+        {
+          const Share share = run_share("[worker " + std::to_string(member) + "]", next,
+                                        [] { return std::numeric_limits<double>::quiet_NaN(); });
+          report = std::to_string(timer.seconds("samples"));
+          return static_cast<int>(share.interrupted ? exit_interrupted : share.any_failed ? exit_numerical_failure : exit_success);
+        }
+        catch (const InputError &e)
+        {
+          report = e.what();
+          return static_cast<int>(exit_bad_input);
+        }
       });
+      for (const WorkerExit &exit : exits)
+        if (exit.exit_code == exit_bad_input)
+          throw InputError(exit.report);
       double samples = 0;
       for (std::size_t k = 0; k < exits.size(); ++k)
       {

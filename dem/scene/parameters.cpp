@@ -5,6 +5,7 @@
 #include "dem/contact/contact_law.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
+#include "util/parameter_input.h"
 #include "util/problems.h"
 #include "dem/scene/scene_entries.h"
 
@@ -853,8 +854,7 @@ namespace anticrack::dem
       prm.declare_entry("Test", lab_tests().front().name, Patterns::Selection(names_pattern(lab_tests())));
       prm.leave_subsection();
       prm.leave_subsection();
-      std::istringstream input(bytes);
-      prm.parse_input(input, file, "", /*skip_undefined=*/true);
+      parse_parameter_text(prm, bytes, file, "scene file", /*skip_undefined=*/true);
       for (const auto &[path, value] : overrides)
         if (path == "Sample/Type" || path == "DEM/Sample/Type" || path == "Loading/Test" || path == "DEM/Loading/Test")
         {
@@ -930,8 +930,7 @@ namespace anticrack::dem
       collect_foreign_entries(bytes, declaration, foreign);
       foreign.throw_if_any();
       SceneParameters::declare_parameters(prm, declaration);
-      std::istringstream input(bytes);
-      prm.parse_input(input, file);
+      parse_parameter_text(prm, bytes, file);
       for (const auto &[path, value] : overrides)
       {
         const std::vector<std::string> parts = split_parameter_path(path);

@@ -4,6 +4,7 @@
 #include "util/format.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
+#include "util/parameter_input.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -144,14 +145,11 @@ namespace anticrack::fem
       declare_material_file(prm);
       try
       {
-        std::istringstream input(text);
-        prm.parse_input(input, name);
+        parse_parameter_text(prm, text, name, "material file");
       }
-      catch (const dealii::ExceptionBase &e)
+      catch (const InputError &)
       {
-        std::ostringstream info; // deal.II's text names the line and the entry; no stack trace
-        e.print_info(info);
-        throw InputError("material file " + name + ":\n" + info.str());
+        throw;
       }
       catch (const std::exception &e)
       {

@@ -8,6 +8,7 @@
 #include "util/input_error.h"
 #include "util/named_rows.h"
 #include "util/parameter_files.h"
+#include "util/parameter_input.h"
 #include "util/problems.h"
 #include "util/sha256.h"
 
@@ -472,15 +473,11 @@ namespace anticrack::fem
     declare_snowpack_scene(prm, nullptr);
     try
     {
-      std::istringstream input(text);
-      prm.parse_input(input, file);
+      parse_parameter_text(prm, text, file);
     }
-    catch (const dealii::ExceptionBase &e)
+    catch (const InputError &)
     {
-      // deal.II's text names the line, the entry and the pattern; drop its stack trace.
-      std::ostringstream info;
-      e.print_info(info);
-      throw InputError("Invalid scene file <" + file + ">:\n" + info.str());
+      throw;
     }
     catch (const std::exception &e)
     {
