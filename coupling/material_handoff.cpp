@@ -6,7 +6,7 @@ namespace anticrack::coupling
 {
   namespace
   {
-    /// The t-interval over the realizations; none (NaN, "nan, nan" in the file) from one realization,
+    /// The t-interval over the realizations; none (NaN; an empty entry in the file) from one realization,
     /// which gives no spread.
     fem::MaterialInterval interval(const params::SampleStatistics &s)
     {

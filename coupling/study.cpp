@@ -45,6 +45,9 @@ namespace anticrack::coupling
       int exit_code = 0;
       double wall_s = 0;
       std::vector<std::optional<double>> results;
+      /// An earlier variant with the same scene (a value that is the base scene's own, or that of
+      /// Base scene changes): it runs once, and this one takes its run.
+      std::optional<std::size_t> same_as;
     };
 
     std::string changes_text(const StudyVariant &v)
@@ -64,10 +67,19 @@ namespace anticrack::coupling
       for (StudyVariant &v : study_variants(study))
       {
         VariantRun r;
-        r.scene_text = scene_text_with_changes(base, v.changes, "by the study " + study.file + ", variant " + v.id);
+        // A value that is the base scene's own changes nothing: left out, so that variants equal to
+        // the base scene (or to each other) have the same text and run once.
+        std::vector<EntryChange> changes;
+        for (std::size_t e = 0; e < study.entries.size(); ++e)
+          if (v.level[e] && study.entries[e].values[*v.level[e]] != study.entries[e].base_value)
+            changes.emplace_back(study.entries[e].path, study.entries[e].values[*v.level[e]]);
+        r.scene_text = scene_text_with_changes(base, changes, "by the study " + study.file + ": the variant's values");
         r.scene_sha256 = util::sha256_hex(r.scene_text);
         r.variant = std::move(v);
         r.results.resize(study.results.size());
+        for (std::size_t j = 0; j < runs.size() && !r.same_as; ++j)
+          if (runs[j].scene_sha256 == r.scene_sha256)
+            r.same_as = j;
         runs.push_back(std::move(r));
       }
       return runs;
@@ -338,7 +350,8 @@ namespace anticrack::coupling
     std::cout << "study " << study.file << ": " << runs.size() << " variants of " << study.base_scene << " (kind "
               << study.base_kind << "), " << (study.product ? "every combination" : "one entry at a time") << "\n";
     for (const VariantRun &r : runs)
-      std::cout << "  " << r.variant.id << ": " << changes_text(r.variant) << "\n";
+      std::cout << "  " << r.variant.id << ": " << changes_text(r.variant)
+                << (r.same_as ? " (the same scene as " + runs[*r.same_as].variant.id + ": runs once)" : "") << "\n";
     std::cout << "  results:";
     for (const StudyResult &r : study.results)
       std::cout << " " << r.pointer << (r.reference ? " (reference " + format_number(*r.reference) + ")" : "");
@@ -385,6 +398,8 @@ namespace anticrack::coupling
     std::vector<std::size_t> to_run;
     for (std::size_t k = 0; k < runs.size(); ++k)
     {
+      if (runs[k].same_as)
+        continue; // takes the run of the variant it equals, below
       const fs::path record = dir / "variants" / runs[k].variant.id / "variant.json";
       if (options.resume && fs::exists(record))
       {
@@ -495,10 +510,26 @@ namespace anticrack::coupling
       }
     }
 
+    // Variants equal to an earlier one take its run.
+    for (VariantRun &run : runs)
+      if (run.same_as)
+      {
+        const VariantRun &twin = runs[*run.same_as];
+        run.status = twin.status, run.exit_code = twin.exit_code, run.wall_s = twin.wall_s;
+        if (root)
+          write_json_atomically((dir / "variants" / run.variant.id / "variant.json").string(),
+                                Json{{"variant", run.variant.id},
+                                     {"changes", changes_text(run.variant)},
+                                     {"scene_sha256", run.scene_sha256},
+                                     {"same_as", twin.variant.id},
+                                     {"status", run.status}});
+      }
+
     // The answers, their errors and the lines' analysis.
     for (VariantRun &run : runs)
     {
-      const fs::path summary = dir / "variants" / run.variant.id / "run" / "summary.json";
+      const std::string folder = run.same_as ? runs[*run.same_as].variant.id : run.variant.id;
+      const fs::path summary = dir / "variants" / folder / "run" / "summary.json";
       if ((run.status == "completed" || run.status == "completed earlier" || run.status == "failed") && fs::exists(summary))
       {
         const Json s = read_json_file(summary.string());
@@ -539,6 +570,8 @@ namespace anticrack::coupling
         for (const auto &[path, value] : runs[v].variant.changes)
           j["changes"][path] = value;
         j["status"] = runs[v].status;
+        if (runs[v].same_as)
+          j["same_as"] = runs[*runs[v].same_as].variant.id;
         j["exit_code"] = runs[v].exit_code;
         j["wall_s"] = runs[v].wall_s;
         j["results"] = Json::object();

@@ -293,10 +293,12 @@ namespace anticrack::coupling
         for (StudyEntry &entry : study.entries)
           if (split_parameter_path(entry.path) == setting.path)
             entry.base_value = setting.value;
+      // Base scene changes come first in every variant: an entry that varies overrides its own, and
+      // the others' lines sit at it (e.g. a coarser mesh for every line but the mesh's own).
       for (const auto &[path, value] : study.base_changes)
         for (StudyEntry &entry : study.entries)
           if (split_parameter_path(entry.path) == split_parameter_path(path))
-            problems.add("Study/Base scene changes", path, "varies in a Study/Entry too");
+            entry.base_value = value;
     }
     std::size_t count = study.product ? 1 : 0;
     for (const StudyEntry &entry : study.entries)

@@ -56,10 +56,10 @@ def material_entries(path):
 
 def interval(entries, name):
     key = name.replace(" [", " interval [") if "[" in name else name + " interval"
-    if key not in entries:
-        return None
+    if not entries.get(key):
+        return None  # not in the file, or empty: no interval (one realization)
     low, high = (float(v) for v in entries[key].split(","))
-    return None if np.isnan(low) else (low, high)
+    return (low, high)
 
 
 def fmt(value, digits=3):

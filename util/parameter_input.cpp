@@ -124,7 +124,7 @@ namespace anticrack
       {"m", {1e4, "lengths and coordinates: 10 km is beyond any snowpack, slope or specimen"}},
       {"m/s", {1e5, "speeds: every elastic wave speed of a solid is below 2e4 m/s"}},
       {"m/s^2", {1e6, "accelerations"}},
-      {"kg/m^3", {1e5, "densities: osmium, the densest element, has 2.26e4 kg/m^3"}},
+      {"kg/m^3", {1e12, "densities: osmium, the densest element, has 2.26e4 kg/m^3; a load platen modelled as a heavy layer uses 1e8"}},
       {"deg", {720, "angles"}},
       {"s", {1e9, "times: 30 years"}},
       {"1/s", {1e9, "rates"}},

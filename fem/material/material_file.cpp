@@ -8,6 +8,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
+
 #include <cstdio>
 #include <fstream>
 #include <set>
@@ -194,6 +196,15 @@ namespace anticrack::fem
                          "\" is not \"lower, upper\"");
       }
     }
+
+    /// "lower, upper", or empty for an interval that is not known (one realization): a material
+    /// file holds finite numbers only (util/parameter_input.h).
+    std::string interval_text(const MaterialInterval &interval)
+    {
+      if (!std::isfinite(interval.lower) || !std::isfinite(interval.upper))
+        return "";
+      return material_file_number(interval.lower) + ", " + material_file_number(interval.upper);
+    }
   } // namespace
 
   std::string MaterialEntry::name() const
@@ -354,8 +365,7 @@ namespace anticrack::fem
     for (const MaterialEntry *e : material_interval_entries())
     {
       const MaterialInterval &interval = file.uncertainty.*e->interval;
-      out << "    set " << e->interval_name() << " = " << material_file_number(interval.lower) << ", "
-          << material_file_number(interval.upper) << "\n";
+      out << "    set " << e->interval_name() << " = " << interval_text(interval) << "\n";
     }
     out << "  end\n";
     if (file.collapse.given())
@@ -364,8 +374,7 @@ namespace anticrack::fem
       for (const CollapseEntry &e : collapse_entries())
         out << "    set " << e.name << " = " << material_file_number(file.collapse.*e.number) << "\n";
       for (const CollapseIntervalEntry &e : collapse_interval_entries())
-        out << "    set " << e.name << " = " << material_file_number((file.collapse.*e.interval).lower) << ", "
-            << material_file_number((file.collapse.*e.interval).upper) << "\n";
+        out << "    set " << e.name << " = " << interval_text(file.collapse.*e.interval) << "\n";
       out << "  end\n";
     }
     out << "  subsection Provenance\n";

@@ -1977,7 +1977,8 @@ def pipeline_files(work):
 
 @case
 def study_small(work):
-    """scenes/studies/err_flat_mesh.prm (the CI's tiny study): every variant runs, study.json's errors
+    """scenes/studies/err_flat_mesh.prm (the CI's tiny study): every variant runs (one equal to another
+    once), study.json's errors
     are those of the variants' own summaries against the finest of each line (recomputed here),
     study.csv and the plots are written; --resume runs nothing again; a variant whose value its kind
     refuses stops the study before anything is written, naming the variant and the entry."""
@@ -1986,12 +1987,17 @@ def study_small(work):
     stdout, _ = anticrack("run", scene, "-o", out)
     study = json.load(open(os.path.join(out, "study.json")))
     check([v["status"] for v in study["variants"]] == ["completed"] * 6, f"variants: {study['variants']}")
+    check([v.get("same_as") for v in study["variants"]] == [None] * 5 + ["v002"],
+          "the variant equal to v002 (0.01 m, 4 rows) must take its run: " + str(study["variants"]))
+    check(not os.path.exists(os.path.join(out, "variants", "v005", "run")), "v005 ran although it equals v002")
     pointer = "/results/critical_cut_length_m"
     for line in study["lines"]:
         r = line["results"]["critical_cut_length_m"]
         answers = []
         for variant in line["variants"]:
-            summary = json.load(open(os.path.join(out, "variants", variant, "run", "summary.json")))
+            # a variant equal to an earlier one (4 rows: the base scene's, = 1 cm) takes its run
+            record = next(v for v in study["variants"] if v["id"] == variant)
+            summary = json.load(open(os.path.join(out, "variants", record.get("same_as", variant), "run", "summary.json")))
             answers.append(summary["results"]["critical_cut_length_m"])
         check(r["values"] == answers, f"{line['entry']}: study.json {r['values']} against the runs' {answers}")
         finest = answers[-1]  # the line is sorted coarsest first
