@@ -605,6 +605,26 @@ namespace anticrack::fem
     check_layer(s.weak_layer, "Snowpack/Weak layer", false, band_height(scene, layer_weak), problems);
     if (s.substratum.thickness > 0)
       check_layer(s.substratum, "Snowpack/Substratum", true, band_height(scene, layer_substratum), problems);
+    // Q1 locks volumetrically as nu -> 1/2 (plane strain and 3D): the energy release rate's critical
+    // cut of err_flat.prm on Q1 is off Q2's by 0.4 % at nu = 0.45, 2 % at 0.49 and 13 % at 0.499
+    // (docs/work_precision.md), about 0.04 % / (1 - 2 nu); 1 % is reached at nu = 0.48.
+    constexpr double largest_q1_poisson_ratio = 0.48;
+    if (mesh.polynomial_degree == 1)
+    {
+      const auto check_locking = [&](const Layer &layer, const std::string &section) {
+        if (layer.material.poisson_ratio > largest_q1_poisson_ratio)
+          problems.add(section + (layer.material_file.empty() ? "/Poisson's ratio" : "/Material file"),
+                       "nu = " + format_number(layer.material.poisson_ratio) + " locks Q1 elements (the energy release "
+                       "rate is 2 % off at nu = 0.49, 13 % at 0.499; docs/work_precision.md): nu <= " +
+                       format_number(largest_q1_poisson_ratio) + " with Mesh/Polynomial degree = 1, or set Mesh/Polynomial "
+                       "degree = 2");
+      };
+      for (unsigned int k = 0; k < s.slab_layers.size(); ++k)
+        check_locking(s.slab_layers[k], "Snowpack/" + slab_layer_section(k));
+      check_locking(s.weak_layer, "Snowpack/Weak layer");
+      if (s.substratum.thickness > 0)
+        check_locking(s.substratum, "Snowpack/Substratum");
+    }
     if (!(pst.column_length > 0))
       problems.add("PST/Column length [m]", "must be > 0 (is " + format_number(pst.column_length) + ")");
     if (mesh.dimension == 3 && !(pst.column_width > 0))
