@@ -567,4 +567,27 @@ namespace anticrack::fem::closed_forms
             energy_release_rate_mode_II(s, cut_length) * mode_II) /
            energy_release_rate(s, cut_length);
   }
+  StressInvariants confined_layer_invariants(double overburden, double slope_angle, double poisson_ratio)
+  {
+    require(overburden >= 0, "overburden", overburden, "finite and >= 0 [Pa]");
+    require(std::abs(slope_angle) < half_pi, "slope_angle", slope_angle, "in (-pi/2, pi/2) [rad]");
+    require_poisson_ratio("poisson_ratio", poisson_ratio);
+    // Eq. 27: uniaxial strain normal to the slope, k = ν / (1 − ν) on both in-plane stresses.
+    const double k = poisson_ratio / (1 - poisson_ratio);
+    const double normal = overburden * std::cos(slope_angle), shear = overburden * std::sin(slope_angle);
+    return {normal * (1 + 2 * k) / 3, std::sqrt(std::pow(normal * (1 - k), 2) + 3 * shear * shear)};
+  }
+
+  double strength_to_contain(double p, double q, double beta, double M)
+  {
+    require_positive("p", p);
+    require(q >= 0, "q", q, "finite and >= 0 [Pa]");
+    require(beta >= 0 && beta <= 1, "beta", beta, "in [0, 1]");
+    require_positive("M", M);
+    // Eq. 28: M² β p0² + M² (1 − β) p p0 − ((1 + 2β) q² + M² p²) = 0, its positive root.
+    const double c = (1 + 2 * beta) * q * q / (M * M) + p * p;
+    if (beta == 0)
+      return c / p;
+    return (-(1 - beta) * p + std::sqrt((1 - beta) * (1 - beta) * p * p + 4 * beta * c)) / (2 * beta);
+  }
 } // namespace anticrack::fem::closed_forms

@@ -248,4 +248,30 @@ namespace anticrack::fem::closed_forms
   /// ℓ = column_length − a (Eq. 22; the mode-I bound holds for λℓ >= 2, the mode-II one always).
   /// Throws std::invalid_argument unless 0 <= a < column_length.
   double semi_infinite_column_error_estimate(const SlabOnFoundation &s, double cut_length, double column_length);
+
+  // ---------------------------------------------------------------------------------------------
+  // Can the weak layer carry the snowpack at all? (docs/fem_closed_forms.md §5.2, Eqs. 27–28)
+
+  /// Mean pressure p (compression positive) and von Mises stress q [Pa] of a laterally confined
+  /// elastic layer on a slope under the overburden W (the weight per unit slope-parallel area of
+  /// everything above the point, W = g Σ ρ_i h_i): σ_nn = −W cos ψ, σ_xn = W sin ψ, and the
+  /// in-plane stresses k σ_nn with k = ν / (1 − ν) (ε_xx = ε_zz = 0), so (Eq. 27)
+  ///   p = W cos ψ (1 + 2k) / 3,   q² = (W cos ψ (1 − k))² + 3 (W sin ψ)².
+  /// The far field of a long column or an infinite slope, before anything yields. Throws
+  /// std::invalid_argument unless W >= 0, |ψ| < π/2 and −1 < ν < 1/2.
+  struct StressInvariants
+  {
+    double p = 0, q = 0;
+  };
+  StressInvariants confined_layer_invariants(double overburden, double slope_angle, double poisson_ratio);
+
+  /// The smallest compressive strength p0 [Pa] whose cohesive Cam-Clay surface
+  /// y = (1 + 2β) q² + M² (p + β p0)(p − p0) contains the state (p, q), p > 0 (Eq. 28, the larger
+  /// root of y = 0 in p0):
+  ///   p0 = [−(1 − β) p + sqrt((1 − β)² p² + 4 β ((1 + 2β) q² / M² + p²))] / (2β),
+  ///   p0 = p + (1 + 2β) q² / (M² p) at β = 0.
+  /// y is homogeneous of degree 2 in (p, q, p0): the state λ (p, q) reaches the surface of p0 at
+  /// λ = p0 / strength_to_contain(p, q). Throws std::invalid_argument unless p > 0, q >= 0,
+  /// β in [0, 1] and M > 0.
+  double strength_to_contain(double p, double q, double beta, double M);
 } // namespace anticrack::fem::closed_forms

@@ -18,7 +18,7 @@ namespace anticrack
   enum ExitCode : int
   {
     exit_success = 0,
-    exit_numerical_failure = 1, ///< a run that had started failed (summary.json says where and when)
+    exit_numerical_failure = 1, ///< a run that had started failed, or a snowpack collapsed under gravity (summary.json says where and when)
     exit_bad_input = 2,         ///< nothing was written
     exit_interrupted = 130      ///< SIGINT or SIGTERM; a checkpoint was written where the run kind has them
   };

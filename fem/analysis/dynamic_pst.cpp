@@ -139,6 +139,7 @@ namespace anticrack::fem
             // A bisection trial: the column is cut, then loaded. A ramp that cannot reach the full
             // weight means there is no equilibrium with this cut; the dynamics then start from the
             // last equilibrium under the full weight.
+            check_weak_layer_carries_the_snowpack(scene_);
             cut_ = *preloaded_cut_;
             model_.set_cut(cut_);
             try

@@ -277,10 +277,51 @@ namespace anticrack::fem
     return j;
   }
 
+  void check_weak_layer_carries_the_snowpack(const SnowpackScene &scene)
+  {
+    const Snowpack &s = scene.snowpack;
+    const Layer &weak = s.weak_layer;
+    const ContinuumMaterial &m = weak.material;
+    // Under the `signed` law compaction hardens: a layer at yield carries more, it does not collapse.
+    if (weak.model != Layer::Model::cohesive_cam_clay || (m.hardening_law != "collapse" && m.hardening_factor > 0))
+      return;
+    double overburden = m.density * weak.thickness / 2; // the band's rows carry the mid-height load
+    for (const Layer &layer : s.slab_layers)
+      overburden += layer.material.density * layer.thickness;
+    overburden *= s.gravity;
+    const auto [p, q] = closed_forms::confined_layer_invariants(overburden, s.slope_angle, m.poisson_ratio);
+    const double needed = closed_forms::strength_to_contain(p, q, m.beta, m.M);
+    if (m.p0 >= needed)
+      return;
+    const std::string entry = weak.material_file.empty()
+                                ? "Snowpack/Weak layer/Compressive strength p0 [Pa]"
+                                : "Material/Compressive strength p0 [Pa] of " + weak.material_file;
+    std::ostringstream message;
+    message << "the weak layer cannot carry the snowpack: under the weight of the layers above it (" << format_number(overburden, 4)
+            << " Pa at its mid-height, slope " << format_number(s.slope_angle * 180 / M_PI, 3)
+            << " deg) its confined state p = " << format_number(p, 4) << " Pa, q = " << format_number(q, 4)
+            << " Pa reaches the yield surface at " << format_number(100 * m.p0 / needed, 3)
+            << " % of the weight, and a collapsing layer then collapses under gravity alone, before any saw cut "
+               "(docs/fem_closed_forms.md Eq. 28). "
+            << entry << " = " << format_number(m.p0, 4) << " must exceed " << format_number(needed, 4)
+            << " Pa for this slab, slope, beta, M and Poisson's ratio (or make the slab lighter).";
+    throw CollapseUnderGravity(message.str(),
+                               {{"what", "weak layer collapse under gravity"},
+                                {"where", {{"layer", "weak layer"}, {"state", "far field (laterally confined)"}}},
+                                {"when", {{"phase", "before the gravity ramp"}, {"load_factor", m.p0 / needed}}},
+                                {"overburden_Pa", overburden},
+                                {"mean_pressure_Pa", p},
+                                {"von_mises_stress_Pa", q},
+                                {"strength_needed_Pa", needed},
+                                {"strength_Pa", m.p0},
+                                {"entry", entry}});
+  }
+
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)
   {
+    check_weak_layer_carries_the_snowpack(model.scene());
     const auto start = std::chrono::steady_clock::now();
     try
     {

@@ -111,7 +111,15 @@ namespace anticrack::fem
   void stop_if_signalled(const std::string &analysis, const std::string &where, MPI_Comm comm,
                          const std::function<void()> &before_stopping = {});
 
-  /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST).
+  /// Throws CollapseUnderGravity when the far-field geostatic state of a collapsing weak layer
+  /// (hardening law `collapse`, or no hardening) lies outside its initial yield surface: Eq. 27 of
+  /// docs/fem_closed_forms.md at the layer's mid-height against the strength of Eq. 28. The
+  /// message names the weak layer's strength entry (or its material file), the strength it would
+  /// need and the share of the weight at which it yields. Called before every gravity ramp of a PST.
+  void check_weak_layer_carries_the_snowpack(const SnowpackScene &scene);
+
+  /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST),
+  /// after check_weak_layer_carries_the_snowpack().
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log);

@@ -163,14 +163,14 @@ namespace anticrack::fem
       code = exit_interrupted;
       ConditionalStream(&std::cerr, root) << "anticrack: " << e.what() << "\n";
     }
-    catch (const fem::NumericalFailure &e)
+    catch (const fem::RunStopped &e)
     {
-      summary["status"] = "failed";
+      summary["status"] = e.status();
       Json failure = e.details();
       failure["message"] = e.what();
       summary["failure"] = failure;
       code = exit_numerical_failure;
-      ConditionalStream(&std::cerr, root) << "anticrack: numerical failure: " << e.what() << "\n";
+      ConditionalStream(&std::cerr, root) << "anticrack: " << e.heading() << e.what() << "\n";
     }
     // Where the time went (rank 0's; the ranks work in lock step).
     summary["timing"] = {{"wall_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},

@@ -29,21 +29,48 @@ namespace anticrack::fem
     PhaseTimer *timer = nullptr;
   };
 
-  /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that
-  /// cannot converge, non-finite values, unstable step); the message says what, where and when.
-  /// `details` is written with the message into summary.json's "failure": what failed, where (cell,
-  /// layer, position) and when (step, time, cut length, load factor), as far as the thrower knows.
-  class NumericalFailure : public std::runtime_error
+  /// A run that started and stopped without results: summary.json gets `status` and, as its
+  /// "failure", `details` with the message; anticrack prints `heading` + message and exits 1.
+  class RunStopped : public std::runtime_error
   {
   public:
-    explicit NumericalFailure(const std::string &message, Json details = Json::object())
+    RunStopped(const std::string &message, Json details, std::string status, std::string heading)
       : std::runtime_error(message)
       , details_(std::move(details))
+      , status_(std::move(status))
+      , heading_(std::move(heading))
     {}
     const Json &details() const { return details_; }
+    const std::string &status() const { return status_; }
+    const std::string &heading() const { return heading_; }
 
   private:
     Json details_;
+    std::string status_, heading_;
+  };
+
+  /// Thrown when the numerics fail after the run has started (failed return mapping, Newton that
+  /// cannot converge, non-finite values, unstable step); the message says what, where and when.
+  /// `details`: what failed, where (cell, layer, position) and when (step, time, cut length, load
+  /// factor), as far as the thrower knows. Status "failed".
+  class NumericalFailure : public RunStopped
+  {
+  public:
+    explicit NumericalFailure(const std::string &message, Json details = Json::object())
+      : RunStopped(message, std::move(details), "failed", "numerical failure: ")
+    {}
+  };
+
+  /// Thrown before the gravity ramp of a PST when the weak layer cannot carry the layers above it
+  /// (docs/fem_closed_forms.md §5.2): the snowpack collapses under gravity alone, before any cut.
+  /// A physical answer, not a numerical failure: status "collapsed under gravity", `details` with
+  /// what, where and the strength needed.
+  class CollapseUnderGravity : public RunStopped
+  {
+  public:
+    CollapseUnderGravity(const std::string &message, Json details)
+      : RunStopped(message, std::move(details), "collapsed under gravity", "")
+    {}
   };
 
   /// Thrown when a stop signal (Ctrl-C, SIGTERM; util/stop_signals.h) ended the run after a

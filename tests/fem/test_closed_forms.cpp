@@ -698,6 +698,52 @@ namespace
   }
 
   // =============================================================================================
+  // The strength a weak layer needs to carry the snowpack (Eqs. 27–28)
+
+  /// Hand values: W = 1000 Pa flat, ν = 0.2 (k = 1/4): p = 500 Pa, q = 750 Pa; on 30°, σ_n = 866.0 Pa,
+  /// τ = 500 Pa: p = 433.0 Pa, q = sqrt(649.5² + 3 · 500²) = 1074.8 Pa. β = 1/2, M = 1:
+  /// p0² / 2 + 250 p0 − (2 · 750² + 500²) = 0 → p0 = −250 + sqrt(250² + 2 · 1 375 000) = 1427.05 Pa.
+  TEST(ClosedFormsCarryingStrength, HandValues)
+  {
+    const auto flat = confined_layer_invariants(1000, 0, 0.2);
+    EXPECT_NEAR(flat.p, 500, 1e-9);
+    EXPECT_NEAR(flat.q, 750, 1e-9);
+    const auto slope = confined_layer_invariants(1000, M_PI / 6, 0.2);
+    EXPECT_NEAR(slope.p, 1000 * std::sqrt(3.) / 2 * 1.5 / 3, 1e-9);
+    EXPECT_NEAR(slope.q, std::sqrt(std::pow(1000 * std::sqrt(3.) / 2 * 0.75, 2) + 3 * 500. * 500.), 1e-9);
+    EXPECT_NEAR(strength_to_contain(500, 750, 0.5, 1), -250 + std::sqrt(250. * 250 + 2 * 1375000.), 1e-9);
+    // β = 0: p0 = p + q² / (M² p), and the β → 0 limit of the general root is continuous
+    EXPECT_NEAR(strength_to_contain(500, 750, 0, 1.2), 500 + 750. * 750 / (1.44 * 500), 1e-9);
+    EXPECT_NEAR(strength_to_contain(500, 750, 1e-9, 1.2), 500 + 750. * 750 / (1.44 * 500), 1e-3);
+    // hydrostatic: the compressive tip itself
+    EXPECT_NEAR(strength_to_contain(500, 0, 0.7, 1.3), 500, 1e-9);
+  }
+
+  /// The root lies on the surface of the material's own yield function, and the yield function
+  /// is homogeneous of degree 2 (the load factor of first yield is p0 / needed).
+  TEST(ClosedFormsCarryingStrength, RootLiesOnTheCamClaySurface)
+  {
+    for (const double beta : {0.0, 0.3, 1.0})
+      for (const double M : {0.6, 1.4})
+        for (const double q : {0.0, 300.0, 2000.0})
+        {
+          const double p = 400;
+          const double needed = strength_to_contain(p, q, beta, M);
+          const double scale = M * M * needed * needed;
+          // y = (1 + 2β) q² + M² (p + β p0)(p − p0), written out here again
+          const auto y = [&](double pp, double qq, double p0) { return (1 + 2 * beta) * qq * qq + M * M * (pp + beta * p0) * (pp - p0); };
+          EXPECT_NEAR(y(p, q, needed), 0, 1e-12 * scale);
+          EXPECT_LT(y(p, q, 1.01 * needed), 0);
+          EXPECT_GT(y(p, q, 0.99 * needed), 0);
+          EXPECT_NEAR(y(0.8 * p, 0.8 * q, 0.8 * needed), 0, 1e-12 * scale);
+        }
+    EXPECT_THROW(strength_to_contain(0, 1, 0.5, 1), std::invalid_argument);
+    EXPECT_THROW(strength_to_contain(1, 1, 1.5, 1), std::invalid_argument);
+    EXPECT_THROW(confined_layer_invariants(-1, 0, 0.2), std::invalid_argument);
+    EXPECT_THROW(confined_layer_invariants(1, 0, 0.5), std::invalid_argument);
+  }
+
+  // =============================================================================================
   // Steady-state touchdown (Eqs. 24–26)
 
   /// Euler–Bernoulli: a second derivation. With s = βλ, β = (k/4D)^{1/4} and the gap h_t = h_c − q/k

@@ -239,6 +239,86 @@ namespace
     }
   }
 
+  // The strength a collapsing weak layer needs to carry the snowpack (docs/fem_closed_forms.md
+  // §5.2): on an infinite slope (periodic ends) every weak-layer cell carries the laterally confined
+  // state exactly, so the FE's invariants must match Eq. 27 (1e-6, as the stresses above) and the
+  // Cam-Clay surface of Eq. 28's strength, evaluated by the material's own yield function, must pass
+  // through the FE state. Then the physics behind the check: with 10 % less strength the FE gravity
+  // ramp itself cannot reach the full weight (the layer softens under a dead load), with 10 % more it
+  // reaches it; and the run's check stops the first before the ramp.
+  std::string periodic_slope_with_strength(double p0)
+  {
+    return "subsection Snowpack\n  set Slope angle [deg] = 30\n" + layer("Slab layer 1", 0.3, 250, 5e6, 0.25) +
+           layer("Weak layer", 0.02, 150, 3e5, 0.2,
+                 "    set Compressive strength p0 [Pa] = " + std::to_string(p0) +
+                   "\n    set Hardening factor xi = 4\n    set Tensile strength ratio beta = 0.5\n"
+                   "    set Critical state slope M = 1\n    set Hardening law = collapse\n"
+                   "    set Residual strength ratio = 0.1\n    set Reference thickness [m] = 0.02\n") +
+           layer("Substratum", 0.1, 350, 2e7, 0.3) +
+           "end\nsubsection PST\n  set Column length [m] = 0.4\n  set Cut length [m] = 0.2\n  set Column ends = "
+           "periodic\nend\nsubsection Mesh\n  set Element length [m] = 0.05\n  set Slab element height [m] = 0.05\n"
+           "  set Weak layer elements = 2\n  set Substratum element height [m] = 0.05\nend\n"
+           "subsection Analysis\n  set Type = quasi-static\nend\n";
+  }
+
+  TEST(FemGravity, WeakLayerStrengthNeededToCarryTheSlabMatchesTheGeostaticState)
+  {
+    const double psi = 30 * M_PI / 180, g = 9.81;
+    const double overburden = g * (250 * 0.3 + 150 * 0.01); // weak layer at its mid-height
+    const auto [p, q] = closed_forms::confined_layer_invariants(overburden, psi, 0.2);
+    const double needed = closed_forms::strength_to_contain(p, q, 0.5, 1);
+    {
+      const SnowpackScene scene = scene_from(periodic_slope_with_strength(1e5)); // elastic under its weight
+      SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+      QuasiStaticSolver<2> solver(model);
+      SnowpackModel<2>::VectorType u;
+      model.initialize_vector(u);
+      solver.apply_gravity(u, 1);
+      CamClayParameters surface;
+      surface.beta = 0.5;
+      surface.M = 1;
+      unsigned int checked = 0;
+      for (const auto &cell : model.cell_summaries())
+        if (cell.layer == layer_weak)
+        {
+          const double fe_p = mean_pressure(cell.stress), fe_q = von_mises(cell.stress);
+          EXPECT_NEAR(fe_p, p, 1e-6 * overburden) << "cell at " << cell.center;
+          EXPECT_NEAR(fe_q, q, 1e-6 * overburden) << "cell at " << cell.center;
+          EXPECT_NEAR(yield_function(fe_p, fe_q, needed, surface), 0, 1e-5 * needed * needed);
+          ++checked;
+        }
+      EXPECT_EQ(checked, 16u);
+    }
+    for (const double factor : {0.9, 1.1})
+    {
+      const SnowpackScene scene = scene_from(periodic_slope_with_strength(factor * needed));
+      SnowpackModel<2> model(scene, MPI_COMM_WORLD);
+      QuasiStaticSolver<2> solver(model);
+      SnowpackModel<2>::VectorType u;
+      model.initialize_vector(u);
+      if (factor < 1)
+      {
+        EXPECT_THROW(check_weak_layer_carries_the_snowpack(scene), CollapseUnderGravity);
+        try
+        {
+          solver.apply_gravity(u, 1);
+          ADD_FAILURE() << "the FE ramp reached the full weight with 90 % of the strength needed";
+        }
+        catch (const GravityRampFailure &e)
+        {
+          // first yield at p0 / needed = 0.9 of the weight (Eq. 28's homogeneity), lost right after
+          EXPECT_GT(e.load_factor, 0.89);
+          EXPECT_LT(e.load_factor, 1.0);
+        }
+      }
+      else
+      {
+        EXPECT_NO_THROW(check_weak_layer_carries_the_snowpack(scene));
+        EXPECT_NO_THROW(solver.apply_gravity(u, 1));
+      }
+    }
+  }
+
   // ------------------------------------------------------------------------------------------
   // Energy release rate of a saw cut: the FE's −ΔΠ/Δa against the beam on an elastic foundation
   // (fem/closed_forms.h, docs/fem_closed_forms.md) for the parameters where the beam model's own
