@@ -252,6 +252,22 @@ namespace anticrack::coupling
     if (softening.lock_up_strain.n > 0)
       std::cout << ", lock-up strain " << softening.lock_up_strain.mean << ", fracture energy density "
                 << softening.fracture_energy_density.mean << " J/m^3";
+    // A surface that explains little of the failure stresses is still written (its intervals say how
+    // little is known), but never without saying so.
+    constexpr double poor_fit_r_squared = 0.5;
+    for (const params::MicrostructureCalibration &c : calibration.microstructures)
+      if (c.material_plane().cam_clay().r_squared < poor_fit_r_squared)
+        std::cout << "\n  WARNING: microstructure " << c.index << "'s surface explains R^2 = "
+                  << c.material_plane().cam_clay().r_squared << " of its failure stresses (< " << poor_fit_r_squared
+                  << "): the campaign's scatter dominates; see the intervals in the material file's subsection "
+                     "Material/Uncertainty, or run more realizations";
+    for (const params::MicrostructureCalibration &c : calibration.microstructures)
+      if (!c.tests_left_out.empty())
+      {
+        std::cout << "\n  microstructure " << c.index << ": " << c.tests_left_out.size() << " test(s) left out:";
+        for (const std::string &t : c.tests_left_out)
+          std::cout << "\n    " << t;
+      }
     std::cout << "\n  wrote " << directory.string() << "/{"
               << material_names.front() << (material_names.size() > 1 ? ", ..." : "")
               << ", calibration.h5, summary.json}" << std::endl; // before the plot script's lines

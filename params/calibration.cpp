@@ -265,12 +265,25 @@ namespace anticrack::params
 
     // Every microstructure's data is checked before anything is fitted.
     std::vector<std::vector<CampaignTest>> tests_of(campaign.microstructures.size());
+    std::vector<std::vector<std::string>> left_out_of(campaign.microstructures.size());
     for (const auto &t : campaign.tests)
-      if (t.completed() && std::isfinite(t.sigma) && std::isfinite(t.p) && std::isfinite(t.q))
-        tests_of[static_cast<std::size_t>(t.microstructure)].push_back(t);
+    {
+      const auto m = static_cast<std::size_t>(t.microstructure);
+      if (!t.completed())
+        left_out_of[m].push_back(t.id + ": " + t.status);
+      else if (!(std::isfinite(t.sigma) && std::isfinite(t.p) && std::isfinite(t.q)))
+        left_out_of[m].push_back(t.id + ": completed without a failure point");
+      else
+        tests_of[m].push_back(t);
+    }
     for (std::size_t m = 0; m < tests_of.size(); ++m)
+    {
+      std::string left_out;
+      for (const std::string &t : left_out_of[m])
+        left_out += (left_out.empty() ? ", tests left out: " : "; ") + t;
       check_microstructure_data(tests_of[m], campaign.file + ", microstructure " + std::to_string(m) + " (" +
-                                               campaign.microstructures[m].label + ")");
+                                               campaign.microstructures[m].label + ")" + left_out);
+    }
 
     for (std::size_t m = 0; m < tests_of.size(); ++m)
     {
@@ -279,6 +292,7 @@ namespace anticrack::params
       c.index = static_cast<int>(m);
       c.material = campaign.microstructures[m];
       c.tests = tests_of[m];
+      c.tests_left_out = left_out_of[m];
       std::set<int> realizations;
       for (const auto &t : c.tests)
         realizations.insert(t.realization);

@@ -106,6 +106,10 @@ namespace anticrack::params
     int index = 0;
     MicrostructureMaterial material;
     std::vector<CampaignTest> tests;  ///< the completed tests used
+    /// The failure-point tests of this microstructure that are not used, each "id: why" (its status
+    /// when it did not complete, or the failure point it lacks): named in summary.json and on the
+    /// console, never dropped silently.
+    std::vector<std::string> tests_left_out;
     std::vector<int> realizations;    ///< distinct realization ids
     double solid_fraction = 0, coordination = 0, contact_density = 0; ///< means over the tests
     double layer_thickness = 0;       ///< h of the deformable layer [m], the reference thickness

@@ -346,6 +346,7 @@ namespace anticrack::params
         {"index", c.index},
         {"label", c.material.label},
         {"completed_tests", c.tests.size()},
+        {"tests_left_out", c.tests_left_out},
         {"realizations", c.realizations.size()},
         {"solid_fraction", c.solid_fraction},
         {"coordination", c.coordination},

@@ -64,6 +64,9 @@ namespace anticrack::dem
   TestFailureAnalysis analyse_test_history(const TimeSeries &history, double layer_thickness,
                                            ActuatorControl control = ActuatorControl::force);
 
+  /// Ritter et al. (2020, Methods): a test is quasi-static while its inertial number stays below this.
+  inline constexpr double quasi_static_inertial_number = 1e-4;
+
   /// Was the loading quasi-static as failure approached? The largest inertial number over the
   /// samples up to `failure_step` whose q is at least half the failure q (earlier, I ~ 1/sqrt(p)
   /// measures nothing but the start of the ramp at vanishing stress). The series are the history's

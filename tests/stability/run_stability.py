@@ -6,15 +6,24 @@ Nothing in between: no silent garbage and no hang (each run has a time limit).
 
 Usage: run_stability.py --anticrack PATH --source-dir DIR --work-dir DIR [--case NAME ...] [--list]
 
-The FE cases are small variants of scenes/pst_flat.prm (SMALL below: a 1 m column on 2 cm elements,
-2 rows through the weak layer), each changing what its name says. Expectations:
-  runs       exit 0, status completed, |energy balance error| <= BALANCE, every series finite, and
-             the outcome among `outcomes` when given;
+Three families, each case changing what its name says in a small variant of a shipped scene:
+  FE           scenes/pst_flat.prm (SMALL below: a 1 m column on 2 cm elements, 2 weak-layer rows);
+  DEM          scenes/uniaxial_compression.prm, triaxial.prm, shs_sample.prm, ballistic_weak_layer.prm
+               made a single DEM run (DEM_BASES: fewer steps); the DEM energy balance is its own
+               ledger's (summary.json dem.energy_balance_relative_error);
+  calibration  `anticrack calibrate` on tests/app's synthetic campaign (a known surface) altered.
+Expectations:
+  runs       exit 0, status completed, |energy balance error| <= its bound, every series finite,
+             the outcome among `outcomes` (FE) and the quasi-static flag as `quasi_static` (DEM)
+             when given;
   refused    exit 2, the message names every needle, the output folder is not created;
   collapses  exit 1, summary.json status "collapsed under gravity", the message names every needle
-             (the weak layer that cannot carry its slab, docs/fem_closed_forms.md Eq. 28).
+             (the weak layer that cannot carry its slab, docs/fem_closed_forms.md Eq. 28);
+  calibrated exit 0, the material written, every needle in the console output, and the tests
+             left out named in summary.json (calibration cases).
 """
 import argparse
+import glob
 import json
 import math
 import os
@@ -25,11 +34,15 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+TESTS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, TESTS)
+sys.path.insert(0, os.path.join(TESTS, "app"))
 from scene_edit import edit_scene  # noqa: E402  (tests/scene_edit.py)
+import run_app_tests  # noqa: E402  (its synthetic campaign writer)
 
-# The energy balance of a run, relative to the external work: pst_flat itself closes to 3e-4.
-BALANCE = 0.01
+# The energy balance of a run, relative to the external work: pst_flat itself closes to 3e-4, the
+# DEM uniaxial compression to 1.3e-3.
+BALANCE = {"fe": 0.01, "dem": 0.01}
 SMALL = {"PST/Column length [m]": "1.0", "PST/Cut length [m]": "0.6", "Mesh/Element length [m]": "0.02",
          "Mesh/Weak layer elements": "2", "Mesh/Slab element height [m]": "0.08",
          "Analysis/Explicit/End time [s]": "0.3", "Output/Field interval [s]": "1", "Output/Progress interval": "0"}
@@ -81,6 +94,67 @@ CASES = {
                   "runs", {"insert": {"PST": ["set Column width [m] = 0.1"]}}),
     "cut_0.35_runs": ({"PST/Cut length [m]": "0.35"}, "runs", {"outcomes": ["END"]}),
 }
+FAMILY = {name: "fe" for name in CASES}
+
+# DEM: the base scene of each case and what makes it small (a single run of a few seconds).
+QUIET = {"Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
+         "Output/Write ParaView": "false"}
+DEM_BASES = {
+    "uniaxial_compression.prm": {**QUIET},
+    "triaxial.prm": {**QUIET, "DEM/Steps": "20000", "Output/History interval [steps]": "500",
+                     "Output/Progress interval [steps]": "5000"},
+    "shs_sample.prm": {**QUIET, "DEM/Steps": "2000", "DEM/Sample/Particle count": "512"},
+    # a campaign's scene made one DEM run: the deposit settles on a fixed base under gravity
+    "ballistic_weak_layer.prm": {**QUIET, "Scene": "dem", "DEM/Steps": "2000", "Output/Progress interval [steps]": "500",
+                                 "DEM/Sample/Actuator layer count": "0"},
+}
+DEM_REMOVE = {"ballistic_weak_layer.prm": ["Campaign", "DEM/Loading", "DEM/Boundary particles"]}
+DEM_INSERT = {"ballistic_weak_layer.prm": {"DEM": ["subsection Walls", "subsection z-", "set Active = true",
+                                                  "set Control = fixed", "end", "end"]}}
+BOND = "DEM/Bond/"
+DEM_CASES = {
+    # the time step follows the stiffest spring (Time step = 0): 10 times smaller
+    "dem_bonds_100x_stiffer": ("uniaxial_compression.prm", {BOND + "Modulus [Pa]": "1e11"}, "runs", {}),
+    "dem_bonds_1e-3_strength": ("uniaxial_compression.prm", {BOND + "Tensile strength [Pa]": "1e3",
+                                                            BOND + "Cohesion [Pa]": "1e3"}, "runs", {}),
+    # the platen at 0.25 m/s reaches I = 2.8e-4 before the peak; 0.08 m/s stays below 1e-4
+    # (Ritter et al. 2020's quasi-static limit), 8 m/s is 100 times that rate
+    "dem_loading_quasi_static": ("uniaxial_compression.prm", {"DEM/Walls/z+/Velocity [m/s]": "0.08",
+                                                             "DEM/Steps": "80000",
+                                                             "Output/History interval [steps]": "400"},
+                                 "runs", {"quasi_static": True}),
+    "dem_loading_100x_quasi_static": ("uniaxial_compression.prm", {"DEM/Walls/z+/Velocity [m/s]": "8",
+                                                                  "DEM/Steps": "800",
+                                                                  "Output/History interval [steps]": "4"},
+                                      "runs", {"quasi_static": False, "needles": ["NOT QUASI-STATIC"]}),
+    "dem_no_damping": ("uniaxial_compression.prm", {"DEM/Integration/Local damping": "0"}, "runs", {}),
+    # radii 0.1-1 mm (uniform in R): the step follows the smallest sphere
+    "dem_polydispersity_10": ("triaxial.prm", {"DEM/Sample/Radius [m]": "5.5e-4",
+                                               "DEM/Sample/Radius half width [m]": "4.5e-4"}, "runs", {}),
+    # tau_min(0.3) = 0.06994 (Baxter's percolation bound of the Percus-Yevick solution)
+    "shs_tau_just_above_minimum": ("shs_sample.prm", {"DEM/Sample/Stickiness": "0.0700"}, "runs", {}),
+    "shs_tau_below_minimum": ("shs_sample.prm", {"DEM/Sample/Stickiness": "0.0699"}, "refused",
+                              {"needles": ["DEM/Sample/Stickiness", "0.06994"]}),
+    # 2900 spheres of 5 mm in a 5 cm x 5 cm column: a deposit about 105 diameters thick
+    "ballistic_deposit_100_thick": ("ballistic_weak_layer.prm", {"DEM/Domain/Upper corner [m]": "0.05, 0.05, 0.6",
+                                                                 "DEM/Sample/Particle count": "2900"}, "runs", {}),
+}
+FAMILY.update({name: "dem" for name in DEM_CASES})
+
+# Calibration: the synthetic campaign of tests/app (9 angles x 3 realizations, 2 % scatter) altered.
+CALIBRATION_CASES = {
+    # one loading angle cannot make a surface: refused naming the file and the count
+    "calibration_one_angle": ({"angles": [45], "realizations": 9}, "refused",
+                              {"needles": ["1 loading angle", "at least 3 distinct angles"]}),
+    # 50 % scatter of every failure stress: calibrated, with intervals that say so
+    "calibration_scatter_50_percent": ({"noise": 0.5}, "calibrated",
+                                       {"needles": ["WARNING: microstructure 0's surface explains R^2"],
+                                        "p0_interval_ratio_above": 4}),
+    # one test failed in the campaign: left out and named, not dropped silently
+    "calibration_one_test_failed": ({"failed": "m0_r1_psi045.0"}, "calibrated",
+                                    {"needles": ["1 test(s) left out", "m0_r1_psi045.0: failed"]}),
+}
+FAMILY.update({name: "calibration" for name in CALIBRATION_CASES})
 
 
 def run(anticrack, args, timeout):
@@ -88,13 +162,26 @@ def run(anticrack, args, timeout):
     return result.returncode, result.stdout, result.stderr
 
 
-def check_case(name, anticrack, source, work):
-    changes, expect, options = CASES[name]
+def case_folder(work, name):
     folder = os.path.join(work, name)
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
-    text = edit_scene(open(os.path.join(source, "scenes", "pst_flat.prm")).read(), {**SMALL, **changes},
-                      insert=options.get("insert"))
+    return folder
+
+
+def check_case(name, anticrack, source, work):
+    family = FAMILY[name]
+    if family == "calibration":
+        return check_calibration_case(name, anticrack, work)
+    folder = case_folder(work, name)
+    if family == "fe":
+        changes, expect, options = CASES[name]
+        text = edit_scene(open(os.path.join(source, "scenes", "pst_flat.prm")).read(), {**SMALL, **changes},
+                          insert=options.get("insert"))
+    else:
+        base, changes, expect, options = DEM_CASES[name]
+        text = edit_scene(open(os.path.join(source, "scenes", base)).read(), {**DEM_BASES[base], **changes},
+                          insert=DEM_INSERT.get(base), remove=DEM_REMOVE.get(base, ()))
     scene = os.path.join(folder, "scene.prm")
     open(scene, "w").write(text)
     out = os.path.join(folder, "not_created" if expect == "refused" else "", "run")
@@ -116,25 +203,78 @@ def check_case(name, anticrack, source, work):
         problems += [f"the message lacks {n!r}" for n in options["needles"] if n not in stderr]
         return problems, stderr.strip()
     problems = [] if code == 0 else [f"exit {code}, expected 0"]
-    results = summary.get("results", {})
     if summary.get("status") != "completed":
         problems.append(f"status {summary.get('status')}")
-    balance = results.get("energies_per_width", {}).get("balance_error_relative")
-    if balance is None or not abs(balance) <= BALANCE:
-        problems.append(f"energy balance error {balance}, bound {BALANCE}")
-    series_file = os.path.join(out, "series.h5")
+    if family == "fe":
+        results = summary.get("results", {})
+        balance = results.get("energies_per_width", {}).get("balance_error_relative")
+        series_file = os.path.join(out, "series.h5")
+        if "outcomes" in options and results.get("outcome") not in options["outcomes"]:
+            problems.append(f"outcome {results.get('outcome')}, expected one of {options['outcomes']}")
+        report = f"outcome {results.get('outcome')}, {results.get('time_steps')} steps"
+    else:
+        dem = summary.get("dem", {})
+        balance = dem.get("energy_balance_relative_error")
+        series_file = os.path.join(out, "history.h5")
+        inertial = dem.get("inertial_number", {})
+        if "quasi_static" in options and inertial.get("quasi_static") != options["quasi_static"]:
+            problems.append(f"inertial number {inertial}: quasi_static should be {options['quasi_static']}")
+        problems += [f"the output lacks {n!r}" for n in options.get("needles", []) if n not in stdout]
+        report = f"{dem.get('particles')} particles, {dem.get('steps')} steps, dt {dem.get('dt_s', 0):.3g} s, " \
+                 f"largest I {inertial.get('largest_before_peak_q')}"
+    if balance is None or not abs(balance) <= BALANCE[family]:
+        problems.append(f"energy balance error {balance}, bound {BALANCE[family]}")
     if not os.path.exists(series_file):
-        return problems + ["no series.h5"], stderr
+        return problems + [f"no {os.path.basename(series_file)}"], stderr
     with h5py.File(series_file, "r") as f:
         for key in f:
             data = np.asarray(f[key][()], dtype=float)
             if not np.all(np.isfinite(data)):
-                problems.append(f"series.h5/{key} holds non-finite values")
-    if "outcomes" in options and results.get("outcome") not in options["outcomes"]:
-        problems.append(f"outcome {results.get('outcome')}, expected one of {options['outcomes']}")
-    report = f"outcome {results.get('outcome')}, balance {balance:.2e}, {results.get('time_steps')} steps, " \
-             f"{summary.get('timing', {}).get('wall_s', float('nan')):.1f} s" if balance is not None else stderr
+                problems.append(f"{os.path.basename(series_file)}/{key} holds non-finite values")
+    if balance is not None:
+        report += f", balance {balance:.2e}, {summary.get('timing', {}).get('wall_s', float('nan')):.1f} s"
     return problems, report
+
+
+def check_calibration_case(name, anticrack, work):
+    alteration, expect, options = CALIBRATION_CASES[name]
+    folder = case_folder(work, name)
+    campaign = run_app_tests.write_synthetic_campaign(
+        os.path.join(folder, "campaign.h5"), alteration.get("angles", run_app_tests.ANGLES),
+        realizations=alteration.get("realizations", 3), noise=alteration.get("noise", 0.02))
+    if "failed" in alteration:
+        with h5py.File(campaign, "r+") as f:
+            status = f["failure_points/status"]
+            tests = [t.decode() if isinstance(t, bytes) else t for t in f["failure_points/test"][()]]
+            status[tests.index(alteration["failed"])] = "failed"
+    out = os.path.join(folder, "not_created" if expect == "refused" else "", "calibration")
+    code, stdout, stderr = run(anticrack, ["calibrate", campaign, "-o", out, "--no-plots", "--bootstrap", "50"],
+                               timeout=600)
+    if expect == "refused":
+        problems = [] if code == 2 else [f"exit {code}, expected 2"]
+        problems += [f"the message lacks {n!r}" for n in [campaign, *options["needles"]] if n not in stderr]
+        if os.path.exists(os.path.dirname(out)):
+            problems.append(f"{os.path.dirname(out)} was created")
+        return problems, stderr
+    problems = [] if code == 0 else [f"exit {code}, expected 0"]
+    problems += [f"the output lacks {n!r}" for n in options["needles"] if n not in stdout]
+    summary_file = os.path.join(out, "summary.json")
+    if not os.path.exists(summary_file):
+        return problems + ["no summary.json"], stderr
+    micro = json.load(open(summary_file))["calibration"]["microstructures"][0]
+    left_out = micro.get("tests_left_out")
+    if "failed" in alteration and left_out != [alteration["failed"] + ": failed"]:
+        problems.append(f"tests_left_out {left_out}, expected the failed test")
+    materials = glob.glob(os.path.join(out, "*.prm"))
+    if not materials:
+        problems.append("no material file written")
+    elif "p0_interval_ratio_above" in options:
+        # the intervals must say how little the scattered points fix: upper / lower of p0's
+        line = [l for l in open(materials[0]) if "Compressive strength p0 interval" in l][0]
+        lower, upper = (float(v) for v in line.split("=")[1].split(","))
+        if not upper / lower > options["p0_interval_ratio_above"]:
+            problems.append(f"p0 interval {lower}, {upper}: narrower than the scatter allows")
+    return problems, stdout.strip()
 
 
 def main():
@@ -146,10 +286,10 @@ def main():
     parser.add_argument("--list", action="store_true")
     a = parser.parse_args()
     if a.list:
-        print("\n".join(CASES))
+        print("\n".join(FAMILY))
         return 0
     failed = 0
-    for name in a.case or list(CASES):
+    for name in a.case or list(FAMILY):
         try:
             problems, report = check_case(name, os.path.abspath(a.anticrack), os.path.abspath(a.source_dir),
                                           os.path.abspath(a.work_dir))
