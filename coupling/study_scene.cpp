@@ -9,6 +9,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -203,6 +204,31 @@ namespace anticrack::coupling
     prm.leave_subsection();
   }
 
+  std::string result_label(const std::string &pointer, const std::vector<std::string> &all_pointers)
+  {
+    const auto components = [](const std::string &p) {
+      return dealii::Utilities::split_string_list(p.empty() ? p : p.substr(1), '/');
+    };
+    const auto last = [&](const std::string &p, std::size_t n) {
+      const std::vector<std::string> parts = components(p);
+      std::string label;
+      for (std::size_t k = parts.size() - std::min(n, parts.size()); k < parts.size(); ++k)
+        label += (label.empty() ? "" : "_") + parts[k];
+      return label;
+    };
+    const std::size_t depth = components(pointer).size();
+    std::size_t n = 1;
+    const auto shared = [&](const std::string &other) { return other != pointer && last(other, n) == last(pointer, n); };
+    // an array index alone says nothing: it takes its array's name
+    const auto index_only = [&] {
+      const std::string label = last(pointer, n);
+      return !label.empty() && std::isdigit(static_cast<unsigned char>(label.front()));
+    };
+    while (n < depth && (index_only() || std::any_of(all_pointers.begin(), all_pointers.end(), shared)))
+      ++n;
+    return last(pointer, n);
+  }
+
   StudyScene read_study_scene(const std::string &file)
   {
     const std::string text = read_scene_file(file);
@@ -230,6 +256,12 @@ namespace anticrack::coupling
         problems.add("Study/Results", pointer, "is not a JSON pointer to a value (e.g. /results/critical_cut_length_m)");
       study.results.push_back(r);
     }
+    std::vector<std::string> pointers;
+    for (const StudyResult &r : study.results)
+      pointers.push_back(r.pointer);
+    for (StudyResult &r : study.results)
+      if (!r.label.empty())
+        r.label = result_label(r.pointer, pointers);
     for (const auto &[pointer, value] : entry_changes_in_list(prm.get("Reference values"), "Study/Reference values", problems))
     {
       const auto it = std::find_if(study.results.begin(), study.results.end(),

@@ -126,3 +126,16 @@ TEST(StudyScene, VariantsAndLines)
   EXPECT_EQ(*study.entries[0].finest(), 0u);
   EXPECT_EQ(*study.entries[1].finest(), 1u);
 }
+
+TEST(StudyScene, ResultLabelsAreTheShortestUniqueEndings)
+{
+  const std::vector<std::string> pointers = {"/c/m/0/surface/p0/value", "/c/m/0/surface/M/value",
+                                             "/c/m/0/surface/p0/interval/0", "/results/critical_cut_length_m"};
+  EXPECT_EQ(result_label(pointers[0], pointers), "p0_value");
+  EXPECT_EQ(result_label(pointers[1], pointers), "M_value");
+  EXPECT_EQ(result_label(pointers[2], pointers), "interval_0");
+  EXPECT_EQ(result_label(pointers[3], pointers), "critical_cut_length_m");
+  const std::vector<std::string> same_ending = {"/a/x/y", "/b/x/y"};
+  EXPECT_EQ(result_label(same_ending[0], same_ending), "a_x_y");
+  EXPECT_EQ(result_label("/a/x/y", {"/a/x/y"}), "y");
+}
