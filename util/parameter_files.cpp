@@ -191,7 +191,11 @@ namespace anticrack
     for (const std::string &item : dealii::Utilities::split_string_list(list, ','))
     {
       const auto equal = item.find('=');
-      if (equal == std::string::npos)
+      // An item without `=` after a change continues that change's value: a list value
+      // (`Campaign/Loading angles [deg] = 0, 45, Campaign/Realizations = 1`).
+      if (equal == std::string::npos && !changes.empty())
+        changes.back().second += ", " + dealii::Utilities::trim(item);
+      else if (equal == std::string::npos)
         problems.add(entry, "'" + item + "' is not of the form `path = value`");
       else
         changes.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),

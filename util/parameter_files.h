@@ -58,7 +58,9 @@ namespace anticrack
                                       const std::string &origin);
 
   /// The `path = value` items of a comma-separated list entry (e.g. Pipeline/Snowpack scene
-  /// changes); an item without `=` is a problem of `entry`.
+  /// changes). An item without `=` continues the value of the change before it (a list value:
+  /// `A/List = 0, 45, B/Count = 1` sets A/List to "0, 45"); without a change before it, it is a
+  /// problem of `entry`.
   std::vector<EntryChange> entry_changes_in_list(const std::string &list, const std::string &entry,
                                                  Problems &problems);
 

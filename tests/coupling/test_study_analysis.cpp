@@ -2,6 +2,8 @@
 // against sequences whose order of convergence and errors are known in closed form.
 #include "coupling/study_analysis.h"
 #include "coupling/study_scene.h"
+#include "util/parameter_files.h"
+#include "util/problems.h"
 
 #include <gtest/gtest.h>
 
@@ -138,4 +140,18 @@ TEST(StudyScene, ResultLabelsAreTheShortestUniqueEndings)
   const std::vector<std::string> same_ending = {"/a/x/y", "/b/x/y"};
   EXPECT_EQ(result_label(same_ending[0], same_ending), "a_x_y");
   EXPECT_EQ(result_label("/a/x/y", {"/a/x/y"}), "y");
+}
+
+// Base scene changes (and every other `path = value` list): an item without `=` continues the
+// value before it, so list values can be set; a list that starts without one is refused.
+TEST(StudyScene, EntryChangeListsCarryListValues)
+{
+  anticrack::Problems problems("test");
+  const auto changes = anticrack::entry_changes_in_list(
+    "Campaign/Loading angles [deg] = 0, 45, 90, Campaign/Realizations = 1", "Study/Base scene changes", problems);
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(changes, (std::vector<anticrack::EntryChange>{{"Campaign/Loading angles [deg]", "0, 45, 90"},
+                                                          {"Campaign/Realizations", "1"}}));
+  anticrack::entry_changes_in_list("45, Campaign/Realizations = 1", "Study/Base scene changes", problems);
+  EXPECT_EQ(problems.count(), 1u);
 }
