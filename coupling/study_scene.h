@@ -96,14 +96,14 @@ namespace anticrack::coupling
   /// Declares the entries of a study scene (for `anticrack params`).
   void declare_study_scene(dealii::ParameterHandler &prm);
 
-  /// Reads and checks a study scene (not yet its variants: coupling/study.h); throws InputError
-  /// naming the file, the entry and the allowed values.
   /// The label of a result (a column of study.csv, a plot's title): the pointer's last component,
   /// with as many components before it as make it differ from every other pointer's and not a
   /// bare array index (/a/p0/value and /a/M/value: p0_value and M_value; /a/interval/0:
   /// interval_0).
   std::string result_label(const std::string &pointer, const std::vector<std::string> &all_pointers);
 
+  /// Reads and checks a study scene (not yet its variants: coupling/study.h); throws InputError
+  /// naming the file, the entry and the allowed values.
   StudyScene read_study_scene(const std::string &file);
 
   /// "size", "count", "ordinal", "none".

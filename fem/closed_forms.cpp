@@ -567,6 +567,7 @@ namespace anticrack::fem::closed_forms
             energy_release_rate_mode_II(s, cut_length) * mode_II) /
            energy_release_rate(s, cut_length);
   }
+
   StressInvariants confined_layer_invariants(double overburden, double slope_angle, double poisson_ratio)
   {
     require(overburden >= 0, "overburden", overburden, "finite and >= 0 [Pa]");

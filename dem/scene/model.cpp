@@ -131,47 +131,46 @@ namespace anticrack::dem
         model.wall_face.push_back(f);
       }
     }
-
-    /// A test loads the sample from the actuator clump against the fixed base: the intact bonds
-    /// (with the rigid clump and the fixed base each one body) must connect the two. A sticky-hard-
-    /// sphere sample may percolate across its periodic box and yet not across the faces the test
-    /// opens (found at N = 4096 in a 1 cm cube: the clump then fell freely and the "failure" the
-    /// test reported, q = 21 Pa, was that of nothing). Throws SetupError naming what is missing.
-    void require_load_path(const dem::DemSystem &system, const DemModel &model)
-    {
-      const Index n = static_cast<Index>(system.particles.size());
-      std::vector<Index> parent(n);
-      std::iota(parent.begin(), parent.end(), Index{0});
-      const auto root = [&](Index a) {
-        while (parent[a] != a)
-          a = parent[a] = parent[parent[a]];
-        return a;
-      };
-      const auto unite = [&](Index a, Index b) { parent[root(a)] = root(b); };
-      const dem::BondList &bonds = system.bonds;
-      for (Index b = 0; b < bonds.size(); ++b)
-        if (bonds.state[b] == dem::BondState::intact)
-          unite(bonds.i[b], bonds.j[b]);
-      const std::vector<Index> &members = system.clumps[model.clump].members;
-      for (const Index m : members)
-        unite(m, members.front());
-      for (const Index f : model.fixed_particles)
-        unite(f, model.fixed_particles.front());
-      if (root(members.front()) == root(model.fixed_particles.front()))
-        return;
-      Index with_base = 0;
-      for (Index a = 0; a < n; ++a)
-        with_base += root(a) == root(model.fixed_particles.front());
-      std::ostringstream message;
-      message << "the bonds do not connect the fixed base (" << model.fixed_particles.size()
-              << " spheres) to the actuator clump (" << members.size() << " spheres): the test would load "
-              << "nothing (the base's bonded cluster holds " << with_base << " of " << n
-              << " spheres). A sample that percolates across its periodic box need not across the faces the "
-                 "test opens (DEM/Domain/Periodic axes): another Random seed, a higher coordination number or "
-                 "volume fraction, or a larger sample";
-      throw dem::SetupError(message.str());
-    }
   } // namespace
+
+  // A sticky-hard-sphere sample may percolate across its periodic box and yet not across the faces
+  // the test opens (found at N = 4096 in a 1 cm cube: the clump then fell freely and the "failure"
+  // the test reported, q = 21 Pa, was that of nothing).
+  void require_load_path(const dem::DemSystem &system, const DemModel &model)
+  {
+    const Index n = static_cast<Index>(system.particles.size());
+    std::vector<Index> parent(n);
+    std::iota(parent.begin(), parent.end(), Index{0});
+    const auto root = [&](Index a) {
+      while (parent[a] != a)
+        a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    const auto unite = [&](Index a, Index b) { parent[root(a)] = root(b); };
+    const dem::BondList &bonds = system.bonds;
+    for (Index b = 0; b < bonds.size(); ++b)
+      if (bonds.state[b] == dem::BondState::intact)
+        unite(bonds.i[b], bonds.j[b]);
+    const std::vector<Index> &members = system.clumps[model.clump].members;
+    for (const Index m : members)
+      unite(m, members.front());
+    for (const Index f : model.fixed_particles)
+      unite(f, model.fixed_particles.front());
+    if (root(members.front()) == root(model.fixed_particles.front()))
+      return;
+    Index with_base = 0;
+    for (Index a = 0; a < n; ++a)
+      with_base += root(a) == root(model.fixed_particles.front());
+    std::ostringstream message;
+    message << "the bonds do not connect the fixed base (" << model.fixed_particles.size()
+            << " spheres) to the actuator clump (" << members.size() << " spheres): the test would load "
+            << "nothing (the base's bonded cluster holds " << with_base << " of " << n
+            << " spheres). A sample that percolates across its periodic box need not across the faces the "
+               "test opens (DEM/Domain/Periodic axes): another Random seed, a higher coordination number or "
+               "volume fraction, or a larger sample";
+    throw dem::SetupError(message.str());
+  }
+
 
   std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, const int threads)
   {

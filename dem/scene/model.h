@@ -46,6 +46,12 @@ namespace anticrack::dem
     double build_seconds = 0;
   };
 
+  /// A test loads the sample from the actuator clump against the fixed base: the intact bonds, with
+  /// the rigid clump and the fixed base each one body, must connect the two. Throws SetupError
+  /// naming both ends and the size of the base's bonded cluster when they do not. build_dem_model()
+  /// calls it for every model with a clump and a base.
+  void require_load_path(const dem::DemSystem &system, const DemModel &model);
+
   /// Builds and initialises the model; `threads` <= 0 means all available.
   std::unique_ptr<DemModel> build_dem_model(const SceneParameters &scene, int threads);
 

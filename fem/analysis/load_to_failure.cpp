@@ -44,15 +44,6 @@ namespace anticrack::fem
       return std::any_cast<const LoadToFailureSettings &>(scene.analysis.settings);
     }
 
-    /// The slab's weight per unit area at load factor 1 [Pa]: what it presses on the weak layer's top.
-    double slab_weight_per_area(const Snowpack &s)
-    {
-      double weight = 0;
-      for (const Layer &layer : s.slab_layers)
-        weight += layer.material.density * layer.thickness * s.gravity;
-      return weight;
-    }
-
     /// The weak layer's mean state over all ranks (every weak-layer cell has the same volume on the
     /// structured mesh): layer-plane tractions (normal compression positive, shear along +x) and the
     /// strains that go with them (compaction positive, engineering shear strain).
@@ -100,7 +91,7 @@ namespace anticrack::fem
     model.set_cut(scene.pst.cut_length);
     FieldRecord fields(options.output_directory + "/fields", comm);
 
-    const double weight = slab_weight_per_area(scene.snowpack);
+    const double weight = scene.snowpack.slab_weight_per_area();
     const double normal_per_load = weight * std::cos(settings.load_angle),
                  shear_per_load = weight * std::sin(settings.load_angle);
     TimeSeries series = series_of({{"load_factor", "1", "lambda: the body forces' multiple of gravity"},

@@ -285,10 +285,8 @@ namespace anticrack::fem
     // Under the `signed` law compaction hardens: a layer at yield carries more, it does not collapse.
     if (weak.model != Layer::Model::cohesive_cam_clay || (m.hardening_law != "collapse" && m.hardening_factor > 0))
       return;
-    double overburden = m.density * weak.thickness / 2; // the band's rows carry the mid-height load
-    for (const Layer &layer : s.slab_layers)
-      overburden += layer.material.density * layer.thickness;
-    overburden *= s.gravity;
+    // the band's rows deform as one and carry the load at the layer's mid-height
+    const double overburden = s.slab_weight_per_area() + m.density * weak.thickness / 2 * s.gravity;
     const auto [p, q] = closed_forms::confined_layer_invariants(overburden, s.slope_angle, m.poisson_ratio);
     const double needed = closed_forms::strength_to_contain(p, q, m.beta, m.M);
     if (m.p0 >= needed)

@@ -229,6 +229,14 @@ namespace anticrack::fem
     return sum;
   }
 
+  double Snowpack::slab_weight_per_area() const
+  {
+    double weight = 0;
+    for (const Layer &layer : slab_layers)
+      weight += layer.material.density * layer.thickness * gravity;
+    return weight;
+  }
+
   double Snowpack::weak_layer_top() const { return substratum.thickness + weak_layer.thickness; }
 
   double Snowpack::total_thickness() const { return weak_layer_top() + slab_thickness(); }

@@ -81,6 +81,8 @@ namespace anticrack::fem
     double gravity = 9.81;          ///< [m/s²]
 
     double slab_thickness() const;
+    /// g Σ ρ_i H_i over the slab layers [Pa]: the slab's weight per unit slope-parallel area.
+    double slab_weight_per_area() const;
     /// Height of the slab's base (= top of the weak layer) above the model base [m].
     double weak_layer_top() const;
     double total_thickness() const;

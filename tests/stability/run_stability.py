@@ -162,6 +162,16 @@ def run(anticrack, args, timeout):
     return result.returncode, result.stdout, result.stderr
 
 
+def refusal_problems(code, stderr, needles, out):
+    """What is wrong with a refusal: exit 2, every needle (the file, the entry, the range) in the
+    message, and the output's parent folder (made for nothing else) not created."""
+    problems = [] if code == 2 else [f"exit {code}, expected 2"]
+    problems += [f"the message lacks {n!r}" for n in needles if n not in stderr]
+    if os.path.exists(os.path.dirname(out)):
+        problems.append(f"{os.path.dirname(out)} was created")
+    return problems
+
+
 def case_folder(work, name):
     folder = os.path.join(work, name)
     shutil.rmtree(folder, ignore_errors=True)
@@ -187,11 +197,7 @@ def check_case(name, anticrack, source, work):
     out = os.path.join(folder, "not_created" if expect == "refused" else "", "run")
     code, stdout, stderr = run(anticrack, ["run", scene, "-o", out], timeout=600)
     if expect == "refused":
-        problems = [] if code == 2 else [f"exit {code}, expected 2"]
-        problems += [f"the message lacks {n!r}" for n in [scene, *options["needles"]] if n not in stderr]
-        if os.path.exists(os.path.dirname(out)):
-            problems.append(f"{os.path.dirname(out)} was created")
-        return problems, stderr
+        return refusal_problems(code, stderr, [scene, *options["needles"]], out), stderr
     summary_file = os.path.join(out, "summary.json")
     if not os.path.exists(summary_file):
         return [f"exit {code}, no summary.json"], stderr
@@ -251,11 +257,7 @@ def check_calibration_case(name, anticrack, work):
     code, stdout, stderr = run(anticrack, ["calibrate", campaign, "-o", out, "--no-plots", "--bootstrap", "50"],
                                timeout=600)
     if expect == "refused":
-        problems = [] if code == 2 else [f"exit {code}, expected 2"]
-        problems += [f"the message lacks {n!r}" for n in [campaign, *options["needles"]] if n not in stderr]
-        if os.path.exists(os.path.dirname(out)):
-            problems.append(f"{os.path.dirname(out)} was created")
-        return problems, stderr
+        return refusal_problems(code, stderr, [campaign, *options["needles"]], out), stderr
     problems = [] if code == 0 else [f"exit {code}, expected 0"]
     problems += [f"the output lacks {n!r}" for n in options["needles"] if n not in stdout]
     summary_file = os.path.join(out, "summary.json")
