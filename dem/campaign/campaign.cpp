@@ -122,6 +122,10 @@ namespace anticrack::dem
       return begin < end ? std::pair{begin, end} : std::pair{std::size_t(0), std::size_t(0)};
     }
 
+    /// The status of the tests of a realization whose bonds do not connect base and clump
+    /// (SpecimenWithoutLoadPath): not run, recorded, left out of the calibration.
+    constexpr const char *status_no_load_path = "no load path";
+
     /// The test's summary if it completed (a campaign resumed with --resume skips it).
     bool completed(const fs::path &directory, const Json &labels)
     {
@@ -493,6 +497,7 @@ namespace anticrack::dem
       Share share;
       // Each sample (microstructure, realization) this member needs, built once and kept.
       std::map<std::pair<Index, Index>, std::unique_ptr<DemModel>> samples;
+      std::map<std::pair<Index, Index>, std::string> without_load_path; // the samples refused, and why
       const auto share_start = std::chrono::steady_clock::now();
       std::size_t run_in_share = 0; // tests this member ran (not those completed earlier)
       for (std::size_t k = next(); k < tests.size(); k = next())
@@ -542,9 +547,39 @@ namespace anticrack::dem
           continue;
         }
         std::unique_ptr<DemModel> &sample = samples[{t.microstructure, t.realization}];
-        const bool build = !sample;
+        const bool build = !sample && !without_load_path.count({t.microstructure, t.realization});
         if (build)
-          sample = build_dem_model(test_scene, threads);
+        {
+          try
+          {
+            sample = build_dem_model(test_scene, threads);
+          }
+          catch (const SpecimenWithoutLoadPath &e)
+          {
+            without_load_path[{t.microstructure, t.realization}] = e.what();
+          }
+        }
+        if (!sample)
+        {
+          // This realization's bonds do not connect base and clump: its tests are recorded as such
+          // (the calibration leaves them out and names them) and the campaign goes on.
+          Json summary;
+          summary["status"] = status_no_load_path;
+          summary["message"] = without_load_path.at({t.microstructure, t.realization});
+          summary["command"] = options.command_line;
+          summary["labels"] = o.labels;
+          summary["scene"] = scene_info(test_scene);
+          summary["versions"] = version_info();
+          fs::create_directories(o.output_directory);
+          write_json_atomically((fs::path(o.output_directory) / "summary.json").string(), summary);
+          created_on_bad_input.armed = false; // a result, not half-writing
+          share.outcomes[t.id] = outcome_of(t, summary, std::nullopt);
+          std::cout << who << " test " << k + 1 << "/" << tests.size() << " " << t.id << ": " << status_no_load_path
+                    << " (realization " << t.realization << ": the bonds do not connect the base to the clump; "
+                    << "left out of the calibration)\n"
+                    << std::flush;
+          continue;
+        }
         auto model = std::make_unique<DemModel>(*sample);
         if (!build)
           model->build_seconds = 0; // the sample was built (and timed) for an earlier test
@@ -818,6 +853,11 @@ namespace anticrack::dem
         largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
     }
     s["tests"] = rows;
+    std::vector<std::string> no_load_path;
+    for (const auto &t : tests)
+      if (outcomes[t.id].row.status == status_no_load_path)
+        no_load_path.push_back(t.id);
+    s["tests_without_load_path"] = no_load_path;
     s["largest_inertial_number_before_failure"] = largest_inertial;
 
     Json check = Json::array();
@@ -866,6 +906,14 @@ namespace anticrack::dem
 
     std::cout << "campaign done in " << format_duration(timing["wall_s"].get<double>()) << ": "
               << tests.size() << " tests, campaign.h5 and summary.json in " << directory.string() << "\n";
+    if (!no_load_path.empty())
+    {
+      std::cout << "  " << no_load_path.size() << " test(s) without a load path (their realization's bonds do not "
+                << "connect the base to the clump), recorded as such:";
+      for (const std::string &id : no_load_path)
+        std::cout << " " << id;
+      std::cout << "\n";
+    }
     if (!check.empty())
       std::cout << "  quasi-static check: largest difference of the failure point (p, q) to the "
                 << c.quasi_static_slowdown << "x slower runs " << 100 * worst << " % (tolerance "

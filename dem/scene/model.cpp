@@ -168,7 +168,7 @@ namespace anticrack::dem
             << " spheres). A sample that percolates across its periodic box need not across the faces the "
                "test opens (DEM/Domain/Periodic axes): another Random seed, a higher coordination number or "
                "volume fraction, or a larger sample";
-    throw dem::SetupError(message.str());
+    throw SpecimenWithoutLoadPath(message.str());
   }
 
 
@@ -236,6 +236,11 @@ namespace anticrack::dem
       // At set-up this can only be a fixed time step above the critical one.
       throw InputError("Invalid scene file <" + scene.file + ">: " + e.what() +
                        " (DEM/Integration/Time step [s])");
+    }
+    catch (const SpecimenWithoutLoadPath &e)
+    {
+      throw SpecimenWithoutLoadPath("Invalid scene file <" + scene.file + ">, DEM/Random seed = " +
+                                    std::to_string(scene.dem.seed) + ": " + e.what());
     }
     catch (const InputError &e)
     {

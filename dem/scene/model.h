@@ -11,6 +11,7 @@
 #include "dem/lab/lab_protocol.h"
 #include "dem/sample/sticky_hard_spheres.h"
 #include "dem/core/system.h"
+#include "util/input_error.h"
 
 #include <array>
 #include <iosfwd>
@@ -46,10 +47,20 @@ namespace anticrack::dem
     double build_seconds = 0;
   };
 
+  /// A specimen whose bonds do not connect the fixed base to the actuator clump: the test would load
+  /// nothing. One realization of a random sample can be such (found at N = 4096 in a 1 cm cube). A
+  /// single run refuses it like bad input (exit 2); a campaign records that realization's tests as
+  /// `no load path` and goes on, and the calibration names them among the tests it leaves out.
+  class SpecimenWithoutLoadPath : public InputError
+  {
+  public:
+    using InputError::InputError;
+  };
+
   /// A test loads the sample from the actuator clump against the fixed base: the intact bonds, with
-  /// the rigid clump and the fixed base each one body, must connect the two. Throws SetupError
-  /// naming both ends and the size of the base's bonded cluster when they do not. build_dem_model()
-  /// calls it for every model with a clump and a base.
+  /// the rigid clump and the fixed base each one body, must connect the two. Throws
+  /// SpecimenWithoutLoadPath naming both ends and the size of the base's bonded cluster when they
+  /// do not. build_dem_model() calls it for every model with a clump and a base.
   void require_load_path(const dem::DemSystem &system, const DemModel &model);
 
   /// Builds and initialises the model; `threads` <= 0 means all available.

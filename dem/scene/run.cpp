@@ -946,7 +946,21 @@ namespace anticrack::dem
 
   void check_dem_scene(const SceneParameters &scene, const int threads)
   {
-    const auto model = build_dem_model(scene, threads >= 0 ? threads : scene.dem.threads);
+    std::unique_ptr<DemModel> model;
+    try
+    {
+      model = build_dem_model(scene, threads >= 0 ? threads : scene.dem.threads);
+    }
+    catch (const SpecimenWithoutLoadPath &e)
+    {
+      // A campaign's realization without a load path is one of its outcomes, not bad input.
+      if (!scene.campaign.enabled())
+        throw;
+      std::cout << "note: the first realization has no load path; the campaign records its tests as such and "
+                   "goes on:\n  "
+                << e.what() << "\n";
+      return;
+    }
     describe_dem_model(std::cout, scene, *model);
   }
 } // namespace anticrack::dem

@@ -34,6 +34,7 @@ namespace anticrack::dem
   /// `anticrack run` of a DEM scene without a campaign: builds the model, then run_dem_model.
   int run_dem_scene(const SceneParameters &scene, const RunOptions &options);
 
-  /// `anticrack check` of a DEM scene: builds the model and prints what a run would do.
+  /// `anticrack check` of a DEM scene: builds the model and prints what a run would do (for a campaign
+  /// whose first realization has no load path, a note: the campaign records such tests and goes on).
   void check_dem_scene(const SceneParameters &scene, int threads);
 } // namespace anticrack::dem

@@ -1045,6 +1045,43 @@ def campaign_resume_and_bad_input(work):
 
 
 
+@case
+def campaign_without_load_path(work):
+    """A realization whose bonds do not connect base and clump (256 spheres at z = 2.2: seed 3 of
+    seeds 1-12, found by `anticrack check`) is recorded as `no load path` and the campaign goes on:
+    exit 0, the other realization's test completed, the test's summary.json and campaign.h5 say why,
+    --resume records it again; the same sample as a single run is refused as bad input."""
+    thin = {"DEM/Sample/Target coordination number": "2.2"}
+    scene = write(os.path.join(work, "campaign.prm"),
+                  campaign_scene("0", **thin, **{"DEM/Random seed": "2", "Campaign/Realizations": "2"}))
+    stdout, _ = anticrack("check", scene, cwd=work)
+    check("no load path" not in stdout, f"realization 0 (seed 2) has no load path:\n{stdout}")
+    out = os.path.join(work, "run")
+    stdout, _ = anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    status = {t["test"]: t for t in summary["tests"]}
+    check(summary["status"] == "completed", f"campaign status {summary['status']}")
+    check(status["m0_r0_psi000.0"]["status"] == "completed", f"realization 0: {status['m0_r0_psi000.0']}")
+    lost = status["m0_r1_psi000.0"]
+    check(lost["status"] == "no load path" and "DEM/Random seed = 3" in lost["message"]
+          and "do not connect the fixed base" in lost["message"], f"realization 1: {lost}")
+    check(summary["tests_without_load_path"] == ["m0_r1_psi000.0"], f"{summary['tests_without_load_path']}")
+    check("m0_r1_psi000.0: no load path" in stdout and "1 test(s) without a load path" in stdout,
+          f"the console does not name the test:\n{stdout}")
+    with h5py.File(os.path.join(out, "campaign.h5"), "r") as f:
+        recorded = f["tests"]["m0_r1_psi000.0"].attrs["status"]
+        recorded = recorded.decode() if isinstance(recorded, bytes) else recorded
+        check(recorded == "no load path", f"campaign.h5 status {recorded!r}")
+    stdout, _ = anticrack("run", scene, "-o", out, "--resume")
+    check("m0_r0_psi000.0: completed earlier, skipped" in stdout and "m0_r1_psi000.0: no load path" in stdout,
+          f"--resume:\n{stdout}")
+    # the same sample as one run: bad input, naming the seed (exit 2, nothing written)
+    single = write(os.path.join(work, "single.prm"),
+                   edit_scene(campaign_scene("0", **thin, **{"DEM/Random seed": "3", "Scene": "dem"}), {},
+                              remove=["Campaign"]))
+    expect_bad_input(work, single, "DEM/Random seed = 3", "do not connect the fixed base")
+
+
 # ----------------------------------------------------------------------------------- calibration
 # A synthetic campaign.h5 (format 2, the layout dem/campaign/campaign.cpp writes) whose answers are known:
 # failure points on cohesive Cam-Clay ellipses in both planes with 2 % radial noise, associative

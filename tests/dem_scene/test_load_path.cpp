@@ -55,7 +55,7 @@ TEST(LoadPath, MissingOrBrokenLinkIsRefusedNamingBothEnds)
     require_load_path(gap.system, gap);
     ADD_FAILURE() << "a column without the link 2-3 was accepted";
   }
-  catch (const SetupError &e)
+  catch (const SpecimenWithoutLoadPath &e)
   {
     const std::string message = e.what();
     EXPECT_NE(message.find("fixed base (2 spheres)"), std::string::npos) << message;
@@ -64,5 +64,5 @@ TEST(LoadPath, MissingOrBrokenLinkIsRefusedNamingBothEnds)
   }
   DemModel broken = column({});
   broken.system.bonds.state[2] = BondState::broken_tension;
-  EXPECT_THROW(require_load_path(broken.system, broken), SetupError);
+  EXPECT_THROW(require_load_path(broken.system, broken), SpecimenWithoutLoadPath);
 }
