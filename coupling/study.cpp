@@ -212,6 +212,8 @@ namespace anticrack::coupling
         const std::size_t level = *runs[v].variant.level[e];
         j["variants"].push_back(runs[v].variant.id);
         j["values"].push_back(entry.values[level]);
+        if (!entry.measures.empty())
+          j["measures"].push_back(numbers[level]);
         j["wall_s"].push_back(runs[v].wall_s);
         cost.push_back(runs[v].wall_s);
         h.push_back(entry.refinement == Refinement::count ? 1 / numbers[level] : numbers[level]);

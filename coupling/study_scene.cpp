@@ -77,6 +77,8 @@ namespace anticrack::coupling
 
   std::vector<double> StudyEntry::numbers() const
   {
+    if (!measures.empty())
+      return measures;
     std::vector<double> v;
     for (const std::string &value : values)
       v.push_back(number_in(value).value_or(std::nan("")));
@@ -199,6 +201,11 @@ namespace anticrack::coupling
                         "observed order of convergence in h = value), count (elements or particles; larger is "
                         "finer; order in h = 1/value), ordinal (larger is finer, no order: a polynomial degree), "
                         "none (an input, not a discretisation: a sensitivity study).");
+      prm.declare_entry("Measures", "", Anything(),
+                        "The number each value stands for, separated by `;`, when the values are not numbers "
+                        "themselves: e.g. 2048; 4096 for the values `DEM/Sample/Particle count = 2048; "
+                        "DEM/Sample/Particle count = 4096` of a pipeline's Weak layer scene changes. The "
+                        "refinement orders the values and measures the order by them. Empty: the values.");
       prm.leave_subsection();
     }
     prm.leave_subsection();
@@ -283,6 +290,7 @@ namespace anticrack::coupling
       const std::string values_text = prm.get("Values");
       entry.values = semicolon_list(values_text);
       entry.refinement = refinements().value(prm.get("Refinement"));
+      const std::string measures_text = prm.get("Measures");
       prm.leave_subsection();
       if (entry.path.empty())
       {
@@ -295,13 +303,23 @@ namespace anticrack::coupling
                      "give at least 2 values, separated by `;`");
       if (entry.path == "Scene")
         problems.add(where + "Path", "Scene", "the kind of the base scene cannot vary");
-      if (entry.refinement != Refinement::none)
-        for (const std::string &value : entry.values)
+      const std::vector<std::string> measures = semicolon_list(measures_text);
+      if (!measures.empty() && entry.refinement == Refinement::none)
+        problems.add(where + "Measures", measures_text, "are given for Refinement = none (they order a refinement)");
+      else if (!measures.empty() && measures.size() != entry.values.size())
+        problems.add(where + "Measures", measures_text,
+                     "give one number per value: " + std::to_string(entry.values.size()) + " values, " +
+                       std::to_string(measures.size()) + " measures");
+      else if (entry.refinement != Refinement::none)
+        for (const std::string &value : measures.empty() ? entry.values : measures)
         {
           const std::optional<double> x = number_in(value);
           if (!x || !(*x > 0))
-            problems.add(where + "Values", value,
-                         "must be a number > 0 for Refinement = " + refinement_name(entry.refinement));
+            problems.add(where + (measures.empty() ? "Values" : "Measures"), value,
+                         "must be a number > 0 for Refinement = " + refinement_name(entry.refinement) +
+                           (measures.empty() ? " (or give Measures: the number each value stands for)" : ""));
+          else if (!measures.empty())
+            entry.measures.push_back(*x);
         }
       for (const StudyEntry &other : study.entries)
         if (other.path == entry.path)

@@ -48,11 +48,13 @@ namespace anticrack::coupling
     std::string path;                ///< "Mesh/Element length [m]"
     std::vector<std::string> values; ///< as written
     Refinement refinement = Refinement::none;
+    std::vector<double> measures;    ///< Measures: the number each value stands for (empty: the values)
     std::optional<std::string> base_value; ///< the base scene's setting (with Base scene changes), if any
 
     /// Index of the finest value (none for Refinement::none).
     [[nodiscard]] std::optional<std::size_t> finest() const;
-    /// The values as numbers (only for refinements other than none, checked on reading).
+    /// The values as numbers, or their Measures (only for refinements other than none, checked on
+    /// reading).
     [[nodiscard]] std::vector<double> numbers() const;
   };
 

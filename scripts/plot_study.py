@@ -68,7 +68,9 @@ def main(directory):
         for j, line in enumerate(lines):
             ax = axes[i][j]
             r = line["results"][label]
-            x = numeric(line["values"])
+            # Measures: the number each value stands for when the values are not numbers (an entry
+            # change such as `DEM/Sample/Particle count = 4096`).
+            x = line.get("measures") or numeric(line["values"])
             positions = x if x is not None else list(range(len(line["values"])))
             ys = [(p, y) for p, y in zip(positions, r["values"]) if y is not None]
             ax.plot([p for p, _ in ys], [y for _, y in ys], marker="o")
@@ -80,7 +82,7 @@ def main(directory):
             if result["reference_value"] is not None:
                 ax.axhline(result["reference_value"], color="grey", lw=0.8, ls="--", label="reference")
                 ax.legend(fontsize=7)
-            if line["base_value"] is not None and x is not None:
+            if line["base_value"] is not None and x is not None and "measures" not in line:
                 try:
                     ax.axvline(float(line["base_value"]), color="tab:red", lw=0.8, ls=":")
                 except ValueError:

@@ -129,6 +129,25 @@ TEST(StudyScene, VariantsAndLines)
   EXPECT_EQ(*study.entries[1].finest(), 1u);
 }
 
+// Values that are not numbers (entry changes of a pipeline's weak layer) are ordered and measured by
+// their Measures: the line runs from the fewest particles to the most, whatever the written order.
+TEST(StudyScene, MeasuresOrderValuesThatAreNotNumbers)
+{
+  StudyScene study;
+  StudyEntry count;
+  count.path = "Pipeline/Weak layer scene changes";
+  count.values = {"DEM/Sample/Particle count = 4096", "DEM/Sample/Particle count = 1024",
+                  "DEM/Sample/Particle count = 2048"};
+  count.measures = {4096, 1024, 2048};
+  count.refinement = Refinement::count;
+  study.entries = {count};
+  const auto variants = study_variants(study);
+  EXPECT_EQ(variants[0].changes, (std::vector<anticrack::EntryChange>{{count.path, count.values[0]}}));
+  EXPECT_EQ(line_of_entry(study, variants, 0), (std::vector<std::size_t>{1, 2, 0}));
+  EXPECT_EQ(*study.entries[0].finest(), 0u);
+  EXPECT_EQ(study.entries[0].numbers(), count.measures);
+}
+
 TEST(StudyScene, ResultLabelsAreTheShortestUniqueEndings)
 {
   const std::vector<std::string> pointers = {"/c/m/0/surface/p0/value", "/c/m/0/surface/M/value",
