@@ -71,11 +71,11 @@ TEST(StickyHardSpheres, StickinessForCoordinationInvertsThePercusYevickRelation)
 namespace
 {
   shs::SamplerReport sample(DemSystem &s, double phi, double tau, Index sweeps, double delta = 0.03,
-                            std::uint64_t seed = 1)
+                            std::uint64_t seed = 1, Index count = 500)
   {
     s.materials.add(Material{});
     shs::SamplerSpec spec;
-    spec.particle_count = 500;
+    spec.particle_count = count;
     spec.volume_fraction = phi;
     spec.stickiness = tau;
     spec.sweeps = sweeps;
@@ -137,21 +137,12 @@ TEST(StickyHardSpheresSampler, CoordinationNearPercusYevickAtPhi04Tau01)
 // 0.004, which puts the 0.01 band at 2.7 of them and 0.137 at 7.
 TEST(StickyHardSpheresSampler, DiluteLimitIsBaxters)
 {
-  shs::SamplerSpec spec;
-  spec.particle_count = 1000;
-  spec.volume_fraction = 0.05;
-  spec.stickiness = 1.0;
-  spec.sweeps = 2000;
-  spec.radius = 1e-3;
-  spec.require_percolation = false; // a dilute fluid of small clusters
   const int seeds = 16;
   double mean_z = 0;
   for (int seed = 1; seed <= seeds; ++seed)
   {
-    DemSystem s;
-    s.materials.add(Material{});
-    spec.seed = static_cast<std::uint64_t>(seed);
-    mean_z += shs::sample_sticky_hard_spheres(s, spec).coordination / seeds;
+    DemSystem s; // a dilute fluid of small clusters: not percolating
+    mean_z += sample(s, 0.05, 1.0, 2000, 0.03, static_cast<std::uint64_t>(seed), 1000).coordination / seeds;
   }
   EXPECT_NEAR(mean_z, shs::percus_yevick_coordination(0.05, 1.0), 0.01)
     << "mean z over " << seeds << " seeds = " << mean_z << " (2 phi / tau = 0.1)";
@@ -330,15 +321,7 @@ TEST(StickyHardSpheresSampler, AnyCountFillsTheWholeBox)
   for (const Index sweeps : {Index{1}, Index{300}})
   {
     DemSystem s;
-    s.materials.add(Material{});
-    shs::SamplerSpec spec;
-    spec.particle_count = 600;
-    spec.volume_fraction = 0.3;
-    spec.stickiness = 0.2;
-    spec.sweeps = sweeps;
-    spec.radius = 1e-3;
-    spec.require_percolation = false;
-    const shs::SamplerReport r = shs::sample_sticky_hard_spheres(s, spec);
+    const shs::SamplerReport r = sample(s, 0.3, 0.2, sweeps, 0.03, 1, 600);
     ASSERT_EQ(s.particles.size(), 600);
     for (int axis = 0; axis < 3; ++axis)
     {
