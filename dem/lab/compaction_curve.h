@@ -98,19 +98,25 @@ namespace anticrack::dem
   /// fewer than 10 samples in the fit.
   /// The stages of a compaction curve as they come, sample by sample: the first peak (the running
   /// maximum until the collapse), the collapse (the stress below compaction_collapse_fraction of
-  /// it) and the lock-up (above compaction_lock_up_stress_ratio times the peak after the collapse).
-  /// One definition for the fit below and for the test that stops once it has locked up
-  /// (dem/lab/compaction_test.h).
+  /// it, once compaction_elastic_samples samples have carried a compressive stress) and the lock-up
+  /// (above compaction_lock_up_stress_ratio times the peak after the collapse). One definition for
+  /// the fit below and for the test that stops once it has locked up (dem/lab/compaction_test.h).
+  /// Without the count, the arriving stress wave's first readings (4e-9 Pa, then -0.05 Pa, at
+  /// N = 4096) were a "peak" and its "collapse", and the next reading, 45 Pa, a lock-up that
+  /// stopped the test at 800 steps; a real peak is resolved by at least as many samples as the fit
+  /// needs anyway.
   struct CompactionStages
   {
     double lock_up_ratio = compaction_lock_up_stress_ratio; ///< of the stress over the peak at lock-up
     double peak = 0;        ///< the running maximum, frozen at the collapse [Pa]
+    std::size_t compressive_samples = 0; ///< samples with a positive stress so far
     bool collapsed = false;
     bool locked_up = false;
 
     /// Takes the next stress; returns true if this sample is the new running maximum.
     bool add(double stress)
     {
+      compressive_samples += stress > 0;
       if (!collapsed)
       {
         if (stress > peak)
@@ -118,7 +124,8 @@ namespace anticrack::dem
           peak = stress;
           return true;
         }
-        collapsed = peak > 0 && stress < compaction_collapse_fraction * peak;
+        collapsed = peak > 0 && stress < compaction_collapse_fraction * peak &&
+                    compressive_samples >= compaction_elastic_samples;
       }
       else if (stress > lock_up_ratio * peak)
         locked_up = true;

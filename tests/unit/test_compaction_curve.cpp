@@ -107,4 +107,12 @@ TEST(CompactionCurve, RefusesCurvesThatDoNotCollapseOrLockUp)
   EXPECT_EQ(stages.peak, 12e3);
   stages.add(36.1e3);
   EXPECT_TRUE(stages.locked_up);
+  // The first readings of the arriving stress wave (a test at N = 4096 read 4e-9 Pa, then -0.05 Pa)
+  // are neither a peak nor its collapse, and the rise after them no lock-up.
+  CompactionStages arriving;
+  for (const double stress : {0.0, 0.0, 4e-9, -0.055, 45.0, 2e3, 8e3, 12e3, 5e3})
+    arriving.add(stress);
+  EXPECT_TRUE(arriving.collapsed);
+  EXPECT_FALSE(arriving.locked_up);
+  EXPECT_EQ(arriving.peak, 12e3);
 }
