@@ -33,13 +33,20 @@ def main(directory):
     lines = study["lines"]
     markers = "osd^v<>"
 
-    fig, axes = plt.subplots(1, len(results), figsize=(5.2 * len(results), 4.4), squeeze=False)
-    for ax, result in zip(axes[0], results):
+    # At most four panels a row: a study of many results stays readable.
+    columns = min(4, len(results))
+    rows = -(-len(results) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(5.2 * columns, 4.4 * rows), squeeze=False)
+    for ax in axes.flat[len(results):]:
+        ax.set_visible(False)
+    for ax, result in zip(axes.flat, results):
         label = result["label"]
         plotted = False
         for k, line in enumerate(lines):
             r = line["results"][label]
-            points = [(t, e, v) for t, e, v in zip(line["wall_s"], r["errors"], line["values"])
+            # annotated with the number each value stands for, when the values are entry changes
+            names = [f"{m:g}" for m in line["measures"]] if "measures" in line else line["values"]
+            points = [(t, e, v) for t, e, v in zip(line["wall_s"], r["errors"], names)
                       if e is not None and e > 0 and t > 0]
             if not points:
                 continue
