@@ -493,24 +493,35 @@ def check_and_params(work):
 
 
 # ----------------------------------------------------------------------------------------- f
-@case
-def lattice_tension_strength(work):
-    """Physics end to end: a bonded simple-cubic lattice pulled by its top clump breaks at the mean
-    stress sigma_c pi R^2 / (2R)^2 = pi/4 MPa (one bond of strength sigma_c = 1 MPa per column)."""
+# The tiny lattice pulled apart: one bond of strength sigma_c = 1 MPa per column of spheres, so the
+# mean stress at which it breaks is sigma_c pi R^2 / (2R)^2 [Pa].
+LATTICE_TENSION_STRENGTH = math.pi / 4 * 1e6
+
+
+def tension_scene():
+    """scenes/lattice_tension.prm on a 4 x 3 x 6 lattice, bottom layer fixed, top layer the clump,
+    5000 steps, history every 10 steps, no other output."""
     text = open(os.path.join(SOURCE, "scenes", "lattice_tension.prm")).read()
-    scene = write(os.path.join(work, "tension.prm"), edit_scene(text, {
+    return edit_scene(text, {
         "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
         "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
         "Output/Write ParaView": "false", "DEM/Steps": "5000",
         "DEM/Domain/Upper corner [m]": "0.008, 0.006, 0.012", "DEM/Sample/Lattice size": "4, 3, 6",
-        "DEM/Boundary particles/Fix below [m]": "2e-3", "DEM/Boundary particles/Clump above [m]": "10e-3"}))
+        "DEM/Boundary particles/Fix below [m]": "2e-3", "DEM/Boundary particles/Clump above [m]": "10e-3"})
+
+
+@case
+def lattice_tension_strength(work):
+    """Physics end to end: a bonded simple-cubic lattice pulled by its top clump breaks at the mean
+    stress sigma_c pi R^2 / (2R)^2 = pi/4 MPa (one bond of strength sigma_c = 1 MPa per column)."""
+    scene = write(os.path.join(work, "tension.prm"), tension_scene())
     out = os.path.join(work, "out")
     anticrack("run", scene, "-o", out)
     history = read_history(out)
     base = history["base_normal_stress"][0]
     clump = history["clump_normal_stress"][0]
     peak = -base.min()
-    expected = math.pi / 4 * 1e6
+    expected = LATTICE_TENSION_STRENGTH
     # Tolerance 0.5 %: the load grows by 10 steps x 1e4 N/s x dt / 48 mm^2 = 1.7 kPa (0.2 %) between
     # history rows, and the base reaction lags the clump load by the lattice's quasi-static
     # response (the loading is 1e-3 of the bonds' wave time scale).
@@ -2075,15 +2086,9 @@ def study_dem_and_pipeline(work):
     closed form -pi/4 MPa given as the reference value. Pipeline: the tiny pipeline with its PSTs on
     4 and 2 cm elements, the values entry changes ordered by their Measures. Every variant completes
     and study.json's values are those of the variants' own summaries."""
-    text = open(os.path.join(SOURCE, "scenes", "lattice_tension.prm")).read()
-    write(os.path.join(work, "tension.prm"), edit_scene(text, {
-        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
-        "Output/Write ParaView": "false", "DEM/Steps": "5000",
-        "DEM/Domain/Upper corner [m]": "0.008, 0.006, 0.012", "DEM/Sample/Lattice size": "4, 3, 6",
-        "DEM/Boundary particles/Fix below [m]": "2e-3", "DEM/Boundary particles/Clump above [m]": "10e-3"}))
+    write(os.path.join(work, "tension.prm"), tension_scene())
     sigma = "/dem/failure_analysis/peak_base_normal_stress/base_normal_stress_sigma_Pa"
-    strength = -math.pi / 4 * 1e6
+    strength = -LATTICE_TENSION_STRENGTH  # sigma is compression positive
     dem_study = write(os.path.join(work, "dem_study.prm"), "\n".join([
         "set Scene = study", "subsection Study", "  set Base scene = tension.prm", f"  set Results = {sigma}",
         f"  set Reference values = {sigma} = {strength!r}", "  subsection Entry 1",
