@@ -17,6 +17,7 @@
 #include "dem/core/types.h"
 #include "util/input_error.h"
 #include "util/mpi_session.h"
+#include "util/output_lock.h"
 #include "util/source_version.h"
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <iterator>
 #include <iostream>
+#include <optional>
 #include <string>
 
 namespace
@@ -198,6 +200,11 @@ int main(int argc, char **argv)
 
   try
   {
+    // One process writes into an output directory at a time (util/output_lock.h); under mpirun the
+    // first rank holds the lock for all of them.
+    std::optional<OutputDirectoryLock> output_lock;
+    if (launcher_rank() == 0 && (*run || *calibrate))
+      output_lock.emplace(*run ? run_options.output_directory : calibrate_options.output_directory);
     if (*run)
     {
       run_options.command_line = join_arguments(argc, argv);

@@ -1057,6 +1057,33 @@ def campaign_resume_and_bad_input(work):
 
 
 @case
+def output_directory_lock(work):
+    """Two runs into one output directory (util/output_lock.h): while another process holds the
+    directory's lock (here this test, with flock(2) as anticrack takes it), a run and a calibration
+    into it exit 2 naming the directory and write nothing into it; released, the run goes ahead. A
+    refused scene leaves no directory behind that the lock created (with its missing parents)."""
+    import fcntl
+    scene = write(os.path.join(work, "tension.prm"), tension_scene())
+    out = os.path.join(work, "out")
+    os.makedirs(out)
+    holder = os.open(out, os.O_RDONLY)
+    fcntl.flock(holder, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    try:
+        for command in (["run", scene, "-o", out], ["calibrate", scene, "-o", out, "--no-plots"]):
+            _, stderr = anticrack(*command, expect=2)
+            check(f"output directory {out}: another anticrack process is writing into it" in stderr,
+                  f"`{command[0]}` into a locked directory:\n{stderr}")
+            check(os.listdir(out) == [], f"`{command[0]}` wrote into the locked directory: {os.listdir(out)}")
+    finally:
+        os.close(holder)
+    anticrack("run", scene, "-o", out)
+    check(os.path.exists(os.path.join(out, "summary.json")), "the run after the lock was released wrote nothing")
+    bad = write(os.path.join(work, "bad.prm"), edit_scene(tension_scene(), {"DEM/Steps": "-1"}))
+    anticrack("run", bad, "-o", os.path.join(work, "new", "deeper"), expect=2)
+    check(not os.path.exists(os.path.join(work, "new")), "a refused scene left the directory the lock created")
+
+
+@case
 def campaign_without_load_path(work):
     """A realization whose bonds do not connect base and clump (256 spheres at z = 2.2: seed 3 of
     seeds 1-12, found by `anticrack check`) is recorded as `no load path` and the campaign goes on:
