@@ -69,33 +69,37 @@ def main(directory):
     fig.savefig(os.path.join(directory, "work_precision.png"), dpi=120)
     plt.close(fig)
 
-    fig, axes = plt.subplots(len(results), len(lines), figsize=(4.6 * len(lines), 3.6 * len(results)), squeeze=False)
-    for i, result in enumerate(results):
+    # A row per result and a column per entry; one entry's results four a row, as above.
+    columns = len(lines) if len(lines) > 1 else min(4, len(results))
+    panels = [(result, line) for result in results for line in lines]
+    rows = -(-len(panels) // columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.6 * columns, 3.6 * rows), squeeze=False)
+    for ax in axes.flat[len(panels):]:
+        ax.set_visible(False)
+    for ax, (result, line) in zip(axes.flat, panels):
         label = result["label"]
-        for j, line in enumerate(lines):
-            ax = axes[i][j]
-            r = line["results"][label]
-            # Measures: the number each value stands for when the values are not numbers (an entry
-            # change such as `DEM/Sample/Particle count = 4096`).
-            x = line.get("measures") or numeric(line["values"])
-            positions = x if x is not None else list(range(len(line["values"])))
-            ys = [(p, y) for p, y in zip(positions, r["values"]) if y is not None]
-            ax.plot([p for p, _ in ys], [y for _, y in ys], marker="o")
-            if x is None:
-                ax.set_xticks(positions)
-                ax.set_xticklabels(line["values"], rotation=30, fontsize=7)
-            elif line["refinement"] in ("size", "count") and min(x) > 0:
-                ax.set_xscale("log")
-            if result["reference_value"] is not None:
-                ax.axhline(result["reference_value"], color="grey", lw=0.8, ls="--", label="reference")
-                ax.legend(fontsize=7)
-            if line["base_value"] is not None and x is not None and "measures" not in line:
-                try:
-                    ax.axvline(float(line["base_value"]), color="tab:red", lw=0.8, ls=":")
-                except ValueError:
-                    pass
-            ax.set_xlabel(line["entry"])
-            ax.set_ylabel(label)
+        r = line["results"][label]
+        # Measures: the number each value stands for when the values are not numbers (an entry
+        # change such as `DEM/Sample/Particle count = 4096`).
+        x = line.get("measures") or numeric(line["values"])
+        positions = x if x is not None else list(range(len(line["values"])))
+        ys = [(p, y) for p, y in zip(positions, r["values"]) if y is not None]
+        ax.plot([p for p, _ in ys], [y for _, y in ys], marker="o")
+        if x is None:
+            ax.set_xticks(positions)
+            ax.set_xticklabels(line["values"], rotation=30, fontsize=7)
+        elif line["refinement"] in ("size", "count") and min(x) > 0:
+            ax.set_xscale("log")
+        if result["reference_value"] is not None:
+            ax.axhline(result["reference_value"], color="grey", lw=0.8, ls="--", label="reference")
+            ax.legend(fontsize=7)
+        if line["base_value"] is not None and x is not None and "measures" not in line:
+            try:
+                ax.axvline(float(line["base_value"]), color="tab:red", lw=0.8, ls=":")
+            except ValueError:
+                pass
+        ax.set_xlabel(line["entry"])
+        ax.set_ylabel(label)
     fig.suptitle(f"{os.path.basename(study['base_scene'])}: answers against the varied entries\n"
                  "(red: the base scene's value)", fontsize=8)
     fig.tight_layout()

@@ -387,7 +387,8 @@ namespace anticrack::dem
     s << "\n  tests               " << tests.size() << " (" << references << " of them quasi-static references, "
       << c.quasi_static_slowdown << "x slower; " << compactions << " compaction test(s)";
     if (c.has_compaction_tests())
-      s << " at " << c.compaction_strain_rate << " 1/s to strain " << c.compaction_final_strain;
+      s << " at " << c.compaction_strain_rate << " 1/s to strain " << c.compaction_final_strain << ", a row every "
+        << c.compaction_curve_strain_interval << " of strain";
     s << ")\n"
       << "  outputs             summary.json, campaign.h5, tests/<id>/{summary.json, history.h5}\n";
     out << s.str();
@@ -519,6 +520,7 @@ namespace anticrack::dem
           loading.adaptive = false; // a force ramp's; the compaction test's rate is constant
           loading.compaction_strain_rate = c.compaction_strain_rate / t.slowdown;
           loading.stop_strain = c.compaction_final_strain;
+          loading.curve_strain_interval = c.compaction_curve_strain_interval;
         }
 
         RunOptions o;
@@ -539,6 +541,7 @@ namespace anticrack::dem
         {
           o.labels["compaction_strain_rate_per_s"] = test_scene.dem.loading.compaction_strain_rate;
           o.labels["compaction_final_strain"] = test_scene.dem.loading.stop_strain;
+          o.labels["compaction_curve_strain_interval"] = test_scene.dem.loading.curve_strain_interval;
         }
         if (options.resume && completed(o.output_directory, o.labels))
         {
@@ -820,6 +823,7 @@ namespace anticrack::dem
     spec["quasi_static_tolerance"] = c.quasi_static_tolerance;
     spec["compaction_strain_rate_per_s"] = c.compaction_strain_rate;
     spec["compaction_final_strain"] = c.compaction_final_strain;
+    spec["compaction_curve_strain_interval"] = c.compaction_curve_strain_interval;
     s["campaign"] = spec;
     Json rows = Json::array();
     double test_wall = 0, largest_inertial = 0;

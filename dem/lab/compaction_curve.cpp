@@ -97,8 +97,9 @@ namespace anticrack::dem
         e.push_back(strain[i]), s.push_back(stress[i]), sample.push_back(i);
     }
     const std::size_t n = e.size();
-    if (n < 20)
-      fail("fewer than 20 samples of increasing strain (" + std::to_string(n) + ")");
+    if (n < compaction_minimum_samples)
+      fail("fewer than " + std::to_string(compaction_minimum_samples) + " samples of increasing strain (" +
+           std::to_string(n) + ")");
 
     // The first peak: the running maximum when the stress first falls below collapse_fraction of it.
     std::size_t peak = 0, collapse = n, above_cap = n;
@@ -121,7 +122,8 @@ namespace anticrack::dem
     if (peak < compaction_elastic_samples)
       fail("the peak (" + std::to_string(s[peak]) + " Pa at strain " + std::to_string(e[peak]) + ") is sample " +
            std::to_string(peak) + ": fewer than " + std::to_string(compaction_elastic_samples) +
-           " samples resolve the rise to it; record the history more often (Output/History interval [steps])");
+           " samples resolve the rise to it; sample the curve more finely (Campaign/Compaction curve strain "
+           "interval, or DEM/Loading/Curve strain interval of a compaction scene)");
     const double peak_stress = s[peak];
     // Lock-up: the locked-up layer carries the peak again, for good, before it reaches
     // lock_up_stress_ratio times it.

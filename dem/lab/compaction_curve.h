@@ -83,18 +83,20 @@ namespace anticrack::dem
     [[nodiscard]] double model_stress(double e) const;
   };
 
+  /// Samples of increasing strain a curve needs at the least to be read.
+  inline constexpr std::size_t compaction_minimum_samples = 20;
   /// The stress falls below this fraction of its running maximum: the collapse after the first peak.
   inline constexpr double compaction_collapse_fraction = 0.5;
-  /// Samples the rise to the peak needs: a coarser history misses the peak (on the SHS layer of
-  /// scenes/shs_weak_layer.prm at 5 /s, every 800 steps gives a peak 21 % low; every 100-400 steps
-  /// agree within 1 %).
+  /// Samples the rise to the peak needs at the least: a coarser history misses the peak (on the SHS
+  /// layer of scenes/shs_weak_layer.prm at 5 /s, rows every 800 steps (8.8e-4 strain) give a peak
+  /// 21 % low). docs/work_precision.md measures what the curve's strain interval does to the fit.
   inline constexpr std::size_t compaction_elastic_samples = 5;
   /// The fit ends where the stress exceeds this multiple of the first peak after the collapse.
   inline constexpr double compaction_lock_up_stress_ratio = 3;
 
   /// Fits the curve (strain[i], stress[i]), strain increasing; least squares weighted by the strain
   /// each sample stands for. Throws std::invalid_argument with the reason when the curve cannot be
-  /// read this way: fewer than 20 samples, strains not increasing, no positive stress, no collapse,
+  /// read this way: fewer than compaction_minimum_samples samples, strains not increasing, no positive stress, no collapse,
   /// fewer than 10 samples in the fit.
   /// The stages of a compaction curve as they come, sample by sample: the first peak (the running
   /// maximum until the collapse), the collapse (the stress below compaction_collapse_fraction of

@@ -7,7 +7,7 @@ namespace anticrack::dem
 {
   CompactionTest::CompactionTest(const Index clump, std::vector<Index> base, const double area,
                                  const CompactionSettings &settings)
-    : LabProtocol(settings.interval), clump_(clump), base_(std::move(base)), area_(area), settings_(settings)
+    : LabProtocol(1), clump_(clump), base_(std::move(base)), area_(area), settings_(settings)
   {
     // The test runs on past the fit's lock-up, so that the history's samples (sparser than the
     // control calls, or between them) pass it too.
@@ -22,7 +22,9 @@ namespace anticrack::dem
     require(s.final_strain > 0 && s.final_strain < 1, "the final strain must lie in (0, 1)");
     require(s.acceleration_strain >= 0 && s.acceleration_strain < s.final_strain,
             "the acceleration strain must lie in [0, final strain)");
-    require(s.interval >= 1, "the control interval must be at least one step");
+    require(s.curve_strain_interval > 0 && s.curve_strain_interval <= s.final_strain / compaction_minimum_samples,
+            "the curve strain interval must lie in (0, final strain / " + std::to_string(compaction_minimum_samples) +
+              "]: the fit needs that many rows");
     require(!base_.empty() && area_ > 0, "the specimen needs a fixed base of positive area for its normal stress");
   }
 
@@ -37,6 +39,23 @@ namespace anticrack::dem
     platen.applied_force = ForceHistory{};
     start_time_ = system.time;
     start_displacement_ = platen.displacement[2];
+    next_row_strain_ = settings_.curve_strain_interval;
+    // A control call every control_strain at full speed (system.dt is the start's; the run
+    // re-evaluates it, and a row is due by strain, not by count). Not tied to the curve's interval:
+    // the calls step the platen's acceleration, and a different staircase is a different test
+    // (docs/work_precision.md: the post-peak curve moves by up to 10 % under such a perturbation).
+    set_control_interval(
+      std::max<Index>(1, static_cast<Index>(control_strain() / (settings_.strain_rate * system.dt))));
+  }
+
+  bool CompactionTest::history_row_due(const DemSystem &system)
+  {
+    const double e = strain(system);
+    if (e < next_row_strain_)
+      return false;
+    // The next row one interval past this strain: rows never come closer than the interval.
+    next_row_strain_ = e + settings_.curve_strain_interval;
+    return true;
   }
 
   void CompactionTest::control(DemSystem &system)
@@ -94,7 +113,9 @@ namespace anticrack::dem
             {"compaction_start_displacement", start_displacement_},
             {"compaction_peak", stages_.peak},
             {"compaction_collapsed", stages_.collapsed ? 1.0 : 0.0},
-            {"compaction_locked_up", stages_.locked_up ? 1.0 : 0.0}};
+            {"compaction_locked_up", stages_.locked_up ? 1.0 : 0.0},
+            {"compaction_next_row_strain", next_row_strain_},
+            {"compaction_control_interval", static_cast<double>(control_interval())}};
   }
 
   void CompactionTest::restore(const std::map<std::string, double> &state)
@@ -104,6 +125,10 @@ namespace anticrack::dem
     if (const auto it = state.find("compaction_start_displacement"); it != state.end())
       start_displacement_ = it->second;
     auto flag = [&](const char *name) { const auto it = state.find(name); return it != state.end() && it->second > 0.5; };
+    if (const auto it = state.find("compaction_next_row_strain"); it != state.end())
+      next_row_strain_ = it->second;
+    if (const auto it = state.find("compaction_control_interval"); it != state.end())
+      set_control_interval(std::max<Index>(1, static_cast<Index>(it->second)));
     if (const auto it = state.find("compaction_peak"); it != state.end())
       stages_.peak = it->second;
     stages_.collapsed = flag("compaction_collapsed");

@@ -25,6 +25,14 @@
 // jump). The strain of the run is −u_z / H0 of the platen over the specimen height H0. The test ends
 // once the collapsed layer has locked up (dem::CompactionStages on the base's normal stress at every
 // control call: past compaction_lock_up_stress_ratio times its first peak) or at `final_strain`.
+//
+// Sampling in strain. The curve's history rows come every `curve_strain_interval` of strain, not
+// every so many steps: the time step scales with the sphere size, so a fixed number of steps put 4
+// rows on the rise to the peak at 512 spheres and 7 at 2048 (at 5 /s, 200 steps), and the peak, the
+// drop and the secant modulus read from the curve changed with the number of spheres and the output
+// interval. The control calls come every `acceleration_strain` / 25 of strain (4e-6 by default, a
+// few steps), whatever the curve's interval, so that the platen's motion is one and the same test
+// however the curve is sampled; each row lies within that strain past its due strain.
 #pragma once
 
 #include "dem/lab/compaction_curve.h"
@@ -40,7 +48,7 @@ namespace anticrack::dem
     double height = 0;                   ///< H0, the specimen's height [m], > 0
     double final_strain = 0;             ///< −u_z / H0 at which the test ends, in (0, 1)
     double acceleration_strain = 1e-4;   ///< strain over which the platen reaches its speed, >= 0
-    Index interval = 100;                ///< steps between control calls, >= 1
+    double curve_strain_interval = 0;    ///< strain between two history rows, in (0, final_strain / 20]
   };
 
   class CompactionTest : public LabProtocol
@@ -59,6 +67,15 @@ namespace anticrack::dem
     [[nodiscard]] std::map<std::string, double> results(const DemSystem &system) const override;
     [[nodiscard]] std::map<std::string, double> state() const override;
     void restore(const std::map<std::string, double> &state) override;
+    [[nodiscard]] bool samples_history() const override { return true; }
+    bool history_row_due(const DemSystem &system) override;
+
+    /// Strain between two control calls at full speed: acceleration_strain / 25, or without an
+    /// acceleration a quarter of the curve's interval.
+    [[nodiscard]] double control_strain() const
+    {
+      return settings_.acceleration_strain > 0 ? settings_.acceleration_strain / 25 : settings_.curve_strain_interval / 4;
+    }
 
     /// −u_z / H0 of the platen since the start of the test.
     [[nodiscard]] double strain(const DemSystem &system) const;
@@ -71,5 +88,6 @@ namespace anticrack::dem
     CompactionStages stages_;
     double start_time_ = 0;          ///< [s]
     double start_displacement_ = 0;  ///< u_z of the platen at the start [m]
+    double next_row_strain_ = 0;     ///< the strain at which the next history row is due
   };
 } // namespace anticrack::dem

@@ -55,9 +55,22 @@ namespace anticrack::dem
     /// of a triaxial test); summary.json reports them.
     [[nodiscard]] virtual std::map<std::string, double> results(const DemSystem & /*system*/) const { return {}; }
 
+    /// True for a protocol that samples its own curve in its own measure (the compaction test: every
+    /// Curve strain interval of strain). The run then writes a history row when history_row_due()
+    /// says so after a control call (and at the first and last step), in place of every
+    /// Output/History interval [steps], so that what is read from the curve depends neither on the
+    /// time step nor on an output interval.
+    [[nodiscard]] virtual bool samples_history() const { return false; }
+    /// Asked after each control() when samples_history(): true if the history needs a row now.
+    virtual bool history_row_due(const DemSystem & /*system*/) { return false; }
+
     /// Protocol state that a checkpoint must carry besides the DemSystem, by name.
     [[nodiscard]] virtual std::map<std::string, double> state() const { return {}; }
     virtual void restore(const std::map<std::string, double> & /*state*/) {}
+
+  protected:
+    /// For a protocol whose interval follows from the time step, known only at start() (>= 1).
+    void set_control_interval(Index steps) { control_interval_ = steps; }
 
   private:
     Index control_interval_;

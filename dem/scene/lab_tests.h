@@ -57,6 +57,14 @@ namespace anticrack::dem
   /// Entries of DEM/Loading that a test needs positive, though their patterns allow zero.
   void require_positive(Problems &problems, std::initializer_list<std::pair<const char *, double>> entries,
                         const std::string &why);
+  /// The compaction curve's strain between two history rows (dem/lab/compaction_test.h), shared by
+  /// DEM/Loading/Curve strain interval of a compaction scene and Campaign/Compaction curve strain
+  /// interval: the default (docs/work_precision.md measures it), the documentation, and the check
+  /// that a curve to `final_strain` gets the rows the fit needs.
+  inline constexpr const char *curve_strain_interval_default = "5e-5";
+  extern const char *const curve_strain_interval_help;
+  void check_curve_strain_interval(Problems &problems, const std::string &entry, double interval,
+                                   double final_strain);
   /// Tilted gravity and simple shear load the clump against the fixed base.
   void check_fixed_base_and_clump(const parameters::Loading &loading, const parameters::Dem &dem,
                                   Problems &problems);

@@ -333,9 +333,14 @@ namespace anticrack::dem
           << " files at most)\n";
     };
     s << "\nOutputs (into the -o directory)\n"
-      << "  summary.json\n"
-      << "  history.h5          every " << (o.history_interval > 0 ? std::to_string(o.history_interval) : "-")
-      << " steps (" << (o.history_interval > 0 ? d.steps / o.history_interval + 2 : 2) << " rows at most)\n";
+      << "  summary.json\n";
+    if (d.loading.test == &lab_test("compaction")) // dem::LabProtocol::samples_history
+      s << "  history.h5          a row every " << d.loading.curve_strain_interval << " of strain ("
+        << static_cast<Index>(d.loading.stop_strain / d.loading.curve_strain_interval) + 2
+        << " rows at most; DEM/Loading/Curve strain interval, in place of History interval [steps])\n";
+    else
+      s << "  history.h5          every " << (o.history_interval > 0 ? std::to_string(o.history_interval) : "-")
+        << " steps (" << (o.history_interval > 0 ? d.steps / o.history_interval + 2 : 2) << " rows at most)\n";
     every(o.snapshot_interval, "snapshots/         ");
     if (o.snapshot_interval > 0 && o.write_paraview)
       s << "  paraview/           .vtp and .pvd at every snapshot\n";

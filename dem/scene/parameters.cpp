@@ -647,6 +647,9 @@ namespace anticrack::dem
       prm.declare_entry("Compaction final strain", "0", Patterns::Double(0, 1),
                         "-u_z / H0 at which the compaction tests end: past the lock-up of the collapsed layer "
                         "(the calibration refuses a test that ends before it). Dimensionless.");
+      prm.declare_entry("Compaction curve strain interval", curve_strain_interval_default, Patterns::Double(0),
+                        std::string("The compaction tests' DEM/Loading/Curve strain interval. ") +
+                          curve_strain_interval_help);
       prm.leave_subsection();
     }
 
@@ -678,6 +681,7 @@ namespace anticrack::dem
       quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
       compaction_strain_rate = prm.get_double("Compaction strain rate [1/s]");
       compaction_final_strain = prm.get_double("Compaction final strain");
+      compaction_curve_strain_interval = prm.get_double("Compaction curve strain interval");
       prm.leave_subsection();
     }
 
@@ -706,6 +710,9 @@ namespace anticrack::dem
       if (has_compaction_tests() && !(compaction_final_strain > 0 && compaction_final_strain < 1))
         problems.add("Campaign/Compaction final strain", compaction_final_strain,
                      "must lie in (0, 1) when Compaction strain rate [1/s] is set: the compaction tests end there");
+      else if (has_compaction_tests())
+        check_curve_strain_interval(problems, "Campaign/Compaction curve strain interval",
+                                    compaction_curve_strain_interval, compaction_final_strain);
     }
   } // namespace parameters
 

@@ -266,6 +266,7 @@ namespace anticrack::dem
       double post_peak_fraction = 0.5;
       // compaction (dem/lab/compaction_test.h)
       double compaction_strain_rate = 0; ///< [1/s]
+      double curve_strain_interval = 0;  ///< strain between the compaction curve's history rows
       /// The values of a test that no other module reads (see Sample::settings).
       std::any settings;
 
@@ -342,6 +343,7 @@ namespace anticrack::dem
       /// Displacement-controlled compaction test per realization (dem/lab/compaction_test.h), 0 = none.
       double compaction_strain_rate = 0;      ///< [1/s]
       double compaction_final_strain = 0;     ///< -u_z / H0 at which it ends
+      double compaction_curve_strain_interval = 0; ///< strain between its curve's history rows
 
       [[nodiscard]] bool has_compaction_tests() const { return compaction_strain_rate > 0; }
 

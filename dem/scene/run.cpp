@@ -144,6 +144,10 @@ namespace anticrack::dem
     Index last_history_step_ = -1, last_snapshot_step_ = -1, last_checkpoint_step_ = -1;
     Index snapshots_written_ = 0, checkpoints_written_ = 0;
     bool protocol_finished_ = false;
+    /// The protocol asked for a history row at this step's control call.
+    bool history_row_due_ = false;
+    /// The protocol, not Output/History interval [steps], says when the history takes a row.
+    [[nodiscard]] bool sampled_by_protocol() const { return protocol_ && protocol_->samples_history(); }
 
     // --- time series
     TimeSeries history_;
@@ -432,8 +436,10 @@ namespace anticrack::dem
     const auto phase = timer_.scope("output");
     const auto &o = scene_.output;
     const Index step = system_.step_count;
-    if (first || last || multiple_of(step, o.history_interval))
+    // A protocol that samples its own curve (dem::LabProtocol::samples_history) takes the rows.
+    if (first || last || (sampled_by_protocol() ? history_row_due_ : multiple_of(step, o.history_interval)))
       record_history();
+    history_row_due_ = false;
     if (o.snapshot_interval > 0 && (first || last || multiple_of(step, o.snapshot_interval)))
       write_snapshot();
     // No checkpoint at the first step of a run: there is nothing to resume yet.
@@ -598,7 +604,8 @@ namespace anticrack::dem
       {
         const Index now = system_.step_count;
         Index next = std::min(total_steps_, now + max_chunk);
-        for (const Index interval : {o.history_interval, o.snapshot_interval, o.checkpoint_interval,
+        const Index history_interval = sampled_by_protocol() ? 0 : o.history_interval;
+        for (const Index interval : {history_interval, o.snapshot_interval, o.checkpoint_interval,
                                      o.progress_interval, control_interval})
           if (interval > 0)
             next = std::min(next, (now / interval + 1) * interval);
@@ -606,7 +613,10 @@ namespace anticrack::dem
           const auto phase = timer_.scope("time stepping");
           system_.run(next - now);
           if (protocol_ && multiple_of(system_.step_count, control_interval))
+          {
             protocol_->control(system_);
+            history_row_due_ = sampled_by_protocol() && protocol_->history_row_due(system_);
+          }
           protocol_finished_ = protocol_ && protocol_->finished(system_);
         }
         write_outputs(false, system_.step_count == total_steps_ || protocol_finished_);

@@ -9,25 +9,48 @@
 #include "dem/scene/scene_entries.h"
 #include "util/problems.h"
 
+#include <sstream>
+
 namespace anticrack::dem
 {
+  const char *const curve_strain_interval_help =
+    "Strain between two history rows of the compaction curve, in (0, final strain / 20]: the test "
+    "records its curve in strain, not every Output/History interval [steps], so that the peak, the "
+    "drop and the lock-up read from it depend neither on the time step (the sphere size) nor on an "
+    "output interval (dem/lab/compaction_test.h; docs/work_precision.md measures it). Dimensionless.";
+
+  void check_curve_strain_interval(Problems &problems, const std::string &entry, const double interval,
+                                   const double final_strain)
+  {
+    const double largest = final_strain / static_cast<double>(compaction_minimum_samples);
+    if (!(interval > 0 && interval <= largest))
+    {
+      std::ostringstream why;
+      why << "must lie in (0, " << largest << "]: the final strain " << final_strain << " over the "
+          << compaction_minimum_samples << " rows the curve's fit needs at the least";
+      problems.add(entry, interval, why.str());
+    }
+  }
+
   namespace
   {
     using parameters::Loading;
 
     void declare(VariantEntries &entries)
     {
-      entries.shared("Control interval [steps]");
       entries.shared("Stop strain");
       entries.entry("Compaction strain rate [1/s]", "0", Patterns::Double(0),
                     "gamma_dot = v / H0: the platen's constant speed over the specimen's initial height "
                     "(compaction); slow enough for a stress wave to cross the layer many times before the peak "
                     "(dem/lab/compaction_test.h). Units: 1/s.");
+      entries.entry("Curve strain interval", curve_strain_interval_default, Patterns::Double(0),
+                    curve_strain_interval_help);
     }
 
     void parse(dealii::ParameterHandler &prm, Loading &l)
     {
       l.compaction_strain_rate = prm.get_double("Compaction strain rate [1/s]");
+      l.curve_strain_interval = prm.get_double("Curve strain interval");
     }
 
     void check(const Loading &l, const parameters::Dem &d, Problems &problems)
@@ -39,6 +62,9 @@ namespace anticrack::dem
         problems.add("DEM/Loading/Stop strain", l.stop_strain,
                      "the compaction test ends at this strain: it must lie in (0, 1), past the lock-up of the "
                      "collapsed layer");
+      else
+        check_curve_strain_interval(problems, "DEM/Loading/Curve strain interval", l.curve_strain_interval,
+                                    l.stop_strain);
     }
 
     std::unique_ptr<LabProtocol> make_protocol(const SceneParameters &scene, DemModel &model)
@@ -53,7 +79,7 @@ namespace anticrack::dem
       s.strain_rate = d.loading.compaction_strain_rate;
       s.height = high - low;
       s.final_strain = d.loading.stop_strain;
-      s.interval = d.loading.ramp.interval;
+      s.curve_strain_interval = d.loading.curve_strain_interval;
       auto test = std::make_unique<dem::CompactionTest>(model.clump, model.fixed_particles, model.base_area, s);
       test->start(model.system);
       return test;
