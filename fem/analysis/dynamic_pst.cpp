@@ -533,18 +533,24 @@ namespace anticrack::fem
         const double lead = self_propagation_lead(scene_);
         const bool reached_end = outcome_ == Outcome::end;
         // The saw's critical cut is bracketed by the rows: the crack ran by itself from a cut
-        // between the last row before the detection at which its tip was still within two element
-        // lengths of the saw and the cut at the detection (which waits for a lead of one slab
-        // thickness, so that a tip that only jumps ahead of the saw by a few elements is not taken
-        // for a running crack). The lower end is reported; the critical cut as practice defines
-        // it (independent of the saw speed) is the quasi-static PST's and the bisection's
-        // (docs/fem.md "The critical cut").
+        // between the last row before the detection at which its tip was still at the saw and
+        // the cut at the detection (which waits for a lead of one slab thickness, so that a tip
+        // that only jumps ahead of the saw by a few elements is not taken for a running crack).
+        // "At the saw" is within the weak layer's thickness (at least one element, the tip's
+        // resolution): a length of the snowpack, not of the mesh. Two element lengths, as
+        // before, made the answer the mesh's: the lead of the tip over the saw grows smoothly
+        // with the cut, and the same curve read at 4, 2 and 1 cm gave 0.245, 0.215 and 0.197 m
+        // on 2, 1 and 0.5 cm elements; read at the layer's 2 cm, 0.225, 0.215 and 0.212 m
+        // (docs/work_precision.md). The lower end is reported; the critical cut as practice
+        // defines it (independent of the saw speed and of this length) is the quasi-static PST's
+        // and the bisection's (docs/fem.md "The critical cut").
         const auto &t = series_.values("time"), &tip = series_.values("crack_tip"),
                    &td = series_.values("touchdown_front"), &cuts = series_.values("cut_length");
         std::optional<double> critical_cut = critical_cut_, critical_time = critical_time_;
+        const double at_the_saw = std::max(scene_.snowpack.weak_layer.thickness, dx);
         if (critical_time_)
           for (std::size_t k = 0; k < t.size() && t[k] <= *critical_time_; ++k)
-            if (tip[k] - cuts[k] <= 2 * dx)
+            if (tip[k] - cuts[k] <= at_the_saw)
             {
               critical_cut = cuts[k];
               critical_time = t[k];
