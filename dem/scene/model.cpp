@@ -334,7 +334,9 @@ namespace anticrack::dem
     };
     s << "\nOutputs (into the -o directory)\n"
       << "  summary.json\n";
-    if (d.loading.test == &lab_test("compaction")) // dem::LabProtocol::samples_history
+    // The test that samples its own curve (dem::LabProtocol::samples_history) is the one whose
+    // interval is set: only the compaction test reads DEM/Loading/Curve strain interval.
+    if (d.loading.curve_strain_interval > 0)
       s << "  history.h5          a row every " << d.loading.curve_strain_interval << " of strain ("
         << static_cast<Index>(d.loading.stop_strain / d.loading.curve_strain_interval) + 2
         << " rows at most; DEM/Loading/Curve strain interval, in place of History interval [steps])\n";
