@@ -61,6 +61,7 @@ namespace
 
   const ErrorKind error_kinds[] = {
     {is<InputError>, "anticrack: invalid input (nothing was written)", exit_bad_input},
+    {is<UnusableOutputFile>, "anticrack: a file of an earlier run cannot be used (nothing was written)", exit_bad_input},
     {is<dem::SetupError>, "anticrack: invalid set-up", exit_bad_input},
     {is<dem::NumericalError>, "anticrack: numerical failure", exit_numerical_failure},
     {is<std::exception>, "anticrack: error", exit_numerical_failure},

@@ -57,11 +57,47 @@ namespace anticrack::coupling
       std::string scene_file;    ///< the scene the stage runs
     };
 
-    /// A stage's summary.json, or null if the stage did not get as far as writing one.
-    Json summary_if_any(const fs::path &directory)
+    /// What an earlier run of the pipeline recorded of its stages (its summary.json), by name; empty
+    /// when it got no further than its first stage (killed before its first summary). A summary that
+    /// is not a pipeline's (torn, or another kind's) is refused naming it (UnusableOutputFile).
+    std::map<std::string, Json> earlier_stages(const fs::path &dir)
+    {
+      std::map<std::string, Json> before;
+      const fs::path file = dir / "summary.json";
+      std::error_code error;
+      if (!fs::exists(file, error))
+        return before;
+      return interpret_json_file(
+        file.string(), "a pipeline's summary (a list of stages, each with its name, status and input hash)",
+        [&](const Json &summary) {
+          for (const Json &s : summary.at("stages"))
+          {
+            // The types each field must have, checked here: a foreign file is refused now, not
+            // misread later.
+            s.at("inputs_sha256").get<std::string>();
+            s.at("status").get<std::string>();
+            s.at("wall_s").get<double>();
+            before[s.at("name").get<std::string>()] = s;
+          }
+          return before;
+        },
+        "Run again with --overwrite to start afresh, or delete " + file.string() +
+          ": every stage then runs again, the weak layer's campaign keeping its completed tests and each "
+          "PST that completed with the same inputs.");
+    }
+
+    /// A stage's summary.json read by `headline` (null if the stage did not get as far as writing
+    /// one); a summary that is not a `kind` is refused naming it, and to delete the stage's folder.
+    template <class Headline>
+    Json stage_summary_headline(const fs::path &directory, const std::string &kind, Headline &&headline)
     {
       std::error_code error;
-      return fs::exists(directory / "summary.json", error) ? read_json_file((directory / "summary.json").string()) : Json();
+      const fs::path file = directory / "summary.json";
+      if (!fs::exists(file, error))
+        return headline(Json());
+      return interpret_json_file(file.string(), kind, headline,
+                                 "Delete " + directory.string() + " to run that stage again, or run the pipeline "
+                                 "with --overwrite to start afresh.");
     }
 
     /// Stage directories: the scene's stem, numbered if two scenes share one.
@@ -82,11 +118,11 @@ namespace anticrack::coupling
     /// well the FE point repeats the DEM tests.
     Json calibration_headline(const fs::path &directory)
     {
-      const Json summary = summary_if_any(directory);
+      return stage_summary_headline(directory, "a calibration's summary", [&](const Json &summary) {
       Json h;
       if (summary.is_null())
         return h; // the stage did not get as far as its summary
-      const Json &m = summary["calibration"]["microstructures"][0];
+      const Json &m = summary.at("calibration").at("microstructures").at(0);
       const fs::path file = directory / material_file_name(0, 1, true);
       h["material_file"] = file.string();
       const fem::MaterialFile material = fem::read_material_file_text(read_text_file((file).string()), file.string());
@@ -102,29 +138,40 @@ namespace anticrack::coupling
           h["material"][e.name()] = entry;
         }
       h["confidence"] = material.uncertainty.confidence;
-      h["material_point_replay"] = {{"largest_angle_error", m["material_point_replay"]["largest_angle_error"]},
-                                    {"fit_relative_rmse", m["material_point_replay"]["fit_relative_rmse"]}};
-      h["wall_s"] = summary["timing"]["wall_s"];
+      h["material_point_replay"] = {{"largest_angle_error", m.at("material_point_replay").at("largest_angle_error")},
+                                    {"fit_relative_rmse", m.at("material_point_replay").at("fit_relative_rmse")}};
+      h["wall_s"] = summary.at("timing").at("wall_s");
       return h;
+      });
     }
 
     /// The headline of a snowpack stage (the FE's results without the bulky entries).
     Json snowpack_headline(const fs::path &directory)
     {
-      const Json summary = summary_if_any(directory);
-      if (summary.is_null())
-        return Json::object(); // the stage did not get as far as its summary
-      Json h{{"status", summary["status"]}};
-      if (summary["results"].contains("mesh"))
-        h["element_length_m"] = summary["results"]["mesh"].value("element_length_m", 0.0);
-      std::vector<const char *> keys = {"analysis", "outcome", "arrest_position_m", "fracture_energy_J_per_m2",
-                                        "critical_cut_length_interval", "gaume2017"};
-      for (const PstAnswer &a : pst_answers())
-        keys.push_back(a.key);
-      for (const char *key : keys)
-        if (summary["results"].contains(key))
-          h[key] = summary["results"][key];
-      return h;
+      return stage_summary_headline(directory, "an FE run's summary", [&](const Json &summary) {
+        if (summary.is_null())
+          return Json::object(); // the stage did not get as far as its summary
+        Json h{{"status", summary.at("status").get<std::string>()}};
+        const Json results = summary.value("results", Json::object()); // none when the run stopped early
+        if (results.contains("mesh"))
+          h["element_length_m"] = results.at("mesh").value("element_length_m", 0.0);
+        std::vector<const char *> keys = {"analysis", "outcome", "arrest_position_m", "fracture_energy_J_per_m2",
+                                          "critical_cut_length_interval", "gaume2017"};
+        for (const PstAnswer &a : pst_answers())
+          keys.push_back(a.key);
+        for (const char *key : keys)
+          if (results.contains(key))
+            h[key] = results.at(key);
+        return h;
+      });
+    }
+
+    /// The wall time an FE run recorded in its summary.json.
+    double snowpack_wall_s(const fs::path &directory)
+    {
+      return stage_summary_headline(directory, "an FE run's summary", [](const Json &summary) {
+        return summary.is_null() ? 0.0 : summary.at("timing").at("wall_s").get<double>();
+      });
     }
 
     Json stage_json(const Stage &s)
@@ -321,10 +368,8 @@ namespace anticrack::coupling
         MPI_Barrier(MPI_COMM_WORLD);
     };
 
-    std::map<std::string, Json> before; // the earlier run's stage records, by name
-    if (options.resume)
-      for (const Json &s : summary_if_any(dir).value("stages", Json::array()))
-        before[s.value("name", "")] = s;
+    // The earlier run's stage records, by name (read, and refused if unusable, before anything is written).
+    const std::map<std::string, Json> before = options.resume ? earlier_stages(dir) : std::map<std::string, Json>();
     const std::vector<std::string> names = stage_names(scene.snowpack_scenes);
     if (root)
     {
@@ -405,7 +450,7 @@ namespace anticrack::coupling
     if (unchanged(weak) && fs::exists(material))
     {
       weak.status = "completed earlier";
-      weak.wall_s = before[weak.name].value("wall_s", 0.0);
+      weak.wall_s = before.at(weak.name).value("wall_s", 0.0);
       if (root)
         std::cout << "pipeline stage 1/" << stages.size() << ", weak layer: completed earlier, inputs unchanged\n";
     }
@@ -455,10 +500,13 @@ namespace anticrack::coupling
       const std::string text =
         snowpack_scene_text(scene, scene.snowpack_scenes[k - 1], fs::absolute(material).lexically_normal().string());
       s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + material_sha256);
-      if (unchanged(s))
+      // Completed earlier: recorded so by the pipeline, or by the FE run itself when the pipeline
+      // was killed before it could record it.
+      const bool recorded = unchanged(s);
+      if (recorded || completed_from_scene((s.directory / "summary.json").string(), util::sha256_hex(text)))
       {
         s.status = "completed earlier";
-        s.wall_s = before[s.name].value("wall_s", 0.0);
+        s.wall_s = recorded ? before.at(s.name).value("wall_s", 0.0) : snowpack_wall_s(s.directory);
         s.results = snowpack_headline(s.directory);
         if (root)
           std::cout << "pipeline stage " << k + 1 << "/" << stages.size() << ", " << s.name
@@ -468,7 +516,7 @@ namespace anticrack::coupling
       if (root)
       {
         fs::create_directories(s.directory);
-        std::ofstream(s.scene_file) << text;
+        write_text_atomically(s.scene_file, [&](std::ostream &out) { out << text; });
       }
       to_run.push_back(k);
     }
@@ -508,8 +556,8 @@ namespace anticrack::coupling
       if (unchanged(uncertainty))
       {
         uncertainty.status = "completed earlier";
-        uncertainty.wall_s = before[uncertainty.name].value("wall_s", 0.0);
-        uncertainty.results = before[uncertainty.name].value("results", Json());
+        uncertainty.wall_s = before.at(uncertainty.name).value("wall_s", 0.0);
+        uncertainty.results = before.at(uncertainty.name).value("results", Json());
         if (root)
           std::cout << "pipeline stage " << stages.size() << "/" << stages.size()
                     << ", uncertainty: completed earlier, inputs unchanged\n";
@@ -539,7 +587,8 @@ namespace anticrack::coupling
                                                 : std::nullopt);
         const auto stage_start = Clock::now();
         const fem::MaterialFile calibrated = fem::read_material_file_text(read_text_file((material).string()), material.string());
-        std::vector<FeJob> jobs;
+        std::vector<FeJob> jobs;     // every run of the stage, in a fixed order
+        std::vector<FeJob> to_start; // those not completed in an earlier, interrupted run
         std::vector<std::pair<std::size_t, std::size_t>> job_of; // (snowpack stage, parameter)
         for (std::size_t k = 0; k < u.names.size(); ++k)
         {
@@ -547,30 +596,41 @@ namespace anticrack::coupling
           if (root)
           {
             fs::create_directories(uncertainty.directory);
-            std::ofstream(file) << fem::material_file_text(perturbed_material(calibrated, u, k));
+            write_text_atomically(file.string(), [&](std::ostream &out) {
+              out << fem::material_file_text(perturbed_material(calibrated, u, k));
+            });
           }
+          barrier(); // the material file is there before any rank hashes it
           for (std::size_t j = 1; j + 1 < stages.size(); ++j)
           {
             if (std::find(rerun[j].names.begin(), rerun[j].names.end(), u.names[k]) == rerun[j].names.end())
               continue;
             const std::string name = stages[j].name + "_" + u.names[k];
             const fs::path run = uncertainty.directory / name;
+            const std::string text =
+              snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string());
+            jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options)});
+            job_of.emplace_back(j, k);
+            if (options.resume && completed_from_scene((run / "summary.json").string(), util::sha256_hex(text)))
+            {
+              if (root)
+                std::cout << "pipeline uncertainty " << name << ": completed earlier, inputs unchanged\n";
+              continue;
+            }
             if (root)
             {
               fs::create_directories(run);
-              std::ofstream(run / "scene.prm")
-                << snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string());
+              write_text_atomically((run / "scene.prm").string(), [&](std::ostream &out) { out << text; });
             }
-            jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options)});
-            job_of.emplace_back(j, k);
+            to_start.push_back(jobs.back());
           }
         }
         barrier();
-        bool all_completed = true;
-        run_fe_jobs(jobs, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
+        bool all_completed = true; // the runs completed earlier did
+        run_fe_jobs(to_start, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
           all_completed = all_completed && code == exit_success;
           if (root)
-            std::cout << "pipeline uncertainty " << jobs[j].label << ": " << status_of(code) << " in "
+            std::cout << "pipeline uncertainty " << to_start[j].label << ": " << status_of(code) << " in "
                       << format_duration(wall) << "\n"
                       << std::flush;
         });

@@ -405,14 +405,28 @@ namespace anticrack::coupling
       const fs::path record = dir / "variants" / runs[k].variant.id / "variant.json";
       if (options.resume && fs::exists(record))
       {
-        const Json before = read_json_file(record.string());
-        if (before.value("scene_sha256", "") == runs[k].scene_sha256 &&
-            (before.value("status", "") == "completed" || before.value("status", "") == "completed earlier"))
+        const bool completed = interpret_json_file(record.string(), "a study variant's record", [&](const Json &before) {
+          if (before.value("scene_sha256", "") != runs[k].scene_sha256 ||
+              (before.value("status", "") != "completed" && before.value("status", "") != "completed earlier"))
+            return false;
+          runs[k].wall_s = before.value("wall_s", 0.0);
+          return true;
+        });
+        if (completed)
         {
           runs[k].status = "completed earlier";
-          runs[k].wall_s = before.value("wall_s", 0.0);
           continue;
         }
+      }
+      // A run that completed although the study was killed before it could record it.
+      const fs::path run_summary = dir / "variants" / runs[k].variant.id / "run" / "summary.json";
+      if (options.resume && completed_from_scene(run_summary.string(), runs[k].scene_sha256))
+      {
+        runs[k].status = "completed earlier";
+        runs[k].wall_s = interpret_json_file(run_summary.string(), "a run's summary", [](const Json &s) {
+          return s.at("timing").at("wall_s").get<double>();
+        });
+        continue;
       }
       to_run.push_back(k);
     }

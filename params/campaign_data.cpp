@@ -144,7 +144,10 @@ namespace anticrack::params
     }
     catch (const std::exception &e)
     {
-      throw CalibrationError(file + ": cannot read the campaign (" + e.what() + ")");
+      throw CalibrationError(file + ": cannot read the campaign (" + e.what() +
+                             "): it is torn, cut short or not complete. If a campaign wrote it, run that campaign "
+                             "again with --resume: it rewrites campaign.h5 from its tests' results, running only "
+                             "the tests that did not complete");
     }
     data.sha256 = util::sha256_of_file(file);
     return data;

@@ -206,8 +206,10 @@ def plot(run_dir, summary, scale, path):
     ax.invert_yaxis()
     fig.suptitle(f"anticrack pipeline {summary['scene']['file']}", fontsize=11)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    # Through a temporary name and a rename, as every output (a kill never leaves a torn report.png).
+    fig.savefig(path + ".tmp.png", dpi=110)
     plt.close(fig)
+    os.replace(path + ".tmp.png", path)
 
 
 def main():
@@ -220,8 +222,10 @@ def main():
     lines = [f"# Pipeline report: `{summary['scene']['file']}`", "",
              f"Status: {summary['status']}; {len(summary['stages'])} stages; outputs in `{run_dir}`.", "",
              "![report](report.png)", ""] + weak_lines + [""] + stage_section(run_dir, summary)
-    with open(os.path.join(run_dir, "report.md"), "w") as f:
+    report = os.path.join(run_dir, "report.md")
+    with open(report + ".tmp", "w") as f:
         f.write("\n".join(lines) + "\n")
+    os.replace(report + ".tmp", report)
     plot(run_dir, summary, scale, os.path.join(run_dir, "report.png"))
     print(f"wrote {os.path.join(run_dir, 'report.md')} and report.png")
     return 0

@@ -1,6 +1,8 @@
 #include "util/atomic_file.h"
 
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
@@ -27,6 +29,21 @@ namespace anticrack
       }
       ::close(descriptor);
     }
+
+    /// The fault-injection hook of the resume tests (tests/faults, docs/resume.md): with
+    /// ANTICRACK_KILL_WHILE_WRITING set to a path's end (`campaign.h5`, `weak_layer/summary.json`),
+    /// the process group is killed by SIGKILL, as `kill -9 -- -PGID` would, the first time such a
+    /// file has been written under its temporary name and not yet renamed: the moment a power cut
+    /// would leave a torn file if the writes were not atomic. Unset, it costs one getenv per file.
+    void kill_if_injected_fault(const std::string &file)
+    {
+      const char *target = std::getenv("ANTICRACK_KILL_WHILE_WRITING");
+      if (target == nullptr || *target == '\0')
+        return;
+      const std::string end(target);
+      if (file.size() >= end.size() && file.compare(file.size() - end.size(), end.size(), end) == 0)
+        ::kill(0, SIGKILL);
+    }
   } // namespace
 
   void write_atomically(const std::string &file, const std::function<void(const std::string &temporary)> &write,
@@ -38,6 +55,7 @@ namespace anticrack
       write(temporary);
       if (durable)
         flush_to_disk(temporary);
+      kill_if_injected_fault(file);
       if (std::rename(temporary.c_str(), file.c_str()) != 0)
       {
         const std::string reason = std::strerror(errno);

@@ -1,12 +1,14 @@
 #include "util/run_summary.h"
 
 #include "util/atomic_file.h"
+#include "util/sha256.h"
 #include "util/source_version.h"
 
 #include <Eigen/Core>
 #include <hdf5.h>
 #include <omp.h>
 
+#include <filesystem>
 #include <stdexcept>
 
 // From CMake (util/CMakeLists.txt): util links no deal.II.
@@ -40,14 +42,39 @@ namespace anticrack
   Json read_json_file(const std::string &file)
   {
     const std::string text = read_text_file(file);
+    Json json;
     try
     {
-      return Json::parse(text);
+      json = Json::parse(text);
     }
     catch (const std::exception &e)
     {
-      throw std::runtime_error(file + " is not valid JSON: " + e.what());
+      throw UnusableOutputFile(file, text.empty() ? "is empty" : "is not valid JSON (torn, cut short, or not written by anticrack)");
     }
+    if (!json.is_object())
+      throw UnusableOutputFile(file, "holds JSON but not an object (" + std::string(json.type_name()) +
+                                       "): it is not a file anticrack writes");
+    return json;
+  }
+
+  bool completed_from_scene(const std::string &summary_file, const std::string &scene_sha256)
+  {
+    std::error_code error;
+    if (!std::filesystem::exists(summary_file, error))
+      return false;
+    return interpret_json_file(summary_file, "a run's summary", [&](const Json &summary) {
+      if (summary.value("status", "") != "completed" || !summary.contains("scene") ||
+          summary["scene"].value("file_sha256", "") != scene_sha256)
+        return false;
+      const Json materials = summary["scene"].value("material_files", Json::object()); // named: items() refers to it
+      for (const auto &[layer, material] : materials.items())
+      {
+        const std::string file = material.at("file").get<std::string>();
+        if (!std::filesystem::exists(file, error) || util::sha256_of_file(file) != material.at("sha256").get<std::string>())
+          return false;
+      }
+      return true;
+    });
   }
 
   void write_json_atomically(const std::string &file, const Json &json)

@@ -414,6 +414,14 @@ namespace anticrack::dem
                            name + "). Use --resume to run only the tests that have not completed, "
                            "--overwrite to start again, or another directory.");
 
+    // A resumed campaign reads the summaries of the tests that ran before: one that is not a whole
+    // JSON object (cut short by a full disk or a copy; anticrack writes them atomically) is refused
+    // here, naming it, before any test runs, rather than rerun or misread in a worker.
+    if (options.resume)
+      for (const CampaignTest &t : tests)
+        if (fs::exists(directory / "tests" / t.id / "summary.json", error))
+          read_json_file((directory / "tests" / t.id / "summary.json").string());
+
     const MpiSession &mpi = MpiSession::get();
     const bool root = mpi.rank() == 0;
     // Every rank has looked at the directory before rank 0 creates `tests` in it: a rank that

@@ -506,16 +506,12 @@ namespace anticrack::dem
       throw InputError("Cannot resume: <" + dir.string() +
                        "> has no checkpoint.h5 and checkpoint.json (set Output/Checkpoint "
                        "interval [steps] > 0 to write them).");
-    Json info;
-    try
-    {
-      std::ifstream in(files_.checkpoint_info());
-      info = Json::parse(in);
-    }
-    catch (const std::exception &e)
-    {
-      throw InputError("Cannot resume: <" + files_.checkpoint_info().string() + "> is unreadable: " + e.what());
-    }
+    // A torn or foreign index or checkpoint is refused naming it (util/input_error.h).
+    const std::string restart = "Run again without --resume and with --overwrite to start the run afresh.";
+    const Json info = interpret_json_file(files_.checkpoint_info().string(), "a DEM checkpoint's index", [](const Json &j) {
+      j.at("scene").at("resume_key_sha256").get<std::string>();
+      return j;
+    }, restart);
     const std::string saved_key = info.value(Json::json_pointer("/scene/resume_key_sha256"), std::string());
     if (saved_key != scene_.resume_key_sha256)
       throw InputError(
@@ -531,7 +527,8 @@ namespace anticrack::dem
     }
     catch (const std::exception &e)
     {
-      throw InputError("Cannot resume from <" + files_.checkpoint().string() + ">: " + e.what());
+      throw UnusableOutputFile(files_.checkpoint().string(),
+                               "cannot be read back as this scene's checkpoint (" + std::string(e.what()) + ")", restart);
     }
     if (system_.step_count > total_steps_)
       throw InputError("Cannot resume: the checkpoint is at step " + std::to_string(system_.step_count) +

@@ -10,6 +10,7 @@
 #include "util/enum_table.h"
 #include "util/input_error.h"
 #include "util/problems.h"
+#include "util/run_summary.h"
 #include "util/stop_signals.h"
 
 #include <deal.II/base/mpi.h>
@@ -474,7 +475,15 @@ namespace anticrack::fem
         std::ifstream json_in(json_file);
         if (!json_in)
           throw InputError("cannot resume: " + json_file + " does not exist (set Output/Checkpoint interval)");
-        const Json info = Json::parse(json_in);
+        json_in.close();
+        // A torn or foreign index is refused naming it (never a JSON library's text).
+        const std::string restart = "Run again without --resume and with --overwrite to start the run afresh.";
+        const Json info = interpret_json_file(json_file, "an FE checkpoint's index", [](const Json &j) {
+          j.at("resume_key_sha256").get<std::string>();
+          j.at("ranks").get<unsigned int>();
+          j.at("step").get<unsigned long>();
+          return j;
+        }, restart);
         if (info.value("resume_key_sha256", "") != scene_.resume_key_sha256)
           throw InputError("cannot resume from " + json_file +
                            ": it was written by another scene (only Analysis/Explicit/End time and Output may "
@@ -521,7 +530,10 @@ namespace anticrack::fem
         }
         catch (const checkpoint::Mismatch &e)
         {
-          throw InputError("cannot resume from " + json_file + ": " + e.what());
+          // The index matched this scene, so a file that does not read back is torn or foreign.
+          throw UnusableOutputFile(rank_file(step, Utilities::MPI::this_mpi_process(comm_)),
+                                   "cannot be read back as this scene's checkpoint (" + std::string(e.what()) + ")",
+                                   restart);
         }
         log_.line("[fem] resumed at step ", step, ", t = ", format_number(dynamics_->time(), 4), " s");
       }

@@ -2234,8 +2234,8 @@ def pipeline_small(work):
     """`run` of a pipeline scene: the weak layer's campaign and calibration, its material in snow units
     (E and p0 times 2e5/1e6 = 0.2, the density phi 917 kg/m^3), both PSTs run from a scene.prm that
     names it, summary.json with every stage's input hash and results, report.md and report.png, the
-    short report printed. --resume reruns nothing when nothing changed, only the changed PST when its
-    scene changes, and everything after the weak layer when the snow units change (the campaign
+    short report printed. --resume reruns nothing when nothing changed, only the changed PST and its
+    uncertainty runs when its scene changes, and everything after the weak layer when the snow units change (the campaign
     itself resumed test by test)."""
     pipeline, weak, flat, steep = pipeline_files(work)
     out = os.path.join(work, "out")
@@ -2295,8 +2295,9 @@ def pipeline_small(work):
     check(stdout.count("completed earlier, inputs unchanged") == 4, f"an unchanged stage was rerun:\n{stdout}")
     write(steep, open(steep).read().replace("set Slope angle [deg] = 30", "set Slope angle [deg] = 25"))
     stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
-    check(stdout.count("completed earlier, inputs unchanged") == 2 and "steep: completed" in stdout,
-          f"only the changed PST should have run:\n{stdout}")
+    check(stdout.count("completed earlier, inputs unchanged") == 5 and "steep: completed" in stdout and
+          all(f"uncertainty flat_{p}: completed earlier" in stdout for p in ("p0", "beta", "M")),
+          f"only the changed PST and its uncertainty runs should have run:\n{stdout}")
     write(pipeline, open(pipeline).read().replace("2e5", "3e5"))
     stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
     check("completed earlier, inputs unchanged" not in stdout and stdout.count("completed earlier, skipped") == 5,
@@ -2627,9 +2628,12 @@ def fem_params(work):
           f"`params` of an energy release rate scene lists another analysis' entries:\n{own}")
 
 
-def main():
+def main(cases=None, description=None):
+    """Runs the cases named on the command line, of `cases` (default: this file's; tests/faults runs
+    its own through this)."""
     global ANTICRACK, SOURCE
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    cases = CASES if cases is None else cases
+    parser = argparse.ArgumentParser(description=(description or __doc__).splitlines()[0])
     parser.add_argument("--anticrack", help="the built anticrack executable")
     parser.add_argument("--source-dir", help="the source tree (for scenes/)")
     parser.add_argument("--work-dir", help="where the cases write their files")
@@ -2637,12 +2641,12 @@ def main():
     parser.add_argument("cases", nargs="*", metavar="CASE", help="one of --list")
     args = parser.parse_args()
     if args.list:
-        for name, function in CASES.items():
+        for name, function in cases.items():
             print(f"{name:24s} {function.__doc__.splitlines()[0]}")
         return 0
     if not (args.anticrack and args.source_dir and args.work_dir and args.cases):
         parser.error("--anticrack, --source-dir, --work-dir and at least one CASE are needed")
-    unknown = [c for c in args.cases if c not in CASES]
+    unknown = [c for c in args.cases if c not in cases]
     if unknown:
         parser.error(f"unknown cases {unknown}; --list shows them")
     ANTICRACK, SOURCE = os.path.abspath(args.anticrack), os.path.abspath(args.source_dir)
@@ -2652,7 +2656,7 @@ def main():
         shutil.rmtree(work, ignore_errors=True)
         os.makedirs(work)
         try:
-            CASES[name](work)
+            cases[name](work)
         except Exception as e:  # noqa: BLE001 (report every kind of failure of the case)
             failed += 1
             detail = str(e) if isinstance(e, Failure) else traceback.format_exc()
