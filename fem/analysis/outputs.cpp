@@ -1,4 +1,5 @@
 #include "fem/analysis/outputs.h"
+#include "util/atomic_file.h"
 
 #include "fem/model/checkpoint.h"
 #include "fem/solver/quasi_static.h"
@@ -56,8 +57,7 @@ namespace anticrack::fem
     entries_.emplace_back(time, pvtu);
     if (Utilities::MPI::this_mpi_process(communicator_) == 0)
     {
-      std::ofstream out(directory_ + "/fields.pvd");
-      DataOutBase::write_pvd_record(out, entries_);
+      write_text_atomically(directory_ + "/fields.pvd", [&](std::ostream &out) { DataOutBase::write_pvd_record(out, entries_); });
     }
   }
 

@@ -22,8 +22,6 @@ import signal
 import subprocess
 import sys
 
-import h5py
-import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "app"))
 import run_app_tests as app  # noqa: E402  (the tiny scenes and the helpers of the app tests)
@@ -144,15 +142,8 @@ def compare_pipelines(reference, resumed):
                  if not line.lstrip().startswith("#") and "sha256" not in line] for d in (reference, resumed))
         check(x == y, f"weak_layer/{name} differs from the uninterrupted run's: " +
               str([(p, q) for p, q in zip(x, y) if p != q][:5]))
-    # The campaign's failure points, bit for bit.
-    tables = []
-    for d in (reference, resumed):
-        with h5py.File(os.path.join(d, "weak_layer", "campaign", "campaign.h5"), "r") as f:
-            tables.append({name: f["failure_points"][name][()] for name in f["failure_points"]})
-    for name in tables[0]:
-        check(name in tables[1] and np.array_equal(tables[0][name], tables[1][name], equal_nan=tables[0][name].dtype.kind == "f")
-              if tables[0][name].dtype.kind == "f" else np.array_equal(tables[0][name], tables[1][name]),
-              f"campaign.h5 /failure_points/{name} differs from the uninterrupted run's")
+    # The campaign's failure points and every test's history, bit for bit.
+    app.compare_campaigns(*(os.path.join(d, "weak_layer", "campaign") for d in (reference, resumed)))
     return a["results"]
 
 
@@ -221,6 +212,23 @@ def pipeline_killed(work):
     results = compare_pipelines(reference, out)
     print("\n".join(log))
     print(f"resumed pipeline == uninterrupted one, bit for bit: flat critical cut {results['analyses']['flat'].get('critical_cut_length_m')} m")
+
+
+@case
+def campaign_killed(work):
+    """The campaign of the app tests (5 angles, 256 spheres) killed by SIGKILL when two tests have
+    completed, while a test's summary.json and while campaign.h5 are written, then resumed: its
+    failure points and every test's history equal to an uninterrupted run's, bit for bit."""
+    scene = app.write(os.path.join(work, "campaign.prm"), app.campaign_scene("0, 45, 90, 135, 180"))
+    reference = os.path.join(work, "reference")
+    app.anticrack("run", scene, "-o", reference)
+    out = os.path.join(work, "killed")
+    stdout = resume_through(["run", scene, "-o", out], [
+        KillPoint("two tests completed", line=": completed,", after=2),
+        KillPoint("writing a test's summary.json", writing="/summary.json"),
+        KillPoint("writing campaign.h5", writing="/campaign.h5")], work)
+    check(stdout.count("completed earlier, skipped") == 5, f"tests were run again:\n{stdout[-3000:]}")
+    app.compare_campaigns(reference, out)
 
 
 @case
