@@ -23,6 +23,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from atomic_output import save_figure, write_text  # noqa: E402 (scripts/atomic_output.py)
 
 KPA = 1e-3
 MATERIAL_ROWS = [  # entry of subsection Material, label, scale, unit
@@ -206,10 +207,8 @@ def plot(run_dir, summary, scale, path):
     ax.invert_yaxis()
     fig.suptitle(f"anticrack pipeline {summary['scene']['file']}", fontsize=11)
     fig.tight_layout()
-    # Through a temporary name and a rename, as every output (a kill never leaves a torn report.png).
-    fig.savefig(path + ".tmp.png", dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
-    os.replace(path + ".tmp.png", path)
 
 
 def main():
@@ -222,10 +221,7 @@ def main():
     lines = [f"# Pipeline report: `{summary['scene']['file']}`", "",
              f"Status: {summary['status']}; {len(summary['stages'])} stages; outputs in `{run_dir}`.", "",
              "![report](report.png)", ""] + weak_lines + [""] + stage_section(run_dir, summary)
-    report = os.path.join(run_dir, "report.md")
-    with open(report + ".tmp", "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(report + ".tmp", report)
+    write_text(os.path.join(run_dir, "report.md"), "\n".join(lines) + "\n")
     plot(run_dir, summary, scale, os.path.join(run_dir, "report.png"))
     print(f"wrote {os.path.join(run_dir, 'report.md')} and report.png")
     return 0

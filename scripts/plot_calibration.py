@@ -28,6 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import FormatStrFormatter, FuncFormatter  # noqa: E402
 from matplotlib.transforms import offset_copy  # noqa: E402
+from atomic_output import save_figure  # noqa: E402 (scripts/atomic_output.py)
 
 KPA = 1e-3
 PLANES = {  # points' keys, axis labels, panel title
@@ -349,7 +350,7 @@ def main():
         if fig is None:
             continue
         output = os.path.join(args.directory, name)
-        fig.savefig(output, dpi=150, bbox_inches="tight")
+        save_figure(fig, output, dpi=150, bbox_inches="tight")
         plt.close(fig)
         print(f"wrote {output}")
     return 0

@@ -19,6 +19,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from atomic_output import save_figure  # noqa: E402 (scripts/atomic_output.py)
 
 
 def text(value):
@@ -75,7 +76,7 @@ def main():
     fig.colorbar(mappable, ax=axes, label="loading angle ψ [deg]", shrink=0.85)
     fig.suptitle(f"{scene}: {len(angles)} tests (marker = realization)")
     output = args.output or os.path.join(args.directory, "campaign.png")
-    fig.savefig(output, dpi=120)
+    save_figure(fig, output, dpi=120)
     print(f"wrote {output}")
     return 0
 

@@ -19,6 +19,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from atomic_output import save_figure  # noqa: E402 (scripts/atomic_output.py)
 
 PREFIXES = [(1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, "µ"), (1e-9, "n"), (1e-12, "p")]
 
@@ -161,7 +162,7 @@ def main():
     fig.suptitle(title)
     fig.tight_layout()
     output = args.output or os.path.join(args.directory, "history.png")
-    fig.savefig(output, dpi=110)
+    save_figure(fig, output, dpi=110)
     print(f"plot_history: wrote {output}")
 
 

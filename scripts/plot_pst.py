@@ -19,6 +19,7 @@ import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from atomic_output import save_figure  # noqa: E402 (scripts/atomic_output.py)
 
 
 def read(path):
@@ -96,7 +97,7 @@ def main():
     figure.suptitle(title)
     figure.tight_layout()
     output = args.output or os.path.join(args.directory, "pst.png")
-    figure.savefig(output, dpi=120)
+    save_figure(figure, output, dpi=120)
     print(f"wrote {output}")
     return 0
 

@@ -17,6 +17,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from atomic_output import save_figure  # noqa: E402 (scripts/atomic_output.py)
 
 
 def numeric(values):
@@ -66,7 +67,7 @@ def main(directory):
             ax.legend(fontsize=7)
     fig.suptitle(f"{os.path.basename(study['base_scene'])}: error against run time\n({study['cost']})", fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "work_precision.png"), dpi=120)
+    save_figure(fig, os.path.join(directory, "work_precision.png"), dpi=120)
     plt.close(fig)
 
     # A row per result and a column per entry; one entry's results four a row, as above.
@@ -103,7 +104,7 @@ def main(directory):
     fig.suptitle(f"{os.path.basename(study['base_scene'])}: answers against the varied entries\n"
                  "(red: the base scene's value)", fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(directory, "results.png"), dpi=120)
+    save_figure(fig, os.path.join(directory, "results.png"), dpi=120)
     plt.close(fig)
 
 
