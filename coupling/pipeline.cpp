@@ -20,7 +20,6 @@
 #include "util/worker_processes.h"
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
@@ -295,7 +294,6 @@ namespace anticrack::coupling
       run_jobs_in_worker_processes(
         n, std::min(cores, n),
         [&](int job, std::string &) {
-          dealii::MultithreadInfo::set_thread_limit(1);
           const FeJob &j = jobs[static_cast<std::size_t>(job)];
           const LineLabel out(std::cout, "[" + j.label + "] "), err(std::cerr, "[" + j.label + "] ");
           return fem::run_snowpack_scene(j.options);

@@ -12,6 +12,7 @@
 #include "util/sha256.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <chrono>
 #include <cmath>
@@ -76,6 +77,11 @@ namespace anticrack::fem
 
   void start_fe_mpi(std::optional<dealii::Utilities::MPI::MPI_InitFinalize> &mpi)
   {
+    // One thread per process, also where MPI was started before (under mpirun, by the application,
+    // which then skipped the limit of the MPI_InitFinalize below): the FE's parallelism is its ranks
+    // and the pipeline's worker processes, and deal.II's task-parallel kernels would otherwise put
+    // a thread per core in every rank.
+    dealii::MultithreadInfo::set_thread_limit(1);
     int initialised = 0;
     MPI_Initialized(&initialised);
     if (initialised)
@@ -140,6 +146,8 @@ namespace anticrack::fem
       if (!layer->material_file.empty())
         scene_json["material_files"][layer->label] = {{"file", layer->material_file},
                                                       {"sha256", util::sha256_of_file(layer->material_file)}};
+    if (!scene.profile_record.is_null())
+      scene_json["profile"] = scene.profile_record; // each layer's values and their sources, the observed PST
     summary["scene"] = scene_json;
     summary["versions"] = version_info();
 

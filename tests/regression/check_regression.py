@@ -88,8 +88,11 @@ CASES = {
     "calibrate_synthetic": dict(synthetic_campaign=True, sets=("ci", "full")),
     "pst_flat": dict(scene="pst_flat.prm", ranks=2, sets=("full",)),
     "pst_slope30": dict(scene="pst_slope30.prm", ranks=2, sets=("full",)),
-    # coarser than SHORT_COLUMN (4 cm elements) so that 2 ranks take seconds, not a minute
-    "pst_flat_short": dict(scene="pst_flat.prm", ranks=2, sets=("ci",),
+    # coarser than SHORT_COLUMN (4 cm elements) so that it takes seconds, not a minute; on one rank:
+    # on two the last bits followed the machine's load (2 runs of 10 beside busy processes differed
+    # in the 15th digit, none of 8 on one rank; the parallel direct solver's dynamic scheduling is
+    # the likely cause, not confirmed). Two ranks are app.fem_mpi_equals_serial's, within 1e-6.
+    "pst_flat_short": dict(scene="pst_flat.prm", sets=("ci",),
                            changes={**SHORT_COLUMN, "Mesh/Element length [m]": "0.04",
                                     "Analysis/Explicit/End time [s]": "0.45",
                                     "Output/Field interval [s]": "0.15"}),
