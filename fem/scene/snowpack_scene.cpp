@@ -1,4 +1,5 @@
 #include "fem/scene/snowpack_scene.h"
+#include "fem/scene/profile_snowpack.h"
 
 #include "fem/closed_forms.h"
 #include "fem/material/column_collapse.h"
@@ -320,6 +321,7 @@ namespace anticrack::fem
     prm.enter_subsection("Substratum");
     declare_layer(prm, "elastic", "0.1", false);
     prm.leave_subsection();
+    declare_profile_entries(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("PST");
@@ -513,13 +515,13 @@ namespace anticrack::fem
     s.substratum = parse_layer(prm, "substratum", "Snowpack/Substratum", file, false);
     prm.leave_subsection();
     prm.leave_subsection();
+    std::set<std::string> given; // the entries the text sets
+    for (const ParameterSetting &setting : scan_parameter_settings(text))
+      given.insert(setting.path_text());
     {
       // An inline layer gives every entry its model uses: elasticity and density, and for a cohesive
       // Cam-Clay layer its surface and softening (the material file's entries but the name and the
       // yield surface plane, which has one value).
-      std::set<std::string> given;
-      for (const ParameterSetting &setting : scan_parameter_settings(text))
-        given.insert(setting.path_text());
       auto note_unset = [&](Layer &layer, const std::string &section) {
         if (!layer.material_file.empty())
           return;
@@ -548,6 +550,10 @@ namespace anticrack::fem
     pst.saw = saw_names().value(prm.get("Saw"));
     pst.cut_length = prm.get_double("Cut length [m]");
     pst.saw_speed = prm.get_double("Saw speed [m/s]");
+    prm.leave_subsection();
+    // A snow profile replaces the slab (and, if asked, the slope and column): fem/scene/profile_snowpack.h.
+    prm.enter_subsection("Snowpack");
+    apply_profile(prm, scene, given, file);
     prm.leave_subsection();
 
     MeshParameters &mesh = scene.mesh;
@@ -602,6 +608,8 @@ namespace anticrack::fem
       for (const Layer &layer : s.slab_layers)
         if (!layer.material_file.empty())
           key += util::sha256_of_file(layer.material_file);
+      if (!scene.profile_record.is_null()) // the profile's content, not only its name
+        key += util::sha256_of_file(scene.profile_record["file"].get<std::string>());
       scene.resume_key_sha256 = util::sha256_hex(key);
     }
 

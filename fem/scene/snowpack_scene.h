@@ -202,6 +202,9 @@ namespace anticrack::fem
     MeshParameters mesh;
     Analysis analysis;
     OutputParameters output;
+    /// The snow profile the slab came from (Snowpack/Profile, fem/scene/profile_snowpack.h): every
+    /// layer with its values and their sources, the weak layer, the observed saw test; null if none.
+    Json profile_record;
   };
 
   /// The names of each selection of a snowpack scene (util/enum_table.h): one table per selection,

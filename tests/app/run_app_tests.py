@@ -2602,6 +2602,62 @@ def fem_quasi_static_interrupt(work):
     check(rows >= 1, f"series.h5 has {rows} rows after the interrupt")
 
 
+def profile_pst_scene(pit, **profile):
+    """The tiny PST with its slab, weak-layer thickness, slope and column from a field pit of
+    data/field_psts (Snowpack/Profile, fem/scene/profile_snowpack.h)."""
+    entries = {"File": os.path.join(SOURCE, "data", "field_psts", "snowpilot", pit), "Slab Poisson's ratio": "0.25",
+               "Geometry from saw test": "true", **profile}
+    return pst_scene(remove=["Snowpack/Slab layer 1", "Snowpack/Weak layer/Thickness [m]", "PST/Column length [m]"],
+                     insert={"Snowpack": ["subsection Profile"] + [f"  set {k} = {v}" for k, v in entries.items()] + ["end"]})
+
+
+@case
+def fem_profile(work):
+    """A PST under the slab of a real pit (snowpits-18288: 6 layers above the FC layer its PST failed
+    in, at 46-62 cm): every slab layer's density measured (the pit's density samples over it) or
+    from Geldsetzer & Jamieson (2000) at its hand-computed value, E by Gerling et al. (2017), the
+    weak layer 16 cm thick, slope 35 deg and column 1 m from the pit, the observed PST recorded; a
+    scene that also gives a slab layer, no Poisson's ratio, or a pit whose slab has a crust without a
+    density is refused naming the entry, or the pit, layer and field."""
+    scene = write(os.path.join(work, "pit.prm"), profile_pst_scene("snowpits-18288-caaml.xml"))
+    out = os.path.join(work, "pit")
+    result = subprocess.run([ANTICRACK, "run", scene, "-o", out], capture_output=True, text=True, timeout=300)
+    check(result.returncode in (0, 1) and os.path.exists(os.path.join(out, "summary.json")),
+          f"exit {result.returncode}:\n{result.stdout[-2000:]}\n{result.stderr[-2000:]}")
+    profile = json.load(open(os.path.join(out, "summary.json")))["scene"]["profile"]
+    layers = profile["layers"]
+    check([l["role"] for l in layers] == ["slab"] * 6 + ["weak"] + ["below"] * 2, f"roles {[l['role'] for l in layers]}")
+    # By hand: DF F 65 + 36 = 101; DF 4F 65 + 72 = 137; RG 1F: the sample 13-17 cm, 220; DF 1F- 65 + 36 (3 - 1/3)
+    # = 161; RG 1F- 154 + 1.51 (8/3)^3.15; MFcr P: the sample 35-39 cm, 370 (kg/m^3).
+    expected = [(101, False), (137, False), (220, True), (161, False), (154 + 1.51 * (8 / 3) ** 3.15, False), (370, True)]
+    for k, (rho, measured) in enumerate(expected):
+        d = layers[k]["density_kg_m3"]
+        check(abs(d["value"] - rho) < 1e-9 and d["measured"] == measured and
+              ("Geldsetzer & Jamieson (2000)" in d["source"]) != measured, f"layer {k + 1}: {d}, expected {rho}")
+        E = layers[k]["youngs_modulus_Pa"]["value"]
+        check(abs(E / (6.0e-10 * rho ** 4.6 * 1e6) - 1) < 1e-12 and "Gerling" in layers[k]["youngs_modulus_Pa"]["source"],
+              f"layer {k + 1}: E {E}")
+    check(profile["observed_saw_test"]["propagation"] == "End" and profile["observed_saw_test"]["cut_length_m"] == 0.5,
+          f"observed {profile['observed_saw_test']}")
+    text = open(scene).read()
+    check("Slope angle" not in text and profile["slope_angle_deg"] == 35, f"slope {profile.get('slope_angle_deg')}")
+    # Refusals: one source per value; no invented Poisson's ratio; a slab crust without a density.
+    both = write(os.path.join(work, "both.prm"), edit_scene(open(scene).read(), {}, insert={
+        "Snowpack": ["subsection Slab layer 1", "  set Thickness [m] = 0.3", "end"]}))
+    _, stderr = anticrack("run", both, "-o", os.path.join(work, "o1"), expect=2)
+    check("remove Snowpack/Slab layer 1/Thickness [m]" in stderr, stderr)
+    no_nu = write(os.path.join(work, "no_nu.prm"), profile_pst_scene("snowpits-18288-caaml.xml", **{"Slab Poisson's ratio": ""}))
+    _, stderr = anticrack("run", no_nu, "-o", os.path.join(work, "o2"), expect=2)
+    check("Slab Poisson's ratio" in stderr and "must be given" in stderr, stderr)
+    # The same pit with the weak layer at 80 cm (its bottom layer): the slab then holds layer 8, a melt
+    # form (MF, K over 1F) with no density sample, which no cited law covers.
+    crust = write(os.path.join(work, "crust.prm"), profile_pst_scene("snowpits-18288-caaml.xml", **{
+        "Weak layer from": "depth", "Weak layer depth [m]": "0.8"}))
+    _, stderr = anticrack("run", crust, "-o", os.path.join(work, "o3"), expect=2)
+    check("snowpits-18288-caaml.xml: layer 8 (top at 62 cm)" in stderr and "MF" in stderr, stderr)
+    check(not any(os.path.exists(os.path.join(work, o)) for o in ("o1", "o2", "o3")), "a refused scene wrote its directory")
+
+
 @case
 def fem_params(work):
     """`params --snowpack` lists every snowpack entry with its documentation, and the listing is a
