@@ -22,7 +22,7 @@ namespace anticrack::fem
     /// Which layer of the profile is the weak layer.
     enum class WeakLayerFrom
     {
-      saw_test, ///< the layer the profile's saw test `Saw test` failed in (the layer holding its depth)
+      saw_test, ///< the layer the profile's saw test `Propagation saw test` failed in (the layer holding its depth)
       role,     ///< the one layer a layer table marks `weak`
       depth     ///< the layer holding `Weak layer depth [m]`
     };
@@ -58,9 +58,9 @@ namespace anticrack::fem
                       "layer subsections.");
     prm.declare_entry("Weak layer from", "saw test", Patterns::Selection(weak_layer_from_names().pattern()),
                       "Which layer of the profile is the weak layer: saw test, the layer that the profile's "
-                      "propagation saw test `Saw test` failed in; role, the layer a layer table marks `weak`; "
+                      "propagation saw test `Propagation saw test` failed in; role, the layer a layer table marks `weak`; "
                       "depth, the layer holding `Weak layer depth [m]`.");
-    prm.declare_entry("Saw test", "1", Patterns::Integer(1),
+    prm.declare_entry("Propagation saw test", "1", Patterns::Integer(1),
                       "The profile's propagation saw test (1: the first in the file) that names the weak layer, "
                       "whose observation the run records, and whose slope and column length the scene takes when "
                       "`Geometry from saw test` is true. Dimensionless.");
@@ -85,7 +85,7 @@ namespace anticrack::fem
     prm.enter_subsection("Profile");
     const std::string file_entry = prm.get("File");
     const WeakLayerFrom from = weak_layer_from_names().value(prm.get("Weak layer from"));
-    const unsigned int saw_test = static_cast<unsigned int>(prm.get_integer("Saw test"));
+    const unsigned int saw_test = static_cast<unsigned int>(prm.get_integer("Propagation saw test"));
     const double weak_depth = prm.get_double("Weak layer depth [m]");
     const profile::ModulusLaw &law = profile::modulus_law(prm.get("Slab modulus law"));
     const std::string nu_text = prm.get("Slab Poisson's ratio");
@@ -94,9 +94,13 @@ namespace anticrack::fem
     const std::string where = "Invalid scene file <" + scene_file + ">: Snowpack/Profile/";
     if (file_entry.empty())
     {
-      for (const std::string &entry : given)
-        if (entry.rfind("Snowpack/Profile/", 0) == 0 && entry != "Snowpack/Profile/File")
-          throw InputError(where + "File is empty, so " + entry.substr(17) + " has no profile to apply to");
+      // Without a profile its entries must keep their defaults (a listing of every entry, as
+      // `anticrack params` prints it, is a valid scene); a value that would change something is refused.
+      const bool changed = from != WeakLayerFrom::saw_test || saw_test != 1 || weak_depth != 0 || !nu_text.empty() ||
+                           geometry_from_test || std::string(law.name) != profile::modulus_laws().front().name;
+      if (changed)
+        throw InputError(where + "File is empty, so the other entries of Snowpack/Profile have no profile to apply "
+                         "to: give the profile's File, or leave them at their defaults");
       return;
     }
     const std::filesystem::path path = std::filesystem::path(file_entry).is_absolute() ?
@@ -129,7 +133,7 @@ namespace anticrack::fem
     std::string chosen;
     if (from == WeakLayerFrom::saw_test || geometry_from_test)
       if (saw_test > p.saw_tests.size())
-        throw InputError(where + "Saw test = " + std::to_string(saw_test) + ": " + p.file + " holds " +
+        throw InputError(where + "Propagation saw test = " + std::to_string(saw_test) + ": " + p.file + " holds " +
                          std::to_string(p.saw_tests.size()) + " propagation saw test(s)");
     if (from == WeakLayerFrom::saw_test)
     {
