@@ -134,11 +134,6 @@ namespace anticrack::fem::closed_forms
     return std::sqrt(shear_modulus / density);
   }
 
-  double tensile_strength_sigrist2006(double density)
-  {
-    require_positive("density", density);
-    return 240e3 * std::pow(density / 917, 2.44);
-  }
 
   // --- Eqs. 2–3 ----------------------------------------------------------------------------------
 

@@ -54,9 +54,6 @@ namespace anticrack::fem::closed_forms
   /// c_s = sqrt(G / ρ) [m/s].
   double shear_wave_speed(double shear_modulus, double density);
 
-  /// σ_t = 240 kPa (ρ / ρ_ice)^2.44, ρ_ice = 917 kg/m³: the tensile strength of snow of density ρ
-  /// (Sigrist 2006, the fit of his tensile tests; about 10 kPa at 250 kg/m³) [Pa].
-  double tensile_strength_sigrist2006(double density);
 
   // ---------------------------------------------------------------------------------------------
   // The PST as a slab on an elastic foundation (docs/fem_closed_forms.md §2–§4).

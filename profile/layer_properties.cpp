@@ -23,13 +23,13 @@ namespace anticrack::profile
       {"RGmx", 91, 42, 1}, {"FC", 112, 46, 1},  {"FCmx", 56, 64, 1}, {"DH", 185, 25, 1},
     };
 
-    /// The ice density of the laws' (rho/rho_ice) [kg/m^3].
+    /// The ice density of Sigrist's (2006) (rho/rho_ice) [kg/m^3].
     constexpr double rho_ice = 917.0;
 
-    // Young's modulus laws, E in Pa from rho in kg/m^3.
+    // Young's modulus laws as docs/physics.md §3 states them, E in Pa from rho in kg/m^3.
     double gerling_2017(double rho) { return 6.0e-10 * std::pow(rho, 4.6) * 1e6; }
-    double scapozza_2004(double rho) { return 5.07e3 * std::pow(rho / rho_ice, 5.13) * 1e6; }
-    double bergfeld_2023(double rho) { return 6.5e3 * std::pow(rho / rho_ice, 4.4) * 1e6; }
+    double scapozza_2004(double rho) { return 0.1873 * std::exp(0.0149 * rho) * 1e6; }
+    double bergfeld_2023(double rho) { return 6.5e3 * std::pow(rho / 916.7, 4.4) * 1e6; }
   } // namespace
 
   std::string geldsetzer_jamieson_class(const std::string &g)
@@ -69,8 +69,8 @@ namespace anticrack::profile
     static const std::vector<ModulusLaw> laws = {
       {"Gerling 2017", "Gerling, Löwe & van Herwijnen (2017), Geophys. Res. Lett. 44, acoustic fit: E = 6.0e-10 rho^4.6 MPa",
        gerling_2017},
-      {"Scapozza 2004", "Scapozza (2004), as weac 3.1: E = 5.07e3 (rho/917)^5.13 MPa", scapozza_2004},
-      {"Bergfeld 2023", "Bergfeld et al. (2023), Nat. Hazards Earth Syst. Sci. 23: E = 6.5e3 (rho/917)^4.4 MPa",
+      {"Scapozza 2004", "Scapozza (2004): E = 0.1873 exp(0.0149 rho) MPa", scapozza_2004},
+      {"Bergfeld 2023", "Bergfeld et al. (2023), Nat. Hazards Earth Syst. Sci. 23: E = 6.5e3 (rho/916.7)^4.4 MPa",
        bergfeld_2023},
     };
     return laws;

@@ -1,7 +1,7 @@
 #include "fem/scene/snowpack_scene.h"
 #include "fem/scene/profile_snowpack.h"
+#include "profile/layer_properties.h"
 
-#include "fem/closed_forms.h"
 #include "fem/material/column_collapse.h"
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
@@ -70,28 +70,32 @@ namespace anticrack::fem
       declare_material_entries(prm);
     }
 
-    /// An entry that a layer must give only in some cases (so it has no default): NaN when empty.
-    double optional_number(ParameterHandler &prm, const std::string &entry, const std::string &section,
-                           const std::string &scene_file)
+  } // namespace
+
+  double optional_number(ParameterHandler &prm, const std::string &entry, const std::string &section,
+                         const std::string &scene_file)
+  {
+    const std::string text = prm.get(entry);
+    if (text.empty())
+      return std::numeric_limits<double>::quiet_NaN();
+    std::size_t used = 0;
+    double value = 0;
+    try
     {
-      const std::string text = prm.get(entry);
-      if (text.empty())
-        return std::numeric_limits<double>::quiet_NaN();
-      std::size_t used = 0;
-      double value = 0;
-      try
-      {
-        value = std::stod(text, &used);
-      }
-      catch (const std::exception &)
-      {
-        used = 0;
-      }
-      if (used != text.size() || !std::isfinite(value))
-        throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/" + entry + " = " + text +
-                         " is not a number");
-      return value;
+      value = std::stod(text, &used);
     }
+    catch (const std::exception &)
+    {
+      used = 0;
+    }
+    if (used != text.size() || !std::isfinite(value))
+      throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/" + entry + " = " + text +
+                       " is not a number");
+    return value;
+  }
+
+  namespace
+  {
 
     Layer parse_layer(ParameterHandler &prm, const std::string &label, const std::string &section,
                       const std::string &scene_file, bool slab)
@@ -146,7 +150,7 @@ namespace anticrack::fem
         layer.tensile_strength = optional_number(prm, "Tensile strength [Pa]", section, scene_file);
         layer.tensile_strength_from_density = std::isnan(layer.tensile_strength);
         if (layer.tensile_strength_from_density && layer.material.density > 0)
-          layer.tensile_strength = closed_forms::tensile_strength_sigrist2006(layer.material.density);
+          layer.tensile_strength = profile::sigrist_tensile_strength(layer.material.density);
       }
       return layer;
     }

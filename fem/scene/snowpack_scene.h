@@ -215,6 +215,12 @@ namespace anticrack::fem
   const EnumTable<SawTest::ColumnEnds> &column_end_names();
   const EnumTable<Analysis::LinearSolver> &linear_solver_names();
 
+  /// An entry of the current subsection that a scene gives only in some cases (so it has no
+  /// default): NaN when empty; a value that is not a finite number throws InputError naming
+  /// `section`/`entry` of `scene_file`.
+  double optional_number(dealii::ParameterHandler &prm, const std::string &entry, const std::string &section,
+                         const std::string &scene_file);
+
   /// "Slab layer k+1": the subsection of Snowpack that holds slab layer k (top first, from 0).
   std::string slab_layer_section(unsigned int k);
 
