@@ -206,7 +206,8 @@ namespace anticrack
 
   const std::vector<std::string> &scene_relative_file_entries()
   {
-    static const std::vector<std::string> names{"Material file", "Weak layer scene", "Snowpack scenes", "Base scene"};
+    static const std::vector<std::string> names{"Material file", "Profile file", "Weak layer scene", "Snowpack scenes",
+                                                "Base scene"};
     return names;
   }
 

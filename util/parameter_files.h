@@ -75,7 +75,8 @@ namespace anticrack
 
   /// The entry names (last path component) whose values name files relative to the folder of the
   /// scene that sets them, as their readers resolve them: a layer's `Material file`, a pipeline's
-  /// `Weak layer scene` and `Snowpack scenes` (a comma-separated list), a study's `Base scene`.
+  /// `Weak layer scene` and `Snowpack scenes` (a comma-separated list), a study's `Base scene`, a
+  /// snowpack's `Profile file`.
   const std::vector<std::string> &scene_relative_file_entries();
 
   /// The bytes of a scene file; throws InputError naming the file if it cannot be read.

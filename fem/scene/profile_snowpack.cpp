@@ -4,11 +4,11 @@
 #include "profile/profile_reader.h"
 #include "util/format.h"
 #include "util/input_error.h"
+#include "util/parameter_files.h"
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
-#include <filesystem>
 
 namespace anticrack::fem
 {
@@ -50,7 +50,7 @@ namespace anticrack::fem
   void declare_profile_entries(ParameterHandler &prm)
   {
     prm.enter_subsection("Profile");
-    prm.declare_entry("File", "", Patterns::Anything(),
+    prm.declare_entry("Profile file", "", Patterns::Anything(),
                       "A snow profile (docs/profile.md): CAAML v6.0 SnowProfileIACS as SnowPilot and niViz export "
                       "it, or a CSV layer table; relative to the scene's directory. Given, the slab is the profile's "
                       "layers above its weak layer (Number of slab layers and the Slab layer subsections must then "
@@ -68,8 +68,9 @@ namespace anticrack::fem
                       "Depth below the snow surface within the weak layer (Weak layer from = depth). Units: m.");
     prm.declare_entry("Slab modulus law", profile::modulus_laws().front().name, Patterns::Selection(modulus_law_pattern()),
                       "Young's modulus of each slab layer from its density: Gerling 2017 (Gerling, Löwe & van "
-                      "Herwijnen 2017, 6.0e-10 rho^4.6 MPa), Scapozza 2004 (5.07e3 (rho/917)^5.13 MPa, as weac), "
-                      "Bergfeld 2023 (6.5e3 (rho/917)^4.4 MPa). At 250 kg/m^3 they give 64, 6.5 and 21 MPa.");
+                      "Herwijnen 2017, 6.0e-10 rho^4.6 MPa), Scapozza 2004 (0.1873 exp(0.0149 rho) MPa), Bergfeld "
+                      "2023 (6.5e3 (rho/916.7)^4.4 MPa); docs/physics.md §3. At 250 kg/m^3 they give 64, 7.8 and "
+                      "21 MPa.");
     prm.declare_entry("Slab Poisson's ratio", "", Patterns::Anything(),
                       "nu of every slab layer of the profile: no law of density is established, so it must be "
                       "given, in [0, 0.5). Dimensionless.");
@@ -83,7 +84,7 @@ namespace anticrack::fem
                      const std::string &scene_file)
   {
     prm.enter_subsection("Profile");
-    const std::string file_entry = prm.get("File");
+    const std::string file_entry = prm.get("Profile file");
     const WeakLayerFrom from = weak_layer_from_names().value(prm.get("Weak layer from"));
     const unsigned int saw_test = static_cast<unsigned int>(prm.get_integer("Propagation saw test"));
     const double weak_depth = prm.get_double("Weak layer depth [m]");
@@ -99,35 +100,25 @@ namespace anticrack::fem
       const bool changed = from != WeakLayerFrom::saw_test || saw_test != 1 || weak_depth != 0 || !nu_text.empty() ||
                            geometry_from_test || std::string(law.name) != profile::modulus_laws().front().name;
       if (changed)
-        throw InputError(where + "File is empty, so the other entries of Snowpack/Profile have no profile to apply "
-                         "to: give the profile's File, or leave them at their defaults");
+        throw InputError(where + "Profile file is empty, so the other entries of Snowpack/Profile have no profile to apply "
+                         "to: give the Profile file, or leave them at their defaults");
       return;
     }
-    const std::filesystem::path path = std::filesystem::path(file_entry).is_absolute() ?
-                                         std::filesystem::path(file_entry) :
-                                         std::filesystem::path(scene_file).parent_path() / file_entry;
     // What the profile replaces must not be given too: one source for each value.
     for (const std::string &entry : given)
       if (entry == "Snowpack/Number of slab layers" || entry.rfind("Snowpack/Slab layer ", 0) == 0 ||
           entry == "Snowpack/Weak layer/Thickness [m]" ||
           (geometry_from_test && (entry == "Snowpack/Slope angle [deg]" || entry == "PST/Column length [m]")))
-        throw InputError(where + "File = " + file_entry + " gives the slab" +
+        throw InputError(where + "Profile file = " + file_entry + " gives the slab" +
                          (geometry_from_test ? ", the weak layer's thickness, the slope and the column" : " and the weak layer's thickness") +
                          ": remove " + entry + " from the scene");
-    double nu = std::nan("");
-    try
-    {
-      std::size_t used = 0;
-      nu = std::stod(nu_text, &used);
-      if (used != nu_text.size())
-        nu = std::nan("");
-    }
-    catch (const std::exception &)
-    {}
+    prm.enter_subsection("Profile");
+    const double nu = optional_number(prm, "Slab Poisson's ratio", "Snowpack/Profile", scene_file);
+    prm.leave_subsection();
     if (!(nu >= 0 && nu < 0.5))
       throw InputError(where + "Slab Poisson's ratio = `" + nu_text + "` must be given, in [0, 0.5), with a profile");
 
-    const profile::SnowProfile p = profile::read_profile(path.lexically_normal().string());
+    const profile::SnowProfile p = profile::read_profile(path_relative_to_scene(file_entry, scene_file));
     // The weak layer.
     int weak = -1;
     std::string chosen;
@@ -164,7 +155,7 @@ namespace anticrack::fem
       chosen = "the layer at " + format_number(100 * weak_depth, 4) + " cm";
     }
     if (weak == 0)
-      throw InputError(where + "File = " + file_entry + ": the weak layer (" + chosen +
+      throw InputError(where + "Profile file = " + file_entry + ": the weak layer (" + chosen +
                        ") is the top layer of the profile: there is no slab above it");
 
     // The slab, top first, each layer with its properties and their sources.

@@ -2605,7 +2605,7 @@ def fem_quasi_static_interrupt(work):
 def profile_pst_scene(pit, **profile):
     """The tiny PST with its slab, weak-layer thickness, slope and column from a field pit of
     data/field_psts (Snowpack/Profile, fem/scene/profile_snowpack.h)."""
-    entries = {"File": os.path.join(SOURCE, "data", "field_psts", "snowpilot", pit), "Slab Poisson's ratio": "0.25",
+    entries = {"Profile file": os.path.join(SOURCE, "data", "field_psts", "snowpilot", pit), "Slab Poisson's ratio": "0.25",
                "Geometry from saw test": "true", **profile}
     return pst_scene(remove=["Snowpack/Slab layer 1", "Snowpack/Weak layer/Thickness [m]", "PST/Column length [m]"],
                      insert={"Snowpack": ["subsection Profile"] + [f"  set {k} = {v}" for k, v in entries.items()] + ["end"]})
