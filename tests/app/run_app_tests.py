@@ -2146,9 +2146,13 @@ def study_small(work):
         errors = [abs(a - finest) / abs(finest) for a in answers]
         check(all(abs(a - b) <= 1e-12 for a, b in zip(r["errors"], errors)), f"errors {r['errors']} != {errors}")
         check(r["error_against"].startswith("the finest variant"), r["error_against"])
-        # the elastic G(a) is resolved on 4 cm elements: every variant within 1 % of the finest
-        check(r["cheapest_within_1_percent"] is not None and r["cheapest_within_1_percent"]["value"] == line["values"][0],
-              f"{line['entry']}: cheapest within 1 %: {r['cheapest_within_1_percent']}")
+        # the elastic G(a) is resolved on 4 cm elements: every variant is within 1 % of the finest, so
+        # the cheapest within 1 % is the variant of least wall time (measured: which one that is
+        # depends on the machine's load, and the coarsest lost to v004 beside a full ctest -j2)
+        cheapest = r["cheapest_within_1_percent"]
+        check(all(e <= 0.01 for e in errors) and cheapest is not None and
+              cheapest["wall_s"] == min(line["wall_s"]) and cheapest["value"] == line["values"][line["wall_s"].index(cheapest["wall_s"])],
+              f"{line['entry']}: cheapest within 1 %: {cheapest}, wall times {line['wall_s']}")
         check("observed_order" in r, f"{line['entry']}: no observed order for a discretisation entry")
     lengths = study["lines"][0]
     check(lengths["values"] == ["0.04", "0.02", "0.01"] and lengths["base_value"] == "0.01", f"line {lengths}")
