@@ -154,15 +154,37 @@ namespace anticrack::coupling
         const Json results = summary.value("results", Json::object()); // none when the run stopped early
         if (results.contains("mesh"))
           h["element_length_m"] = results.at("mesh").value("element_length_m", 0.0);
-        std::vector<const char *> keys = {"analysis", "outcome", "arrest_position_m", "fracture_energy_J_per_m2",
-                                          "critical_cut_length_interval", "gaume2017"};
+        std::vector<const char *> keys = {"analysis",          "outcome",          "arrest_position_m",
+                                          "slab_fracture",     "critical_cut_bracket_m", "critical_cut_method",
+                                          "tip_lead_onset_m",  "onset",            "series_directory",
+                                          "fracture_energy_J_per_m2", "critical_cut_length_interval", "gaume2017"};
         for (const PstAnswer &a : pst_answers())
           keys.push_back(a.key);
         for (const char *key : keys)
           if (results.contains(key))
             h[key] = results.at(key);
+        // A snowpack from a real pit: its observed saw test, beside the prediction.
+        const Json profile = summary.at("scene").value("profile", Json());
+        if (profile.is_object() && profile.contains("observed_saw_test"))
+          h["observed_saw_test"] = profile.at("observed_saw_test");
         return h;
       });
+    }
+
+    /// For a sensitivity run of a stage whose critical cut is a fixed-cut search (PST/Saw =
+    /// practice or bisection): the scene lines that start its trials at the stage's shortest ending
+    /// cut, a bisection a few trials from the answer (one parameter moved by one standard error
+    /// moves the cut by a few elements), instead of a saw run and its trials. The answer does not
+    /// depend on where the trials start (fem/analysis/critical_cut_search.h). Empty otherwise.
+    std::string first_trial_near(const Stage &stage)
+    {
+      const Json bracket = stage.results.value("critical_cut_bracket_m", Json());
+      if (!stage.results.contains("onset") || !bracket.is_array() || bracket.size() != 2)
+        return "";
+      return "\n# Added by the pipeline's uncertainty stage: the fixed-cut trials start at the shortest cut\n"
+             "# that ended the test in " + stage.name + " (PST/Saw = bisection, seeded; the answer does not\n"
+             "# depend on the seed, the trial count does).\nsubsection PST\n  set Saw = bisection\n"
+             "  set First trial cut [m] = " + format_number(bracket[1].get<double>(), 17) + "\nend\n";
     }
 
     /// The wall time an FE run recorded in its summary.json.
@@ -606,7 +628,8 @@ namespace anticrack::coupling
             const std::string name = stages[j].name + "_" + u.names[k];
             const fs::path run = uncertainty.directory / name;
             const std::string text =
-              snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string());
+              snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string()) +
+              first_trial_near(stages[j]);
             jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options)});
             job_of.emplace_back(j, k);
             if (options.resume && completed_from_scene((run / "summary.json").string(), util::sha256_hex(text)))

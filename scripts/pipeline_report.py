@@ -105,23 +105,53 @@ def snowpack_stages(summary):
     return [s for s in summary["stages"] if s["kind"] == "snowpack"]
 
 
+def outcome_label(r):
+    """The outcome as PST practice writes it, with where: Arr and its arrest distance, SF and where."""
+    outcome = r.get("outcome")
+    if outcome == "Arr" and r.get("arrest_position_m") is not None:
+        return f"Arr at {r['arrest_position_m']:.2f} m"
+    if outcome == "SF" and r.get("slab_fracture"):
+        return f"SF at {r['slab_fracture']['position_m'][0]:.2f} m"
+    return outcome or "—"
+
+
+def cut_with_bracket(r):
+    cut, bracket = r.get("critical_cut_length_m"), r.get("critical_cut_bracket_m")
+    if cut is None or not bracket:
+        return fmt(cut)
+    return f"{fmt(cut)} [{fmt(bracket[0])}, {fmt(bracket[1])}]"
+
+
 def stage_section(run_dir, summary):
     lines = ["## Snowpack analyses", "",
-             "| stage | analysis | status | outcome | critical cut [m] | Gaume et al. (2017) [m] | first tip yield [m] | "
-             "speed [m/s] | touchdown distance [m] |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "| stage | analysis | status | outcome | critical cut [m] | tip-lead onset [m] | Gaume et al. (2017) [m] | "
+             "first tip yield [m] | speed [m/s] | touchdown distance [m] |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for s in snowpack_stages(summary):
         r = s.get("results", {})
         gaume = r.get("gaume2017") or {}
-        lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {r.get('outcome', '—')} | "
-                     f"{fmt(r.get('critical_cut_length_m'))} | {fmt(gaume.get('critical_cut_length_m'))} | "
+        lines.append(f"| {s['name']} | {r.get('analysis', '—')} | {s['status']} | {outcome_label(r)} | "
+                     f"{cut_with_bracket(r)} | {fmt(r.get('tip_lead_onset_m'))} | "
+                     f"{fmt(gaume.get('critical_cut_length_m'))} | "
                      f"{fmt(gaume.get('first_tip_yield_cut_length_m'))} | "
                      f"{fmt(r.get('propagation_speed_m_per_s'))} | {fmt(r.get('touchdown_distance_m'))} |")
-    lines += ["", "Gaume et al. (2017): the closed-form critical cut of each saw test's snowpack with the same "
+    lines += ["", "Critical cut: the shortest fixed cut (saw stopped) from which the test ends by itself (the crack "
+              "runs, or the slab breaks), with the bracket of the fixed-cut trials (PST/Saw = practice or bisection; "
+              "otherwise the saw's own reading). Tip-lead onset: where an advancing saw's crack tip began to lead "
+              "the saw, a second figure that depends on the saw's speed. Speed: over the part the crack ran by "
+              "itself. Gaume et al. (2017): the closed-form critical cut of each saw test's snowpack with the same "
               "calibrated weak layer (its shear strength at the slab's normal stress, laterally confined, and "
               "G_wl = E/(2(1 + nu))), a shear criterion. First tip yield: the cut at which the tip of the beam on "
               "an elastic foundation first reaches the same surface with its normal traction rising too "
               "(fem/closed_forms.h; fem/analysis/outputs.h)."]
+    for s in snowpack_stages(summary):
+        onset = (s.get("results") or {}).get("onset") or {}
+        if onset and not onset.get("sharp", True):
+            lines += ["", f"{s['name']}: the onset of propagation is not sharp (the crack of the longest cut that "
+                      f"holds ran {onset['longest_holding_cut_crack_run_m']:.2f} m ahead of it, that of the shortest "
+                      f"ending cut {onset['shortest_ending_cut_crack_run_m']:.2f} m, against the self-propagation "
+                      f"lead of {onset['self_propagation_lead_m']:.2f} m): its critical cut moves with that lead."]
+    lines += field_section(summary)
     uncertainty = summary.get("results", {}).get("uncertainty") or {}
     if uncertainty.get("parameters"):
         confidence = next((u["confidence"] for u in uncertainty.values() if isinstance(u, dict) and "confidence" in u), 0.95)
@@ -151,6 +181,29 @@ def stage_section(run_dir, summary):
     for s in summary["stages"]:
         lines.append(f"| {s['name']} | {s['status']} | {s['wall_s']:.1f} |")
     lines.append(f"| whole run | {summary['status']} | {summary['timing']['wall_s']:.1f} |")
+    return lines
+
+
+def field_section(summary):
+    """Predicted against observed, for the snowpack stages built from a real pit's profile."""
+    rows = [(s, s["results"]) for s in snowpack_stages(summary)
+            if (s.get("results") or {}).get("observed_saw_test")]
+    if not rows:
+        return []
+    lines = ["", "## Predicted against observed", "",
+             "| stage | profile's saw test | outcome: predicted | observed | critical cut [m]: predicted | "
+             "observed | ratio |", "|---|---|---|---|---|---|---|"]
+    for s, r in rows:
+        seen = r["observed_saw_test"]
+        cut, observed_cut = r.get("critical_cut_length_m"), seen.get("cut_length_m")
+        ratio = "—" if cut is None or not observed_cut else f"{cut / observed_cut:.2f}"
+        lines.append(f"| {s['name']} | PST {seen.get('index')} (failed at {100 * seen['failed_depth_m']:.0f} cm, column "
+                     f"{fmt(seen.get('column_length_m'))} m) | {outcome_label(r)} | {seen.get('propagation') or '—'} | "
+                     f"{cut_with_bracket(r)} | {fmt(observed_cut)} | {ratio} |")
+    lines += ["", "The slab is the pit's (its layers, densities measured or inferred, and moduli: the stage's "
+              "summary.json, scene/profile). The weak layer is not yet the pit's own: it is the pipeline's DEM "
+              "weak layer (its calibrated material in snow units) at the thickness of the layer the field test "
+              "failed in, so the failed layer's grain form, size and density do not enter the prediction."]
     return lines
 
 
@@ -185,7 +238,8 @@ def plot(run_dir, summary, scale, path):
               "(σ, τ) base stresses (Ritter et al. 2020)", "σ [kPa] (compression +)", "τ [kPa]")
     ax = axes[1, 0]
     for k, s in enumerate(snowpack_stages(summary)):
-        series = os.path.join(run_dir, s["directory"], "series.h5")
+        # A critical-cut search's series is that of its shortest ending trial.
+        series = os.path.join(run_dir, s["directory"], s.get("results", {}).get("series_directory", ""), "series.h5")
         if not os.path.exists(series):
             continue
         with h5py.File(series, "r") as f:

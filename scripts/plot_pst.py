@@ -78,12 +78,15 @@ def main():
     if os.path.exists(summary_path):
         with open(summary_path) as f:
             results = json.load(f).get("results", {})
-    series_path = os.path.join(args.directory, "series.h5")
+    # A critical-cut search (PST/Saw = practice or bisection): the series of its shortest ending trial.
+    series_path = os.path.join(args.directory, results.get("series_directory", ""), "series.h5")
     release_path = os.path.join(args.directory, "energy_release_rate.h5")
     if os.path.exists(series_path):
         figure, axes = plt.subplots(2, 1, figsize=(8, 8))
         plot_series(read(series_path), results, axes)
         title = f"{results.get('analysis', 'PST')}: outcome {results.get('outcome', '')}"
+        if results.get("series_directory"):
+            title += f" (the trial {results['series_directory']})"
         speed = results.get("propagation_speed_m_per_s")
         if speed is not None:
             title += f", {speed:.1f} m/s"

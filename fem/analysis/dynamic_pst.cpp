@@ -1,5 +1,6 @@
 // The dynamic PST: gravity equilibrium, then the saw, the crack and its arrest in time by explicit
 // central differences; series.h5, the fields, and checkpoints from which a run resumes bit for bit.
+#include "fem/analysis/critical_cut_search.h"
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/model/checkpoint.h"
@@ -89,17 +90,7 @@ namespace anticrack::fem
       /// Steps between the ranks' agreements on a stop signal (one reduction; ~10 ms of steps).
       static constexpr unsigned long stop_poll_steps = 200;
 
-      /// How the test ends (docs/fem.md "Outcomes"): END, the crack runs through the column; ARR, it
-      /// stops; SF, the slab breaks; no propagation, the cut never grows into a crack that runs by
-      /// itself; still running, none of these by the end time.
-      enum class Outcome
-      {
-        running,
-        end,
-        arrest,
-        slab_fracture,
-        no_propagation
-      };
+      using Outcome = PstOutcome;
 
       /// Where and when the slab's tension reached its strength.
       struct SlabFracture
@@ -345,17 +336,6 @@ namespace anticrack::fem
         saw_stopped_ = dynamics_->time();
       }
 
-      /// The outcomes' names in summary.json (PST practice's labels).
-      static const EnumTable<Outcome> &outcome_names()
-      {
-        static const EnumTable<Outcome> names{{"END", Outcome::end},
-                                              {"ARR", Outcome::arrest},
-                                              {"SF", Outcome::slab_fracture},
-                                              {"no propagation", Outcome::no_propagation},
-                                              {"still running", Outcome::running}};
-        return names;
-      }
-
       void finish(Outcome outcome, const std::string &what)
       {
         outcome_ = outcome;
@@ -568,19 +548,23 @@ namespace anticrack::fem
               critical_time = t[k];
             }
         // Steady propagation speed: least-squares slope of the tip position over the rows where
-        // the tip lies in the middle half of the distance it ran by itself (from the critical cut
-        // to the column end, less a far end that failed by itself, or to where it stopped).
-        // Touchdown distance: median of tip − touchdown front there.
+        // the crack runs by itself (from its detection on: the saw no longer drives it) with the
+        // tip in the middle half of the distance it ran by itself (from its position at the
+        // detection to the column end, less a far end that failed by itself, or to where it
+        // stopped). Touchdown distance: median of tip − touchdown front there.
         std::optional<double> speed, touchdown;
-        if (critical_cut)
+        if (critical_time_)
         {
-          const double from = *critical_cut,
+          std::size_t detected = 0;
+          while (detected + 1 < t.size() && t[detected] < *critical_time_)
+            ++detected;
+          const double from = tip[detected],
                        to = reached_end ? scene_.pst.column_length - free_end_length_ : fronts_.crack_tip;
           const double low = from + 0.25 * (to - from), high = from + 0.75 * (to - from);
           double st = 0, sx = 0, stt = 0, stx = 0, n = 0;
           std::vector<double> behind;
           for (std::size_t k = 0; k < t.size(); ++k)
-            if (t[k] >= *critical_time && tip[k] >= low && tip[k] <= high)
+            if (t[k] >= *critical_time_ && tip[k] >= low && tip[k] <= high)
             {
               st += t[k], sx += tip[k], stt += t[k] * t[k], stx += t[k] * tip[k], n += 1;
               if (td[k] > 0)
@@ -624,7 +608,7 @@ namespace anticrack::fem
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
         r["flexural_wave"] = flexural_wave_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
-        r["outcome"] = outcome_names().name(outcome_);
+        r["outcome"] = pst_outcome_names().name(outcome_);
         switch (outcome_)
         {
           case Outcome::running:
@@ -733,72 +717,15 @@ namespace anticrack::fem
     };
   } // namespace
 
-  namespace
-  {
-    /// PST/Saw = bisection (docs/fem.md "The critical cut"): fixed cuts, each made before the
-    /// gravity ramp and followed in time until an outcome; a trial propagates when its crack runs
-    /// by itself (a critical cut is detected). Bisection between 0 (the intact column holds) and
-    /// `Cut length` (which must propagate) down to one element length. The results are those of
-    /// the shortest propagating trial, with the bracket and every trial.
-    template <int dim>
-    Json run_bisection(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
-    {
-      if (options.resume)
-        throw InputError("a bisection (PST/Saw = bisection) cannot be resumed: run it again (each trial is short)");
-      ConditionalStream log = root_log(options.log, comm);
-      const double dx = scene.pst.column_length / column_count(scene);
-      Json trials = Json::array(), shortest;
-      auto trial = [&](double cut) {
-        SnowpackRunOptions trial_options = options;
-        char name[64];
-        std::snprintf(name, sizeof name, "/bisection/trial_%02u_cut_%.4f", static_cast<unsigned int>(trials.size() + 1), cut);
-        trial_options.output_directory = options.output_directory + name;
-        log.line("[fem] bisection: trial ", trials.size() + 1, ", cut ", format_number(cut, 4), " m");
-        DynamicPst<dim> pst(scene, trial_options, comm, cut);
-        Json r = pst.run();
-        const bool propagates = !r["critical_cut_length_m"].is_null();
-        trials.push_back({{"cut_length_m", cut},
-                          {"outcome", r["outcome"]},
-                          {"propagates", propagates},
-                          {"gravity_ramp_failed_at_load_factor", r["trial"]["gravity_ramp_failed_at_load_factor"]},
-                          {"directory", std::string(name).substr(1)}});
-        log.line("[fem] bisection: cut ", format_number(cut, 4), " m ", propagates ? "propagates" : "does not propagate",
-                 " (", r["outcome"].get<std::string>(), ")");
-        if (propagates)
-          shortest = r;
-        return propagates;
-      };
-      double low = 0, high = scene.pst.cut_length;
-      const bool longest_propagates = trial(high);
-      while (longest_propagates && high - low > dx * (1 + 1e-9))
-      {
-        const double middle = 0.5 * (low + high);
-        (trial(middle) ? high : low) = middle;
-      }
-      Json r = longest_propagates ? shortest : Json::object();
-      if (!longest_propagates)
-      {
-        r["analysis"] = scene.analysis.type->name;
-        r["outcome"] = "no propagation";
-        r["warnings"] = Json::array({"no trial cut up to PST/Cut length [m] = " + format_number(scene.pst.cut_length) +
-                                     " m propagates: increase it"});
-      }
-      r["critical_cut_method"] = "bisection over fixed cuts, each loaded by gravity after the cut";
-      r["critical_cut_length_m"] = longest_propagates ? Json(0.5 * (low + high)) : Json(nullptr);
-      r["critical_cut_bracket_m"] = longest_propagates ? Json::array({low, high}) : Json(nullptr);
-      r["bisection"] = {{"element_length_m", dx}, {"trials", trials}};
-      r.erase("trial");
-      return r;
-    }
-  } // namespace
-
   template <int dim>
   Json run_dynamic_pst(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm)
   {
-    if (scene.pst.saw == SawTest::Saw::bisection)
-      return run_bisection<dim>(scene, options, comm);
-    DynamicPst<dim> pst(scene, options, comm);
-    return pst.run();
+    if (scene.pst.saw == SawTest::Saw::bisection || scene.pst.saw == SawTest::Saw::practice)
+      return run_critical_cut_search(scene, options, comm, [comm](const SnowpackScene &s, const SnowpackRunOptions &o,
+                                                                  std::optional<double> preloaded_cut) {
+        return DynamicPst<dim>(s, o, comm, preloaded_cut).run();
+      });
+    return DynamicPst<dim>(scene, options, comm).run();
   }
 
   AnalysisType dynamic_pst_analysis()
@@ -822,7 +749,7 @@ namespace anticrack::fem
         prm.declare_entry("Mass damping [1/s]", "0", Patterns::Double(0),
                           "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
         prm.declare_entry("Arrest speed [m/s]", "0.5", Patterns::Double(0),
-                          "v_arr: once the saw has stopped, the crack has arrested (ARR), or never started (no "
+                          "v_arr: once the saw has stopped, the crack has arrested (Arr), or never started (no "
                           "propagation), when its tip has advanced less than v_arr t_arr over the last t_arr; the "
                           "run then ends. Units: m/s.");
         prm.declare_entry("Arrest duration [s]", "0.1", Patterns::Double(0),

@@ -354,4 +354,13 @@ namespace anticrack::fem
                                        ConditionalStream &);
   template void gravity_equilibrium<3>(SnowpackModel<3> &, QuasiStaticSolver<3> &, SnowpackModel<3>::VectorType &,
                                        ConditionalStream &);
+  const EnumTable<PstOutcome> &pst_outcome_names()
+  {
+    static const EnumTable<PstOutcome> names{{"End", PstOutcome::end},
+                                             {"Arr", PstOutcome::arrest},
+                                             {"SF", PstOutcome::slab_fracture},
+                                             {"no propagation", PstOutcome::no_propagation},
+                                             {"still running", PstOutcome::running}};
+    return names;
+  }
 } // namespace anticrack::fem

@@ -8,6 +8,7 @@
 #include "fem/closed_forms.h"
 #include "fem/model/snowpack_model.h"
 #include "util/console.h"
+#include "util/enum_table.h"
 #include "util/format.h"
 #include "util/time_series.h"
 
@@ -149,4 +150,21 @@ namespace anticrack::fem
 
   /// The crack runs by itself once its tip leads the saw by this distance [m] (both PSTs).
   double self_propagation_lead(const SnowpackScene &scene);
+
+  /// How a dynamic PST ends (docs/fem.md "Outcomes"): End, the crack runs through the column; Arr,
+  /// it stops; SF, the slab breaks; no propagation, the cut never grows into a crack that runs by
+  /// itself; still running, none of these by the end time.
+  enum class PstOutcome
+  {
+    running,
+    end,
+    arrest,
+    slab_fracture,
+    no_propagation
+  };
+
+  /// The outcomes' labels in summary.json and the reports: PST practice's End, Arr and SF, as the
+  /// field observations write them (CAAML v6 `fracturePropagation`, SnowPilot; Gauthier &
+  /// Jamieson 2008), so that a prediction and an observation compare as strings.
+  const EnumTable<PstOutcome> &pst_outcome_names();
 } // namespace anticrack::fem

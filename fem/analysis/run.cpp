@@ -28,7 +28,8 @@ namespace anticrack::fem
   {
     /// Output files of a snowpack run (an earlier run's are refused without --overwrite).
     const std::vector<std::string> run_files{"summary.json", "series.h5",        "energy_release_rate.h5",
-                                             "fields",       "checkpoint.json", "checkpoint"};
+                                             "fields",       "checkpoint.json", "checkpoint",
+                                             "saw",          "fixed_cuts"};
   } // namespace
 
   namespace
@@ -117,9 +118,13 @@ namespace anticrack::fem
       if (!scene.analysis.type->time_integration)
         throw InputError("--resume: Analysis/Type = `" + std::string(scene.analysis.type->name) +
                          "` writes no checkpoints (only analyses that march in time do: " + quoted_names(analysis_types(), [](const AnalysisType &t) { return t.time_integration; }) + ")");
-      if (!fs::exists(dir / "checkpoint.json", error))
-        throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json (set Output/Checkpoint "
-                         "interval, or run without --resume).");
+      // A critical-cut search resumes from its completed runs (fem/analysis/critical_cut_search.h).
+      const bool search = scene.pst.saw == fem::SawTest::Saw::bisection || scene.pst.saw == fem::SawTest::Saw::practice;
+      if (!fs::exists(dir / "checkpoint.json", error) &&
+          !(search && (fs::exists(dir / "saw", error) || fs::exists(dir / "fixed_cuts", error))))
+        throw InputError("Cannot resume: <" + dir.string() + "> has no checkpoint.json" +
+                         (search ? " and no saw/ or fixed_cuts/ folder" : "") +
+                         " (set Output/Checkpoint interval, or run without --resume).");
     }
     else
     {

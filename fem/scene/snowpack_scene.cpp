@@ -272,7 +272,8 @@ namespace anticrack::fem
     static const EnumTable<SawTest::Saw> names{{"fixed", SawTest::Saw::fixed},
                                                {"advancing", SawTest::Saw::advancing},
                                                {"quasi-static", SawTest::Saw::quasi_static},
-                                               {"bisection", SawTest::Saw::bisection}};
+                                               {"bisection", SawTest::Saw::bisection},
+                                               {"practice", SawTest::Saw::practice}};
     return names;
   }
 
@@ -344,16 +345,27 @@ namespace anticrack::fem
                         "fixed: the whole cut is made at once after the gravity equilibrium; advancing: the saw "
                         "moves at `Saw speed` up to `Cut length` (or until the crack runs by itself); quasi-static: "
                         "Newton saw steps of one element (halved down to 1/64) up to `Cut length` until equilibrium "
-                        "is lost, then explicit dynamics from the last equilibrium with the next cut (the critical cut "
-                        "as a field saw finds it, whatever its speed); bisection: fixed cuts, each made before the "
-                        "gravity ramp and followed in time until the crack runs or stops, bisected between 0 and "
-                        "`Cut length` to one element length (the critical cut's bracket; each trial in "
-                        "DIR/bisection/). docs/fem.md \"The critical cut\".");
+                        "is lost, then explicit dynamics from the last equilibrium with the next cut; bisection: "
+                        "fixed cuts (the saw stopped), each made before the gravity ramp and followed in time to its "
+                        "outcome, bisected between 0 and `Cut length` to one element length: the shortest cut from "
+                        "which the test ends by itself (the crack runs, or the slab breaks), with its bracket; "
+                        "practice: the same fixed cuts, started where an advancing saw's crack ran by itself (DIR/saw/) "
+                        "and stepped away from it until the answer changes, then bisected: the critical cut as PST "
+                        "practice reads it, and the saw's onset of the tip's lead as a second figure. Each trial in "
+                        "DIR/fixed_cuts/cut_A/. docs/fem.md \"The critical cut\".");
     prm.declare_entry("Cut length [m]", "0.3", Double(0),
                       "a: the longest cut (energy release rate, quasi-static saw steps), the length of a fixed cut "
                       "or the longest cut of an advancing saw (explicit dynamics). Units: m.");
     if (dynamic)
-      prm.declare_entry("Saw speed [m/s]", "1", Double(0), "v_saw: speed of an advancing saw. Units: m/s.");
+    {
+      prm.declare_entry("Saw speed [m/s]", "1", Double(0),
+                        "v_saw: speed of an advancing saw (Saw = advancing, practice). Units: m/s.");
+      prm.declare_entry("First trial cut [m]", "", Anything(),
+                        "Saw = bisection: the first fixed cut tried, near the expected critical cut; the next "
+                        "trials step away from it by one, two, four element lengths until the answer changes, "
+                        "then bisect (a few trials when it is close; the answer does not depend on it). Empty: "
+                        "the bisection starts at `Cut length`. Units: m.");
+    }
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh");
@@ -554,6 +566,8 @@ namespace anticrack::fem
     pst.saw = saw_names().value(prm.get("Saw"));
     pst.cut_length = prm.get_double("Cut length [m]");
     pst.saw_speed = prm.get_double("Saw speed [m/s]");
+    if (const double first = optional_number(prm, "First trial cut [m]", "PST", file); !std::isnan(first))
+      pst.first_trial_cut = first;
     prm.leave_subsection();
     // A snow profile replaces the slab (and, if asked, the slope and column): fem/scene/profile_snowpack.h.
     prm.enter_subsection("Snowpack");
@@ -656,8 +670,16 @@ namespace anticrack::fem
       problems.add("PST/Column ends", std::string("must be `free` for the analysis `") + analysis.type->name +
                                         "` (its lumped mass and explicit steps know no periodic ends; allowed with "
                                         "the analyses that do not march in time)");
-    if (pst.saw == SawTest::Saw::advancing && analysis.type->time_integration && !(pst.saw_speed > 0))
-      problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (is " + format_number(pst.saw_speed) + ")");
+    if ((pst.saw == SawTest::Saw::advancing || pst.saw == SawTest::Saw::practice) && analysis.type->time_integration &&
+        !(pst.saw_speed > 0))
+      problems.add("PST/Saw speed [m/s]", "must be > 0 for an advancing saw (Saw = advancing or practice; is " +
+                                            format_number(pst.saw_speed) + ")");
+    if (pst.first_trial_cut && pst.saw != SawTest::Saw::bisection)
+      problems.add("PST/First trial cut [m]", "is read with Saw = bisection only (Saw = practice starts where its "
+                                              "advancing saw's crack ran): leave it empty");
+    else if (pst.first_trial_cut && !(*pst.first_trial_cut > 0 && *pst.first_trial_cut <= pst.cut_length))
+      problems.add("PST/First trial cut [m]", "must lie in (0, Cut length = " + format_number(pst.cut_length) +
+                                              "] (is " + format_number(*pst.first_trial_cut) + ")");
     if (!(mesh.element_length > 0) || !(mesh.element_length <= pst.column_length / 4))
       problems.add("Mesh/Element length [m]", "must lie in (0, column length / 4 = " +
                                                 format_number(pst.column_length / 4) + "] (is " +

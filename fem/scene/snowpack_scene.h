@@ -22,6 +22,7 @@
 
 #include <any>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,7 +102,8 @@ namespace anticrack::fem
       fixed,        ///< the cut of `cut_length` is made at once (after the gravity equilibrium)
       advancing,    ///< the saw advances at `saw_speed` from 0 up to `cut_length`
       quasi_static, ///< Newton saw steps until equilibrium is lost, then explicit dynamics
-      bisection     ///< fixed cuts, each loaded by gravity, bisected to the critical cut
+      bisection,    ///< fixed cuts, each loaded by gravity, bisected to the critical cut
+      practice      ///< an advancing saw, then fixed cuts from where its crack ran to the critical cut
     };
     enum class ColumnEnds
     {
@@ -115,6 +117,9 @@ namespace anticrack::fem
     Saw saw = Saw::advancing;
     double cut_length = 0.3;    ///< fixed cut, or the largest cut of an advancing saw [m]
     double saw_speed = 1;       ///< [m/s]
+    /// Saw = bisection: the first fixed cut tried (near the answer: a few trials), or none: the
+    /// bisection starts at `cut_length` [m].
+    std::optional<double> first_trial_cut;
     ColumnEnds column_ends = ColumnEnds::free;
   };
 
@@ -170,7 +175,7 @@ namespace anticrack::fem
     double linear_bulk_viscosity = 0.06; ///< c_1 of the bulk viscosity pressure
     double quadratic_bulk_viscosity = 1.2; ///< c_2 of the bulk viscosity pressure
     double mass_damping = 0;             ///< α_M of the damping force −α_M M v [1/s]
-    /// ARR (or "no propagation"): once the saw has stopped, the crack tip has advanced less than
+    /// Arr (or "no propagation"): once the saw has stopped, the crack tip has advanced less than
     /// arrest_speed · arrest_duration over the last arrest_duration [m/s, s].
     double arrest_speed = 0.5;
     double arrest_duration = 0.1;

@@ -1739,11 +1739,11 @@ def fem_outputs(work):
     check(r["analysis"] == "explicit dynamics", f"analysis {r['analysis']!r}")
     check(r["mesh"]["dimension"] == 2 and r["mesh"]["cells"] == PST_CELLS and r["mesh"]["dofs"] == PST_DOFS
           and r["mesh"]["ranks"] == 1, f"mesh {r['mesh']}, expected 2D, {PST_CELLS} cells, {PST_DOFS} dofs, 1 rank")
-    check(r["outcome"] in ("END", "ARR", "SF", "no propagation", "still running"), f"outcome {r['outcome']!r}")
+    check(r["outcome"] in ("End", "Arr", "SF", "no propagation", "still running"), f"outcome {r['outcome']!r}")
     # The scene is made so that the crack runs through: a fixed saw makes the critical cut the cut.
-    check(r["outcome"] == "END", f"the outcome {r['outcome']}; the scene no longer runs through")
+    check(r["outcome"] == "End", f"the outcome {r['outcome']}; the scene no longer runs through")
     check(r["warnings"] == [] and r["slab_fracture"] is None, f"warnings {r['warnings']}, slab fracture {r['slab_fracture']}")
-    # The far end may fail by itself (its free edge, measured: one 2 cm column at 32 ms); the END
+    # The far end may fail by itself (its free edge, measured: one 2 cm column at 32 ms); the End
     # is then the crack's arrival there, later.
     free_end = r["free_end_failure"]
     check(free_end is None or (free_end["length_m"] < 0.1 and free_end["time_s"] < r["time_reached_end_s"]),
@@ -1878,7 +1878,7 @@ def fem_mpi_equals_serial(work):
     a, b = results["pst"]
     for key in ("outcome", "critical_cut_length_m", "time_reached_end_s", "time_steps"):
         check(a[key] == b[key], f"dynamic PST {key}: serial {a[key]!r}, 2 ranks {b[key]!r}")
-    check(a["outcome"] == "END", f"the outcome {a['outcome']}; the scene no longer runs through")
+    check(a["outcome"] == "End", f"the outcome {a['outcome']}; the scene no longer runs through")
     speeds = a["propagation_speed_m_per_s"], b["propagation_speed_m_per_s"]
     check(abs(speeds[0] - speeds[1]) <= 1e-6 * abs(speeds[0]),
           f"propagation speed: serial {speeds[0]}, 2 ranks {speeds[1]}")
@@ -2040,7 +2040,7 @@ def fem_material_file(work):
     for key in ("outcome", "critical_cut_length_m", "time_reached_end_s", "time_steps", "final_crack_tip_m"):
         check(a["results"][key] == b["results"][key],
               f"{key}: inline {a['results'][key]!r}, material file {b['results'][key]!r}")
-    check(a["results"]["outcome"] == "END", f"the outcome {a['results']['outcome']}")
+    check(a["results"]["outcome"] == "End", f"the outcome {a['results']['outcome']}")
     series = [{name: v for name, (v, _) in read_columns(os.path.join(out, "series.h5")).items()} for out in runs]
     compare_exactly(*series, "series.h5, inline vs material file")
     files = b["scene"].get("material_files", {})
@@ -2367,7 +2367,7 @@ def crossval_chain_gaume(work):
         check(a_fe is not None, f"{stage}: no critical cut ({results['outcome']!r})")
         check(band["lower_m"] - element <= a_fe <= band["upper_m"] + element,
               f"{stage}: FE critical cut {a_fe} m outside the band {band}")
-        if results["outcome"] == "END":
+        if results["outcome"] == "End":
             speed = results["propagation_speed_m_per_s"]
             check(0.9 * 20 <= speed <= 1.1 * 50, f"{stage}: speed {speed} m/s outside Bergfeld et al.'s 20-50 m/s")
 
@@ -2532,7 +2532,7 @@ def fem_resume(work):
     anticrack("run", full, "-o", straight)
     stdout, _ = anticrack("run", part, "-o", resumed)
     check("checkpoint at step" in stdout, f"no checkpoint was written:\n{stdout}")
-    check(fem_summary(resumed)["results"]["outcome"] != "END", "the first part ran to the end")
+    check(fem_summary(resumed)["results"]["outcome"] != "End", "the first part ran to the end")
     stdout, _ = anticrack("run", full, "-o", resumed, "--resume")
     check("resumed at step" in stdout, f"the run did not resume:\n{stdout}")
     a, b = fem_summary(straight)["results"], fem_summary(resumed)["results"]

@@ -34,7 +34,7 @@ namespace
   }
 
   /// The results of a run at parameters theta of the exact answer y = a . theta + 1 (in every key).
-  Json linear_results(const Eigen::Vector3d &a, const Eigen::Vector3d &theta, const char *outcome = "END")
+  Json linear_results(const Eigen::Vector3d &a, const Eigen::Vector3d &theta, const char *outcome = "End")
   {
     Json r{{"outcome", outcome}};
     for (const coupling::PstAnswer &answer : coupling::pst_answers())
@@ -83,7 +83,7 @@ TEST(PipelineUncertainty, AChangedOutcomeIsNotLinearisedAndAnUnmovedAnswerHasNoD
   std::vector<Json> arrested, unmoved;
   for (int k = 0; k < 3; ++k)
   {
-    arrested.push_back(linear_results(a, u.value, k == 1 ? "ARR" : "END"));
+    arrested.push_back(linear_results(a, u.value, k == 1 ? "Arr" : "End"));
     unmoved.push_back(linear_results(none, u.value));
   }
   const Json out = coupling::linearised_intervals(u, linear_results(a, u.value), arrested, 0.01);

@@ -43,7 +43,7 @@ import run_app_tests  # noqa: E402  (its synthetic campaign writer)
 # The energy balance of a run, relative to the external work: pst_flat itself closes to 3e-4, the
 # DEM uniaxial compression to 1.3e-3.
 BALANCE = {"fe": 0.01, "dem": 0.01}
-SMALL = {"PST/Column length [m]": "1.0", "PST/Cut length [m]": "0.6", "Mesh/Element length [m]": "0.02",
+SMALL = {"PST/Saw": "advancing", "PST/Column length [m]": "1.0", "PST/Cut length [m]": "0.6", "Mesh/Element length [m]": "0.02",
          "Mesh/Weak layer elements": "2", "Mesh/Slab element height [m]": "0.08",
          "Analysis/Explicit/End time [s]": "0.3", "Output/Field interval [s]": "1", "Output/Progress interval": "0"}
 WL = "Snowpack/Weak layer/"
@@ -63,7 +63,7 @@ CASES = {
     "beta_0": ({WL + "Tensile strength ratio beta": "0"}, "runs", {}),
     "beta_1": ({WL + "Tensile strength ratio beta": "1"}, "runs", {}),
     "xi_100": ({WL + "Hardening factor xi": "100"}, "runs", {}),
-    "slope_0": ({}, "runs", {"outcomes": ["END"]}),
+    "slope_0": ({}, "runs", {"outcomes": ["End"]}),
     "slope_60": ({"Snowpack/Slope angle [deg]": "60"}, "runs", {}),
     # a 2 m slab weighs 4.9 kPa: the layer needs p0 > 7.02 kPa to carry it (Eq. 28), given 10 kPa
     "deep_slab_2m": ({SLAB + "Thickness [m]": "2", "Mesh/Slab element height [m]": "0.2",
@@ -92,7 +92,7 @@ CASES = {
     # a 3D column, 10 cm wide (coarser elements: the 3D step is the 2D one, the cells 5 times more)
     "column_3d": ({"Mesh/Dimension": "3", "Mesh/Element length [m]": "0.05", "Analysis/Explicit/End time [s]": "0.1"},
                   "runs", {"insert": {"PST": ["set Column width [m] = 0.1"]}}),
-    "cut_0.35_runs": ({"PST/Cut length [m]": "0.35"}, "runs", {"outcomes": ["END"]}),
+    "cut_0.35_runs": ({"PST/Cut length [m]": "0.35"}, "runs", {"outcomes": ["End"]}),
 }
 FAMILY = {name: "fe" for name in CASES}
 
