@@ -6,7 +6,7 @@ Usage: run_bad_input.py --anticrack PATH --work-dir DIR [--case NAME ...] [--tim
 
 The runner copies cases/ to WORK/cases and runs every command from there (the working directory matters:
 a relative DEM/Sample/Snapshot file is relative to the working directory, a snowpack Material file to
-the scene's folder). The HDF5 inputs and the binary scene are generated into
+the scene's folder). The HDF5 inputs, the binary scene and the 50 MB profile are generated into
 WORK/cases/generated/ (from runs of cases/helpers/source_dem.prm and source_campaign.prm, a second or
 two each), so that no binary file is shipped.
 
@@ -128,6 +128,14 @@ class Corpus:
             kind = what[len("campaign_"):]
             data = intact[:len(intact) // 2] if kind == "truncated" else self.random_bytes(len(intact), 4)
             target = path(f"campaign_{kind}.h5")
+        elif what == "profile_50_megabytes":
+            # The real pit with 50 MB of comment after its XML declaration: still well-formed XML,
+            # refused by its size before it is parsed (a profile is a few kB).
+            with open(os.path.join(self.cases, "profiles", "snowpits-18288-caaml.xml"), "rb") as f:
+                intact = f.read()
+            end = intact.index(b"?>") + 2
+            data = intact[:end] + b"\n<!-- " + b"padding " * (50 * 1024 * 1024 // 8) + b"-->" + intact[end:]
+            target = path("18288_50_megabytes.xml")
         else:
             raise ValueError(f"unknown generator {what}")
         with open(target, "wb") as f:
