@@ -11,6 +11,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -87,8 +88,12 @@ namespace anticrack::fem
       return !r.value("critical_cut_length_m", Json()).is_null() || !r.value("slab_fracture", Json()).is_null();
     }
 
-    /// How far the crack ran ahead of the cut (its tip at the end of the trial).
-    double crack_run(const Json &r) { return r.at("final_crack_tip_m").get<double>() - r.at("trial").at("cut_length_m").get<double>(); }
+    /// How far the crack ran ahead of the cut (its tip at the end of the trial; the tip is read per
+    /// element, so a tip inside the cut's element counts as none).
+    double crack_run(const Json &r)
+    {
+      return std::max(0., r.at("final_crack_tip_m").get<double>() - r.at("trial").at("cut_length_m").get<double>());
+    }
 
     /// Results of completed runs of this search kept under DIR (each run's results.json, written
     /// when it completed), reused by a run with --resume; a run killed while running continues
@@ -114,7 +119,10 @@ namespace anticrack::fem
             return j.at("resume_key_sha256").get<std::string>() == scene_.resume_key_sha256 ? j.at("results") : Json();
           }, "Run again with --overwrite (without --resume), or delete " + directory.string() + ".");
           if (!kept.is_null())
+          {
+            root_log(options_.log, comm_).line("[fem] ", folder, ": completed earlier, its results reused");
             return kept;
+          }
         }
         SnowpackRunOptions run_options = options_;
         run_options.output_directory = directory.string();
@@ -202,7 +210,8 @@ namespace anticrack::fem
       // smoothly with the cut, the bracket moves with the threshold: said, not hidden.
       const double lead = self_propagation_lead(scene);
       const Json &ending = trials_results.at(*bracket.shortest_ending);
-      const double ran = crack_run(ending), held = bracket.longest_holding > 0 ? crack_run(trials_results.at(bracket.longest_holding)) : 0.;
+      const double ran = crack_run(ending),
+                   held = bracket.longest_holding > 0 ? crack_run(trials_results.at(bracket.longest_holding)) : 0.;
       const bool through = ending["outcome"] == pst_outcome_names().name(PstOutcome::end);
       const bool sharp = held < 0.5 * lead && (through || ran > 2 * lead);
       r["onset"] = {{"sharp", sharp},

@@ -570,7 +570,9 @@ namespace anticrack::fem
               if (td[k] > 0)
                 behind.push_back(tip[k] - td[k]);
             }
-          if (n >= 3 && n * stt - st * st > 0)
+          // The tip is read per element: its middle half must span two elements for a slope (a
+          // crack that stopped within four elements of where it began to run by itself has no speed).
+          if (n >= 3 && n * stt - st * st > 0 && high - low >= 2 * dx * (1 - 1e-9))
             speed = (n * stx - st * sx) / (n * stt - st * st);
           if (!behind.empty())
           {

@@ -214,6 +214,42 @@ def pipeline_killed(work):
     print(f"resumed pipeline == uninterrupted one, bit for bit: flat critical cut {results['analyses']['flat'].get('critical_cut_length_m')} m")
 
 
+def without_wall_times(value):
+    """A snowpack run's results without its wall times and throughput (they differ between runs)."""
+    if isinstance(value, dict):
+        return {k: without_wall_times(v) for k, v in value.items() if "wall" not in k and not k.endswith("_per_s_per_rank")}
+    if isinstance(value, list):
+        return [without_wall_times(v) for v in value]
+    return value
+
+
+@case
+def critical_cut_search_killed(work):
+    """The tiny PST with the practice critical cut (PST/Saw = practice: its saw run, then fixed-cut
+    trials) killed by SIGKILL while the saw run's results.json is written, while the second trial
+    runs and while a trial's results.json is written, then resumed: the completed runs are reused
+    (not run again) and the results equal an uninterrupted run's, bit for bit."""
+    scene = app.write(os.path.join(work, "practice.prm"), "set Scene = snowpack\n" + app.pst_scene(
+        changes={"PST/Saw": "practice", "PST/Cut length [m]": "0.8", "Analysis/Explicit/End time [s]": "1"},
+        insert={"PST": ["set Saw speed [m/s] = 2"]}))
+    reference = os.path.join(work, "reference")
+    app.anticrack("run", scene, "-o", reference)
+    out = os.path.join(work, "killed")
+    stdout = resume_through(["run", scene, "-o", out], [
+        KillPoint("writing the saw run's results", writing="saw/results.json"),
+        KillPoint("during the second trial", line="fixed-cut trial 2: cut"),
+        KillPoint("writing a trial's results", writing="/results.json")], work)
+    check(stdout.count("completed earlier, its results reused") >= 2, f"completed runs were run again:\n{stdout[-3000:]}")
+    expected = without_wall_times(app.fem_summary(reference)["results"])
+    resumed = without_wall_times(app.fem_summary(out)["results"])
+    found = differences(expected, resumed)
+    check(not found, "the resumed search differs from the uninterrupted one:\n" + "\n".join(found[:20]))
+    check(expected["critical_cut_bracket_m"] is not None and len(expected["fixed_cut_trials"]["trials"]) >= 2,
+          f"the search found no bracket: {expected.get('fixed_cut_trials')}")
+    print(f"resumed practice search == uninterrupted one, bit for bit: critical cut {expected['critical_cut_length_m']} m "
+          f"{expected['critical_cut_bracket_m']} after {len(expected['fixed_cut_trials']['trials'])} trials")
+
+
 @case
 def campaign_killed(work):
     """The campaign of the app tests (5 angles, 256 spheres) killed by SIGKILL when two tests have
@@ -379,8 +415,9 @@ def default_pipeline_killed(work):
         KillPoint("during the PSTs", line="pipeline stage 2/"),
         KillPoint("during the uncertainty runs", line="pipeline uncertainty", after=2)], work, timeout=3600)
     results = compare_pipelines(reference, out)
-    print(f"resumed default pipeline == uninterrupted one, bit for bit: flat critical cut "
-          f"{results['analyses']['pst_flat'].get('critical_cut_length_m')} m")
+    analysis, answers = next(iter(results["analyses"].items()))
+    print(f"resumed default pipeline == uninterrupted one, bit for bit: {analysis} critical cut "
+          f"{answers.get('critical_cut_length_m')} m")
 
 
 if __name__ == "__main__":
