@@ -151,7 +151,7 @@ def stage_section(run_dir, summary):
                       f"holds ran {onset['longest_holding_cut_crack_run_m']:.2f} m ahead of it, that of the shortest "
                       f"ending cut {onset['shortest_ending_cut_crack_run_m']:.2f} m, against the self-propagation "
                       f"lead of {onset['self_propagation_lead_m']:.2f} m): its critical cut moves with that lead."]
-    lines += field_section(summary)
+    lines += field_section(run_dir, summary)
     uncertainty = summary.get("results", {}).get("uncertainty") or {}
     if uncertainty.get("parameters"):
         confidence = next((u["confidence"] for u in uncertainty.values() if isinstance(u, dict) and "confidence" in u), 0.95)
@@ -184,7 +184,36 @@ def stage_section(run_dir, summary):
     return lines
 
 
-def field_section(summary):
+def profile_layers_table(run_dir, stage):
+    """The pit's layers as the stage's run built them: each value, measured or inferred, and its law."""
+    path = os.path.join(run_dir, stage["directory"], "summary.json")
+    if not os.path.exists(path):
+        return []
+    profile = (json.load(open(path)).get("scene") or {}).get("profile") or {}
+    if not profile.get("layers"):
+        return []
+    lines = ["", f"{stage['name']}: the pit `{os.path.basename(profile['file'])}` ({profile['format']}), E by "
+             f"{profile['slab_modulus_law']}:", "",
+             "| layer | depth [cm] | grain form | hardness | role | density [kg/m³] | E [MPa] | σ_t [kPa] |",
+             "|---|---|---|---|---|---|---|---|"]
+    sources = {}
+
+    def sourced(value, scale, digits):
+        if not value:
+            return "—"
+        note = sources.setdefault(value["source"], len(sources) + 1)
+        return f"{fmt(value['value'] * scale, digits)} ({'measured' if value['measured'] else 'inferred'}, {note})"
+    for k, layer in enumerate(profile["layers"]):
+        top = 100 * layer["depth_top_m"]
+        lines.append(f"| {k + 1} | {top:.4g}–{top + 100 * layer['thickness_m']:.4g} | {layer['grain_form'] or '—'} | "
+                     f"{layer['hand_hardness'] or '—'} | {layer['role']} | "
+                     f"{sourced(layer.get('density_kg_m3'), 1, 3)} | {sourced(layer.get('youngs_modulus_Pa'), 1e-6, 3)} | "
+                     f"{sourced(layer.get('tensile_strength_Pa'), 1e-3, 3)} |")
+    lines += [""] + [f"({n}) {source}" for source, n in sources.items()]
+    return lines
+
+
+def field_section(run_dir, summary):
     """Predicted against observed, for the snowpack stages built from a real pit's profile."""
     rows = [(s, s["results"]) for s in snowpack_stages(summary)
             if (s.get("results") or {}).get("observed_saw_test")]
@@ -204,6 +233,8 @@ def field_section(summary):
               "summary.json, scene/profile). The weak layer is not yet the pit's own: it is the pipeline's DEM "
               "weak layer (its calibrated material in snow units) at the thickness of the layer the field test "
               "failed in, so the failed layer's grain form, size and density do not enter the prediction."]
+    for s, _ in rows:
+        lines += profile_layers_table(run_dir, s)
     return lines
 
 

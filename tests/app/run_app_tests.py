@@ -2622,7 +2622,8 @@ def fem_profile(work):
     from Geldsetzer & Jamieson (2000) at its hand-computed value, E by Gerling et al. (2017), the
     weak layer 16 cm thick, slope 35 deg and column 1 m from the pit, the observed PST recorded; a
     scene that also gives a slab layer, no Poisson's ratio, or a pit whose slab has a crust without a
-    density is refused naming the entry, or the pit, layer and field."""
+    density is refused naming the entry, or the pit, layer and field. The pipeline's report prints the
+    prediction against the observation and every layer's values with their sources."""
     scene = write(os.path.join(work, "pit.prm"), profile_pst_scene("snowpits-18288-caaml.xml"))
     out = os.path.join(work, "pit")
     result = subprocess.run([ANTICRACK, "run", scene, "-o", out], capture_output=True, text=True, timeout=300)
@@ -2660,6 +2661,25 @@ def fem_profile(work):
     _, stderr = anticrack("run", crust, "-o", os.path.join(work, "o3"), expect=2)
     check("snowpits-18288-caaml.xml: layer 8 (top at 62 cm)" in stderr and "MF" in stderr, stderr)
     check(not any(os.path.exists(os.path.join(work, o)) for o in ("o1", "o2", "o3")), "a refused scene wrote its directory")
+    # The pipeline's report of a stage built from this pit (scripts/pipeline_report.py, given the
+    # stage's headline as the pipeline records it): the prediction against the pit's observation,
+    # and every layer with each value, measured or inferred, and its law.
+    sys.path.insert(0, os.path.join(SOURCE, "scripts"))
+    import pipeline_report  # noqa: E402  (scripts/pipeline_report.py)
+    results = json.load(open(os.path.join(out, "summary.json")))["results"]
+    results["observed_saw_test"] = profile["observed_saw_test"]
+    stage = {"name": "pit", "kind": "snowpack", "directory": "pit", "status": "completed", "results": results}
+    report = "\n".join(pipeline_report.field_section(work, {"stages": [stage]}))
+    row = next((line for line in report.splitlines() if line.startswith("| pit | PST 1")), "")
+    cells = [c.strip() for c in row.split("|")[1:-1]]
+    check(len(cells) == 7 and cells[2] == pipeline_report.outcome_label(results) and cells[3] == "End" and
+          cells[5] == "0.5", f"predicted-against-observed row {row!r}")
+    check("not yet the pit's own" in report, "the report does not say the weak layer is the DEM's")
+    for k, (rho, measured) in enumerate(expected):
+        line = next((l for l in report.splitlines() if l.startswith(f"| {k + 1} |")), "")
+        check(f"({'measured' if measured else 'inferred'}, " in line.split("|")[6], f"layer {k + 1}: {line!r}")
+    check("Geldsetzer & Jamieson (2000)" in report and "Gerling" in report and "Sigrist (2006)" in report,
+          "the report does not name the laws")
 
 
 @case
