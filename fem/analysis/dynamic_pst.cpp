@@ -608,6 +608,12 @@ namespace anticrack::fem
                         {"gravity_ramp_failed_at_load_factor", ramp_lost_at_ ? Json(*ramp_lost_at_) : Json(nullptr)}};
         r["self_propagation_lead_m"] = lead;
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
+        r["collapsed_layer_under_the_slab"] = collapse_under_the_slab(scene_);
+        if (const Json &c = r["collapsed_layer_under_the_slab"]; c.is_object() && !c["slab_crushes_the_collapsed_layer"].get<bool>())
+          warnings.push_back("the slab cannot crush the collapsed weak layer: its residual strength R p0 = " +
+                             format_number(c["residual_strength_Pa"].get<double>(), 4) + " Pa holds the slab's confined "
+                             "state, which needs " + format_number(c["strength_to_hold_it_Pa"].get<double>(), 4) +
+                             " Pa, so a crack can run only as the layer's softening front, without collapse or touchdown");
         r["flexural_wave"] = flexural_wave_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);
         r["outcome"] = pst_outcome_names().name(outcome_);

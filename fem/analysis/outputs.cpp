@@ -315,6 +315,33 @@ namespace anticrack::fem
                                 {"entry", entry}});
   }
 
+  Json collapse_under_the_slab(const SnowpackScene &scene)
+  {
+    const Snowpack &s = scene.snowpack;
+    const Layer &weak = s.weak_layer;
+    const ContinuumMaterial &m = weak.material;
+    if (weak.model != Layer::Model::cohesive_cam_clay || m.hardening_law != "collapse" ||
+        !(m.residual_strength_ratio > 0))
+      return nullptr;
+    // the band's rows deform as one and carry the load at the layer's mid-height (as the check
+    // before the gravity ramp)
+    const double overburden = s.slab_weight_per_area() + m.density * weak.thickness / 2 * s.gravity;
+    const auto [p, q] = closed_forms::confined_layer_invariants(overburden, s.slope_angle, m.poisson_ratio);
+    const double needed = closed_forms::strength_to_contain(p, q, m.beta, m.M);
+    const double residual = m.residual_strength_ratio * m.p0;
+    // The confined state scales with the overburden, and so does the strength that holds it.
+    const double carried = overburden * residual / needed;
+    return {{"overburden_Pa", overburden},
+            {"strength_to_hold_it_Pa", needed},
+            {"residual_strength_Pa", residual},
+            {"residual_strength_ratio", m.residual_strength_ratio},
+            {"overburden_the_residual_carries_Pa", carried},
+            {"slab_crushes_the_collapsed_layer", residual < needed},
+            {"collapse_height_m", weak.collapse_height},
+            {"gravity_work_over_the_collapse_J_per_m2", overburden * weak.collapse_height},
+            {"residual_plateau_work_J_per_m2", std::min(carried, overburden) * weak.collapse_height}};
+  }
+
   template <int dim>
   void gravity_equilibrium(SnowpackModel<dim> &model, QuasiStaticSolver<dim> &solver,
                            typename SnowpackModel<dim>::VectorType &u, ConditionalStream &log)

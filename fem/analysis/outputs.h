@@ -119,6 +119,15 @@ namespace anticrack::fem
   /// need and the share of the weight at which it yields. Called before every gravity ramp of a PST.
   void check_weak_layer_carries_the_snowpack(const SnowpackScene &scene);
 
+  /// Whether the slab can crush the weak layer once it has softened to its residual (docs/fem.md
+  /// "Outcomes"; a collapsing layer only): the laterally confined state under the layers above it
+  /// (Eq. 27 of docs/fem_closed_forms.md at mid-height), the strength that holds it (Eq. 28), the
+  /// residual strength R p0 against it, the overburden the residual alone carries (the state is
+  /// linear in the overburden), and over the collapse height the work of gravity against that of
+  /// the residual plateau (J/m²). Where the residual holds the slab, a crack can run only as the
+  /// layer's softening front, without collapse or touchdown. Null for another weak layer.
+  Json collapse_under_the_slab(const SnowpackScene &scene);
+
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST),
   /// after check_weak_layer_carries_the_snowpack().
   template <int dim>

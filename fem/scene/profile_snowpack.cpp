@@ -192,7 +192,12 @@ namespace anticrack::fem
       }
       layers.push_back(record);
     }
-    s.weak_layer.thickness = p.layers[static_cast<std::size_t>(weak)].thickness_m;
+    // A calibrated layer's collapse is a strain (its material file's lock-up strain): its height is
+    // that strain times this thickness, not the scene's (the reader computed it with the scene's).
+    const double thickness = p.layers[static_cast<std::size_t>(weak)].thickness_m;
+    if (s.weak_layer.collapse_from_material_file && s.weak_layer.thickness > 0)
+      s.weak_layer.collapse_height *= thickness / s.weak_layer.thickness;
+    s.weak_layer.thickness = thickness;
 
     nlohmann::ordered_json r{{"file", p.file}, {"format", p.format}, {"id", p.id}, {"weak_layer", chosen},
                              {"weak_layer_index", weak + 1}, {"slab_modulus_law", law.citation}, {"layers", layers}};

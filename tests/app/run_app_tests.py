@@ -2063,6 +2063,23 @@ def fem_material_file(work):
     once_changes = {"Snowpack/Weak layer/Collapse height [m]": "0", "Snowpack/Weak layer/Densification modulus [Pa]": "0"}
     once = write(os.path.join(scenes, "once.prm"), pst_scene(once_changes, material_file="collapse.prm"))
     anticrack("check", once)
+    # Under a pit's slab the weak layer is the pit's 16 cm (snowpits-18288): its collapse height is the
+    # lock-up strain x 16 cm = 24 mm (the strain is the material's, the thickness the profile's).
+    pit = write(os.path.join(scenes, "pit_collapse.prm"), edit_scene(
+        pst_scene(once_changes, material_file="collapse.prm",
+                  remove=["Snowpack/Slab layer 1", "Snowpack/Weak layer/Thickness [m]", "PST/Column length [m]"]),
+        {}, insert={"Snowpack": ["subsection Profile",
+                                 f"  set Profile file = {os.path.join(SOURCE, 'data', 'field_psts', 'snowpilot', 'snowpits-18288-caaml.xml')}",
+                                 "  set Slab Poisson's ratio = 0.25", "  set Geometry from saw test = true", "end"],
+                    "Mesh": ["set Slab element height [m] = 0.2"]}))
+    stdout, _ = anticrack("check", pit)
+    check("weak layer 0.16 m" in stdout, f"`check` of the pit's scene:\n{stdout}")
+    out = os.path.join(work, "pit_collapse")
+    anticrack("run", write(os.path.join(scenes, "pit_collapse_short.prm"), edit_scene(open(pit).read(), {
+        "Analysis/Explicit/End time [s]": "0.002"})), "-o", out, cwd=work)
+    closure = fem_summary(out)["results"]["weak_layer_closure"]
+    check(abs(closure["collapse_height_m"] - 0.15 * 0.16) < 1e-12, f"collapse height {closure['collapse_height_m']} m under "
+          "the pit's 16 cm weak layer, expected 0.15 x 0.16 = 0.024 m")
     # 0.9 x 2 cm = 18 mm does not fit into one of the two element rows (1 cm): refused, with that height.
     with_collapse("deep.prm", 0.9)
     deep = write(os.path.join(scenes, "deep_scene.prm"), pst_scene(once_changes, material_file="deep.prm"))

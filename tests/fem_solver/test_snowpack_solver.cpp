@@ -495,6 +495,37 @@ namespace
     return run_snowpack(scene_from(text), options, MPI_COMM_WORLD);
   }
 
+  // Whether the slab can crush the collapsed layer (collapse_under_the_slab): the overburden by
+  // hand, the strength that holds its confined state by the closed forms (Eqs. 27-28, tested
+  // against the FE's geostatic state below), the residual R p0 against it; the overburden the
+  // residual alone carries is checked by solving Eq. 28 again at that overburden, which must give
+  // R p0 back (the confined state is linear in the overburden). The small PST's layer (R = 0.1)
+  // is crushed, and its cracks touch down (FemExplicit.*); with R = 0.4 the residual holds the slab.
+  // (1 mm of collapse: a larger R with 3 mm lies beyond the small-strain model's range, refused.)
+  TEST(FemCollapse, ResidualAgainstTheSlabsLoadByTheClosedForms)
+  {
+    const double overburden = 9.81 * (250 * 0.4 + 150 * 0.02 / 2);
+    for (const double R : {0.1, 0.4})
+    {
+      std::string text = small_pst(0.001, 0.45);
+      text.replace(text.find("set Residual strength ratio = 0.1"), 33, "set Residual strength ratio = " + std::to_string(R));
+      const Json c = collapse_under_the_slab(scene_from(text));
+      ASSERT_TRUE(c.is_object());
+      EXPECT_NEAR(c["overburden_Pa"].get<double>(), overburden, 1e-9 * overburden);
+      const auto [p, q] = closed_forms::confined_layer_invariants(overburden, 0, 0.2);
+      const double needed = closed_forms::strength_to_contain(p, q, 0.5, 1);
+      EXPECT_NEAR(c["strength_to_hold_it_Pa"].get<double>(), needed, 1e-9 * needed);
+      EXPECT_NEAR(c["residual_strength_Pa"].get<double>(), R * 5000, 1e-9);
+      EXPECT_EQ(c["slab_crushes_the_collapsed_layer"].get<bool>(), R * 5000 < needed) << c.dump(1);
+      EXPECT_EQ(R * 5000 < needed, R < 0.2); // needed = 1.06 kPa for this slab
+      const double carried = c["overburden_the_residual_carries_Pa"];
+      const auto [p_c, q_c] = closed_forms::confined_layer_invariants(carried, 0, 0.2);
+      EXPECT_NEAR(closed_forms::strength_to_contain(p_c, q_c, 0.5, 1), R * 5000, 1e-9 * R * 5000);
+      EXPECT_NEAR(c["gravity_work_over_the_collapse_J_per_m2"].get<double>(), overburden * 0.001, 1e-12);
+      EXPECT_NEAR(c["residual_plateau_work_J_per_m2"].get<double>(), std::min(carried, overburden) * 0.001, 1e-12);
+    }
+  }
+
   TEST(FemExplicit, CrackRunsThroughTheColumn)
   {
     const Json r = run_scene(small_pst(0.003, 0.45), "pst_through");
