@@ -4,29 +4,35 @@
 //
 //   σ(ε) = σ_p − (σ_p − σ_r)(ε − ε_p)/(ε_s − ε_p)   ε_p ≤ ε < ε_s   strength drop (collapse softening)
 //        = σ_r                                      ε_s ≤ ε < ε_d   collapse plateau (residual strength)
-//        = σ_r + K_d (ε − ε_d)                      ε ≥ ε_d         lock-up of the collapsed layer
+//        = σ_r + K_d (ε − ε_d)                      ε ≥ ε_d         densification of the broken grains
 //
 // with (ε_p, σ_p) the first peak, σ_r the residual stress, ε_s the end of the drop, ε_d the onset of
-// the lock-up and K_d the lock-up (densification) modulus: the FE's residual strength ratio, the end
-// of its softening, its densification strain and modulus.
+// the densification and K_d its modulus: the FE's residual strength ratio, the end of its softening,
+// its densification (lock-up) strain and modulus.
 //
-// How each is read, and why so:
+// What the DEM curves look like, and why the reading is so: a bonded snow layer's stress falls
+// within a few tenths of a percent of strain to 0.1–0.25 of its peak, stays there for a few
+// percent (the broken grains rearrange into the pores), then rises again, convex, as the grains
+// densify: it regains the peak at 15–20 % and triples it a few percent later (the SHS layer of
+// scenes/shs_weak_layer.prm, docs/calibration.md). A slab loads its collapsed layer with 0.1–0.5 of
+// the layer's strength, so what decides whether a slab crushes the layer and how far it falls is
+// the level right after the drop and how the densification rises from it: σ_r is that level, not
+// the mean of the plateau and the densification (which a flat residual up to a steep lock-up
+// would read: 0.53 σ_p for the SHS layer, where the curve sits at about 0.2).
 //   * the first peak: the running maximum of the stress at the first sample where the stress has
 //     fallen below compaction_collapse_fraction (1/2) of it, the collapse. A layer whose stress never
 //     halves does not collapse and is refused (it hardens);
-//   * the lock-up: ε_x, where the locked-up layer carries σ_p again for good (the last upward
-//     crossing of σ_p before the stress exceeds compaction_lock_up_stress_ratio (3) × σ_p), and K_d,
-//     the secant of the densified branch from σ_p to 3σ_p. That branch is convex and steep (a hundred
-//     times the peak within a few percent more strain, where linear contacts overlap by percents), so
-//     a straight line through all of it would say more about the test's final strain than about the
-//     lock-up. The FE's spring then starts at ε_d = ε_x − (σ_p − σ_r)/K_d, so that residual plus
-//     spring regain σ_p where the DEM does;
-//   * ε_s and σ_r: least squares of the drop and the plateau on (ε_p, ε_d] (ε_d depends on σ_r: the
-//     window's end is iterated from ε_x), weighted by the strain each sample stands for (a fit to
-//     the curve, not to the output interval); ε_s by a search over a logarithmic grid, σ_r linear
-//     for each ε_s
-//     (0 <= σ_r <= σ_p). A plateau that hardens (the SHS layer's does, from about 0.2 to 0.8 σ_p) is
-//     read as its strain-weighted mean: the FE's collapse law has a flat residual.
+//   * the regain ε_x: where the densified layer carries σ_p again for good (the last upward
+//     crossing of σ_p before the stress exceeds compaction_lock_up_stress_ratio (3) × σ_p, where
+//     the test stops: CompactionStages);
+//   * ε_s, ε_d and σ_r: least squares of the three pieces on (ε_p, ε_x], the densification a line
+//     from (ε_d, σ_r) through (ε_x, σ_p) (so K_d = (σ_p − σ_r)/(ε_x − ε_d)), weighted by the strain
+//     each sample stands for (a fit to the curve, not to the output interval); ε_s on a logarithmic
+//     and ε_d on a linear grid, refined, σ_r linear for each pair (0 <= σ_r <= σ_p). The convex
+//     densification is read as the secant to the regain: between σ_r and σ_p (where every slab
+//     load lies) it errs by the curvature, which the fit's RMS misfit reports;
+//   * the steeper branch beyond the regain (σ_p to 3σ_p, reported as cap_modulus) is not the FE's:
+//     a slab that loaded its weak layer past σ_p would have collapsed it before any saw cut.
 // Both ratios are detection thresholds; docs/calibration.md shows what changing them does.
 //
 // Energies per unit volume of the layer:
@@ -63,7 +69,8 @@ namespace anticrack::dem
     double residual_stress = 0;    ///< σ_r [Pa]
     double softening_end_strain = 0; ///< ε_s
     double lock_up_strain = 0;     ///< ε_d (the last strain when not locked up)
-    double lock_up_modulus = 0;    ///< K_d [Pa]
+    double lock_up_modulus = 0;    ///< K_d [Pa]: of the densification, from (ε_d, σ_r) to the regain of σ_p
+    double cap_modulus = 0;        ///< secant of the locked-up branch from σ_p to 3σ_p [Pa] (reported, not the FE's)
     double regain_strain = 0;      ///< where the locked-up layer carries σ_p again (last upward crossing)
     double fracture_energy_density = 0; ///< w_f [J/m³]
     double collapse_energy_density = 0; ///< w_c [J/m³]
