@@ -610,9 +610,11 @@ namespace anticrack::fem
         r["gaume2017"] = gaume2017_reference(scene_.snowpack);
         r["collapsed_layer_under_the_slab"] = collapse_under_the_slab(scene_);
         if (const Json &c = r["collapsed_layer_under_the_slab"]; c.is_object() && !c["slab_crushes_the_collapsed_layer"].get<bool>())
-          warnings.push_back("the slab cannot crush the collapsed weak layer: its residual strength R p0 = " +
-                             format_number(c["residual_strength_Pa"].get<double>(), 4) + " Pa holds the slab's confined "
-                             "state, which needs " + format_number(c["strength_to_hold_it_Pa"].get<double>(), 4) +
+          warnings.push_back("the slab cannot crush the collapsed weak layer: at its residual strength R p0 = " +
+                             format_number(c["residual_strength_Pa"].get<double>(), 4) + " Pa it carries " +
+                             format_number(c["residual_confined_flow_stress_Pa"].get<double>(), 4) +
+                             " Pa in confined compaction, more than the slab's normal traction " +
+                             format_number(c["normal_traction_Pa"].get<double>(), 4) +
                              " Pa, so a crack can run only as the layer's softening front, without collapse or touchdown");
         r["flexural_wave"] = flexural_wave_reference(scene_.snowpack);
         r["saw_speed_m_per_s"] = scene_.pst.saw == SawTest::Saw::advancing ? Json(scene_.pst.saw_speed) : Json(nullptr);

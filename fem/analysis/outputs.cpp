@@ -228,7 +228,7 @@ namespace anticrack::fem
       j["first_tip_yield_note"] = std::string("not evaluated: ") + e.what();
     }
     j["band"] = critical_cut_band(*beam, j["first_tip_yield_cut_length_m"], k, m.p0, surface,
-                                  s.weak_layer.collapse_height);
+                                  collapse_height_under_the_slab(s));
     return j;
   }
 
@@ -250,7 +250,7 @@ namespace anticrack::fem
                 "solitary flexural wave (Euler-Bernoulli slab, E not E'), and the static touchdown of a long cut "
                 "(the steady state of Rosendahl et al. 2025's slab-touchdown model, rigid collapsed layer)";
     const auto beam = beam_model(s);
-    const double collapse_height = s.weak_layer.collapse_height;
+    const double collapse_height = collapse_height_under_the_slab(s);
     if (!beam || !(collapse_height > 0))
     {
       j["note"] = !beam ? "several slab layers have no single E: not evaluated"
@@ -315,31 +315,64 @@ namespace anticrack::fem
                                 {"entry", entry}});
   }
 
-  Json collapse_under_the_slab(const SnowpackScene &scene)
+  std::optional<CollapseUnderTheSlab> collapse_of_the_weak_layer(const Snowpack &s)
   {
-    const Snowpack &s = scene.snowpack;
     const Layer &weak = s.weak_layer;
     const ContinuumMaterial &m = weak.material;
     if (weak.model != Layer::Model::cohesive_cam_clay || m.hardening_law != "collapse" ||
         !(m.residual_strength_ratio > 0))
-      return nullptr;
+      return std::nullopt;
+    CollapseUnderTheSlab c;
     // the band's rows deform as one and carry the load at the layer's mid-height (as the check
     // before the gravity ramp)
-    const double overburden = s.slab_weight_per_area() + m.density * weak.thickness / 2 * s.gravity;
-    const auto [p, q] = closed_forms::confined_layer_invariants(overburden, s.slope_angle, m.poisson_ratio);
-    const double needed = closed_forms::strength_to_contain(p, q, m.beta, m.M);
-    const double residual = m.residual_strength_ratio * m.p0;
+    c.overburden = s.slab_weight_per_area() + m.density * weak.thickness / 2 * s.gravity;
+    const auto [p, q] = closed_forms::confined_layer_invariants(c.overburden, s.slope_angle, m.poisson_ratio);
+    c.strength_to_hold_it = closed_forms::strength_to_contain(p, q, m.beta, m.M);
+    c.residual_strength = m.residual_strength_ratio * m.p0;
     // The confined state scales with the overburden, and so does the strength that holds it.
-    const double carried = overburden * residual / needed;
-    return {{"overburden_Pa", overburden},
-            {"strength_to_hold_it_Pa", needed},
-            {"residual_strength_Pa", residual},
-            {"residual_strength_ratio", m.residual_strength_ratio},
-            {"overburden_the_residual_carries_Pa", carried},
-            {"slab_crushes_the_collapsed_layer", residual < needed},
-            {"collapse_height_m", weak.collapse_height},
-            {"gravity_work_over_the_collapse_J_per_m2", overburden * weak.collapse_height},
-            {"residual_plateau_work_J_per_m2", std::min(carried, overburden) * weak.collapse_height}};
+    c.carried_by_the_residual = c.overburden * c.residual_strength / c.strength_to_hold_it;
+    // Compacting at its residual, the layer carries the normal stress of confined flow on the
+    // floor's surface; the densification's pressure p_d = K_d (ε − ε_d) (it adds to every normal
+    // stress) carries the rest of the slab's normal traction: the layer closes by H ε_d to the
+    // onset and by H p_d / K_d more. (On a slope the slab's shear goes to the collapsed layer's
+    // friction, not into this balance.)
+    CamClayParameters surface;
+    surface.M = m.M;
+    surface.beta = m.beta;
+    c.normal_traction = c.overburden * std::cos(s.slope_angle);
+    c.residual_flow_stress = confined_flow_normal_stress(c.residual_strength, surface);
+    c.densification_pressure = std::max(0.0, c.normal_traction - c.residual_flow_stress);
+    c.closure = weak.collapse_height;
+    if (weak.collapse_height > 0 && weak.densification_modulus > 0)
+      c.closure += weak.thickness * c.densification_pressure / weak.densification_modulus;
+    return c;
+  }
+
+  double collapse_height_under_the_slab(const Snowpack &s)
+  {
+    const auto c = collapse_of_the_weak_layer(s);
+    return c ? c->closure : s.weak_layer.collapse_height;
+  }
+
+  Json collapse_under_the_slab(const SnowpackScene &scene)
+  {
+    const auto c = collapse_of_the_weak_layer(scene.snowpack);
+    if (!c)
+      return nullptr;
+    const double onset = scene.snowpack.weak_layer.collapse_height;
+    return {{"overburden_Pa", c->overburden},
+            {"strength_to_hold_it_Pa", c->strength_to_hold_it},
+            {"residual_strength_Pa", c->residual_strength},
+            {"residual_strength_ratio", scene.snowpack.weak_layer.material.residual_strength_ratio},
+            {"overburden_the_residual_carries_Pa", c->carried_by_the_residual},
+            {"normal_traction_Pa", c->normal_traction},
+            {"residual_confined_flow_stress_Pa", c->residual_flow_stress},
+            {"slab_crushes_the_collapsed_layer", c->slab_crushes_the_layer()},
+            {"densification_onset_m", onset},
+            {"densification_pressure_Pa", c->densification_pressure},
+            {"collapse_height_m", c->closure},
+            {"gravity_work_over_the_collapse_J_per_m2", c->overburden * c->closure},
+            {"residual_plateau_work_J_per_m2", std::min(c->carried_by_the_residual, c->overburden) * c->closure}};
   }
 
   template <int dim>

@@ -119,13 +119,38 @@ namespace anticrack::fem
   /// need and the share of the weight at which it yields. Called before every gravity ramp of a PST.
   void check_weak_layer_carries_the_snowpack(const SnowpackScene &scene);
 
-  /// Whether the slab can crush the weak layer once it has softened to its residual (docs/fem.md
+  /// What the slab does to its weak layer once the layer has softened to its residual (docs/fem.md
   /// "Outcomes"; a collapsing layer only): the laterally confined state under the layers above it
   /// (Eq. 27 of docs/fem_closed_forms.md at mid-height), the strength that holds it (Eq. 28), the
   /// residual strength R p0 against it, the overburden the residual alone carries (the state is
-  /// linear in the overburden), and over the collapse height the work of gravity against that of
-  /// the residual plateau (J/m²). Where the residual holds the slab, a crack can run only as the
-  /// layer's softening front, without collapse or touchdown. Null for another weak layer.
+  /// linear in the overburden). Compacting at its residual the layer carries σ_f, the normal stress
+  /// of confined flow on the residual surface (confined_flow_normal_stress); where the slab's normal
+  /// traction σ_n exceeds it, the densification carries the rest, p_d = σ_n − σ_f, and the layer
+  /// closes to the collapse height under the slab h = h_d + H p_d / K_d (h_d = ε_d H the onset of the
+  /// densification, K_d its modulus): the height the slab falls, which the closed forms of the
+  /// running crack need. Where the residual holds the slab, a crack can run only as the layer's
+  /// softening front, without collapse or touchdown, and h = h_d.
+  struct CollapseUnderTheSlab
+  {
+    double overburden = 0;              ///< at the weak layer's mid-height [Pa]
+    double strength_to_hold_it = 0;     ///< the p0 that contains the confined state (Eq. 28) [Pa]
+    double residual_strength = 0;       ///< R p0 [Pa]
+    double carried_by_the_residual = 0; ///< overburden the residual alone carries [Pa]
+    double normal_traction = 0;         ///< the slab's layer-normal traction, overburden cos θ [Pa]
+    double residual_flow_stress = 0;    ///< σ_f of confined_flow_normal_stress() at R p0 [Pa]
+    double densification_pressure = 0;  ///< p_d = max(normal traction − σ_f, 0) [Pa]
+    double closure = 0;                 ///< the collapse height under the slab h [m]
+    /// The slab keeps compacting the collapsed layer: its normal traction exceeds what the
+    /// residual carries in confined flow.
+    [[nodiscard]] bool slab_crushes_the_layer() const { return normal_traction > residual_flow_stress; }
+  };
+  std::optional<CollapseUnderTheSlab> collapse_of_the_weak_layer(const Snowpack &s);
+  /// h of collapse_of_the_weak_layer(), or the layer's collapse height (the densification's onset)
+  /// where that does not apply: the collapse height of the closed forms (Heierli 2005, the static
+  /// touchdown, the band of the critical cut).
+  double collapse_height_under_the_slab(const Snowpack &s);
+  /// collapse_of_the_weak_layer() as the PST's results write it, with the work of gravity and of
+  /// the residual plateau over h (J/m²). Null for another weak layer.
   Json collapse_under_the_slab(const SnowpackScene &scene);
 
   /// Gravity equilibrium of the uncut column (the start of the quasi-static and the dynamic PST),

@@ -691,6 +691,18 @@ namespace anticrack::fem
     return B <= 0 ? (-B + root) / (2 * A) : -2 * C / (B + root);
   }
 
+  double confined_flow_normal_stress(const double p0, const CamClayParameters &parameters)
+  {
+    // The flow direction ∂y/∂σ ∝ −(2/3) M² (p − p_c) I + 3 (1 + 2β) s parallel to the imposed
+    // compaction −n⊗n (vol 1/3 I, dev diag(2/3, −1/3, −1/3) in compression) gives, for a multiplier
+    // λ: p − p_c = λ / (2 M²), q = λ / (3 (1 + 2β)); y = 0 then fixes λ.
+    const double beta = parameters.beta, M2 = parameters.M * parameters.M;
+    const double p_c = (1 - beta) * p0 / 2, a = (1 + beta) * p0 / 2;
+    const double lambda = std::sqrt(M2 * a * a / (1 / (9 * (1 + 2 * beta)) + 1 / (4 * M2)));
+    const double p = p_c + lambda / (2 * M2), q = lambda / (3 * (1 + 2 * beta));
+    return p + 2 * q / 3;
+  }
+
   double hardening_p0(double alpha, const CamClayParameters &parameters)
   {
     return strength(parameters, alpha).p0;

@@ -238,6 +238,14 @@ namespace anticrack::fem
   /// compression, the peak stress of its collapse.
   double layer_plane_compressive_strength(double lateral_stress_ratio, double p0, const CamClayParameters &parameters);
 
+  /// σ_f: the layer-normal stress (compression positive) of steady plastic flow in uniaxial
+  /// compaction (laterally confined, normal n) on the surface of a fixed tip p0 [Pa]: the state
+  /// where the associative flow direction is the imposed strain's (the elastic strain no longer
+  /// changes), p − p_c = λ/(2M²), q = λ/(3(1 + 2β)), y = 0, σ_f = p + 2q/3. What a collapsed layer
+  /// at its residual p0_floor carries while it keeps compacting: a slab whose normal traction
+  /// exceeds it crushes the layer further (docs/physics.md §2, "Collapse under the slab").
+  double confined_flow_normal_stress(double p0, const CamClayParameters &parameters);
+
   /// p0(α) of the hardening law, floor and cap included [Pa].
   double hardening_p0(double alpha, const CamClayParameters &parameters);
 

@@ -444,3 +444,30 @@ namespace
     EXPECT_NEAR(mean_pressure(u.stress), p, round_off * p);
   }
 } // namespace
+
+// The normal stress a collapsed layer carries while it keeps compacting in uniaxial strain at its
+// residual (confined_flow_normal_stress): driven far past the collapse (strain 0.1, fifty times the
+// elastic range) without the lock-up, the return mapping's layer-normal stress settles on the
+// closed form, for several surfaces. Tolerance 1e-6: the elastic strain's approach to the flow
+// state decays with the compaction (exp(−x K/p0)), far below it at x = 0.1.
+TEST(ConfinedFlow, NormalStressOfSteadyCompactionAtTheFloor)
+{
+  for (const double beta : {0.0, 0.3, 0.8})
+    for (const double M : {0.6, 1.2, 2.2})
+    {
+      CamClayParameters m = weak_layer(false);
+      m.beta = beta, m.M = M;
+      CamClayState state = CamClayState::initial(m);
+      double normal = 0;
+      for (int i = 1; i <= 2000; ++i)
+      {
+        SymmetricTensor<2, 3> strain;
+        strain[1][1] = -0.1 * i / 2000.0;
+        const CamClayUpdate u = update_stress(m, state, strain);
+        state = u.state;
+        normal = -u.stress[1][1];
+      }
+      ASSERT_NEAR(state.p0, m.p0_floor, 1e-9 * m.p0_floor);
+      EXPECT_NEAR(normal / confined_flow_normal_stress(m.p0_floor, m), 1, 1e-6) << "beta " << beta << ", M " << M;
+    }
+}
