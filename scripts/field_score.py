@@ -6,16 +6,24 @@ tests). Reads the pipeline's summary.json (scenes/field/field_psts.prm); writes 
 and DIR/field_score.md (the per-test table and the score, as docs/validation.md quotes them).
 
     scripts/field_score.py out/field
+    scripts/field_score.py out/published --observed scenes/published/observed.csv
 
 Measures (docs/validation.md): the share of outcomes right, overall and per observed class; the
 cut's ratio predicted/observed over the tests whose prediction has a cut and whose observer gave
 one (median, quartiles, the share within a factor 1.5) and Spearman's rank correlation of the two
 (ties by mean ranks). A test the model says does not propagate has no cut and counts as a wrong
-outcome; its cut counts as outside the factor.
+outcome; its cut counts as outside the factor. Where the observations give the collapse height
+(--observed, a column collapse_height_m), its ratio predicted/observed too: the predicted one is the
+height the slab closes the collapsed layer to (summary.json collapsed_layer_under_the_slab).
+
+The observations come from each test's profile (the saw test the scene names: summary.json
+observed_saw_test), or, for tests whose profile holds none, from --observed CSV (test, propagation,
+cut_length_m, column_length_m, collapse_height_m, failed_depth_m).
 """
+import csv
+import argparse
 import json
 import os
-import sys
 
 import numpy as np
 
@@ -60,6 +68,8 @@ def score(cases, predicted_outcome, predicted_cut):
         predicted.append(p)
         within += 1 / FACTOR <= ratios[-1] <= FACTOR
     r = np.asarray(ratios)
+    collapse = np.asarray([c["collapse_height_m"] / c["observed_collapse_height_m"] for c in cases
+                           if c.get("observed_collapse_height_m") and c.get("collapse_height_m")])
     return {
         "tests": len(cases),
         "outcomes_right": int(sum(right)),
@@ -72,19 +82,38 @@ def score(cases, predicted_outcome, predicted_cut):
         "cuts_within_factor": within,
         "cut_share_within_factor": within / len(with_cut) if with_cut else None,
         "cut_rank_correlation": spearman(observed, predicted),
+        "collapse_heights_compared": len(collapse),
+        "collapse_height_ratio_median": float(np.median(collapse)) if len(collapse) else None,
+        "collapse_height_ratio_quartiles": ([float(np.percentile(collapse, 25)), float(np.percentile(collapse, 75))]
+                                            if len(collapse) else None),
     }
 
 
-def cases_of(summary):
+def observations(path):
+    if not path:
+        return {}
+    rows = csv.DictReader(line for line in open(path) if not line.startswith("#"))
+    number = lambda text: float(text) if text else None
+    return {r["test"]: {"propagation": r["propagation"], "cut_length_m": number(r["cut_length_m"]),
+                        "column_length_m": number(r["column_length_m"]),
+                        "collapse_height_m": number(r["collapse_height_m"]),
+                        "failed_depth_m": number(r["failed_depth_m"])} for r in rows}
+
+
+def cases_of(directory, summary, observed):
     out = []
     for name, a in summary["results"]["analyses"].items():
-        obs = a.get("observed_saw_test") or {}
+        obs = a.get("observed_saw_test") or observed.get(name) or {}
         ended = a.get("status") == "completed"
+        stage = os.path.join(directory, name, "summary.json")
+        results = json.load(open(stage)) if os.path.exists(stage) else {}
+        results = results.get("results", results)
         out.append({
             "test": name,
             "status": a.get("status"),
             "observed_outcome": obs.get("propagation"),
             "observed_cut_m": obs.get("cut_length_m"),
+            "observed_collapse_height_m": obs.get("collapse_height_m"),
             "column_m": obs.get("column_length_m"),
             "failed_depth_m": obs.get("failed_depth_m"),
             "predicted_outcome": a.get("outcome") if ended else None,
@@ -93,7 +122,7 @@ def cases_of(summary):
             "speed_m_per_s": a.get("propagation_speed_m_per_s"),
             "touchdown_m": a.get("touchdown_distance_m"),
             "arrest_m": a.get("arrest_position_m"),
-            "collapse_height_m": (a.get("collapsed_layer_under_the_slab") or {}).get("collapse_height_m"),
+            "collapse_height_m": (results.get("collapsed_layer_under_the_slab") or {}).get("collapse_height_m"),
         })
     return sorted(out, key=lambda c: c["test"])
 
@@ -103,9 +132,14 @@ def fmt(x, digits=2):
 
 
 def main():
-    directory = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("directory")
+    parser.add_argument("--observed", help="CSV of observations for tests whose profile holds none")
+    args = parser.parse_args()
+    directory = args.directory
     summary = json.load(open(os.path.join(directory, "summary.json")))
-    cases = [c for c in cases_of(summary) if c["observed_outcome"] in ("End", "Arr", "SF")]
+    cases = [c for c in cases_of(directory, summary, observations(args.observed))
+             if c["observed_outcome"] in ("End", "Arr", "SF")]
     model = score(cases, lambda c: c["predicted_outcome"],
                   lambda c: c["predicted_cut_m"] if c["predicted_outcome"] in ("End", "Arr", "SF") else None)
     baseline = score(cases, lambda c: "End", lambda c: BASELINE_CUT_M)
@@ -113,7 +147,7 @@ def main():
               "factor": FACTOR, "cases": cases}
     with open(os.path.join(directory, "field_score.json"), "w") as f:
         json.dump(result, f, indent=1)
-    lines = ["| test | depth | observed | predicted | cut ratio | speed | touchdown | collapse height |",
+    lines = ["| test | depth | observed | predicted | cut ratio | speed | touchdown | collapse height (observed) |",
              "|---|---|---|---|---|---|---|---|"]
     for c in cases:
         obs = f"{c['observed_outcome']} from {fmt(c['observed_cut_m'])} m" if c["observed_cut_m"] else c["observed_outcome"]
@@ -130,7 +164,9 @@ def main():
                  if c["predicted_cut_m"] is not None and c["observed_cut_m"] else None)
         lines.append(f"| {c['test']} | {fmt(c['failed_depth_m'])} m | {obs} | {pred} | {fmt(ratio)} | "
                      f"{fmt(c['speed_m_per_s'], 1)} | {fmt(c['touchdown_m'])} | "
-                     f"{fmt(1000 * c['collapse_height_m'] if c['collapse_height_m'] else None, 1)} mm |")
+                     f"{fmt(1000 * c['collapse_height_m'] if c['collapse_height_m'] else None, 1)} mm"
+                     + (f" ({fmt(1000 * c['observed_collapse_height_m'], 1)} mm)" if c["observed_collapse_height_m"] else "")
+                     + " |")
 
     def score_lines(label, s):
         classes = ", ".join(f"{k} {v['right']}/{v['tests']}" for k, v in s["per_observed_class"].items())
@@ -138,9 +174,13 @@ def main():
         return (f"| {label} | {s['outcomes_right']}/{s['tests']} ({fmt(100 * s['outcome_share'], 0)} %; {classes}) | "
                 f"{fmt(s['cut_ratio_median'])} [{fmt(q[0])}, {fmt(q[1])}] | "
                 f"{s['cuts_within_factor']}/{s['cuts_compared']} ({fmt(100 * s['cut_share_within_factor'], 0)} %) | "
-                f"{fmt(s['cut_rank_correlation'])} |")
-    lines += ["", f"| | outcomes right | cut ratio, median [quartiles] | cuts within a factor {FACTOR} | rank correlation |",
-              "|---|---|---|---|---|", score_lines("model", model),
+                f"{fmt(s['cut_rank_correlation'])} | " + (
+                    f"{fmt(s['collapse_height_ratio_median'])} [{fmt(s['collapse_height_ratio_quartiles'][0])}, "
+                    f"{fmt(s['collapse_height_ratio_quartiles'][1])}] of {s['collapse_heights_compared']}"
+                    if s["collapse_heights_compared"] else "–") + " |")
+    lines += ["", f"| | outcomes right | cut ratio, median [quartiles] | cuts within a factor {FACTOR} | rank correlation "
+              "| collapse height ratio, median [quartiles] |",
+              "|---|---|---|---|---|---|", score_lines("model", model),
               score_lines(f"always End at {BASELINE_CUT_M} m", baseline)]
     with open(os.path.join(directory, "field_score.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -464,13 +464,16 @@ def threads(work):
 # ----------------------------------------------------------------------------------------- e
 @case
 def check_and_params(work):
-    """`check` accepts every scenes/*.prm and the field study's pipeline (scenes/field/field_psts.prm,
-    which names every field scene) and writes nothing; `params --format prm` is a valid scene."""
+    """`check` accepts every scenes/*.prm and the field and published studies' pipelines
+    (scenes/field/field_psts.prm, scenes/published/published_psts.prm, which name their scenes) and
+    writes nothing; `params --format prm` is a valid scene."""
     names = sorted(n for n in os.listdir(os.path.join(SOURCE, "scenes")) if n.endswith(".prm"))
     check({"uniaxial_compression.prm", "mixed_mode_clump.prm"} <= set(names), f"scenes/ holds {names}")
-    # The field study (scripts/field_scenes.py): its pipeline checks each of its field scenes.
+    # The field and published studies (scripts/field_scenes.py, scripts/published_scenes.py): each
+    # pipeline checks each of its scenes.
     scenes = [os.path.join(SOURCE, "scenes", n) for n in names] + [
-        os.path.join(SOURCE, "scenes", "field", "field_psts.prm")]
+        os.path.join(SOURCE, "scenes", "field", "field_psts.prm"),
+        os.path.join(SOURCE, "scenes", "published", "published_psts.prm")]
     cwd = os.path.join(work, "cwd")
     os.makedirs(cwd)
     scenes_before = files_of(os.path.join(SOURCE, "scenes"))
