@@ -1,6 +1,6 @@
 // anticrack: the command-line front end.
 //
-//   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T]
+//   anticrack run SCENE.prm -o DIR [--resume] [--overwrite] [--threads T] [--material-cache DIR]
 //   anticrack check SCENE.prm [--threads T]
 //   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--poisson-ratio NU]
 //                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
@@ -108,6 +108,11 @@ int main(int argc, char **argv)
                   "OpenMP threads of a DEM scene (0: all available); overrides DEM/Threads (snowpack scenes use MPI "
                   "ranks only)")
     ->check(CLI::NonNegativeNumber);
+  run->add_option("--material-cache", run_options.material_cache,
+                  "Pipelines: a folder of calibrated weak layers shared between runs; a weak layer calibrated "
+                  "before with the same inputs by this build is copied from it, a new one stored in it "
+                  "(coupling/material_cache.h)")
+    ->envname("ANTICRACK_MATERIAL_CACHE");
 
   // --- calibrate
   CalibrateOptions calibrate_options;

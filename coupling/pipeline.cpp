@@ -2,6 +2,7 @@
 
 #include "coupling/calibrate.h"
 #include "coupling/calibration_scene.h"
+#include "coupling/material_cache.h"
 #include "coupling/pipeline_scene.h"
 #include "coupling/pipeline_uncertainty.h"
 #include "coupling/python_script.h"
@@ -25,6 +26,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -54,6 +56,7 @@ namespace anticrack::coupling
       double wall_s = 0;
       Json results;              ///< the headline of the stage's summary.json
       std::string scene_file;    ///< the scene the stage runs
+      Json material_cache;       ///< the weak layer: what the material cache gave or took (null: no cache)
     };
 
     /// What an earlier run of the pipeline recorded of its stages (its summary.json), by name; empty
@@ -197,9 +200,20 @@ namespace anticrack::coupling
 
     Json stage_json(const Stage &s)
     {
-      return Json{{"name", s.name},       {"kind", s.kind},     {"directory", s.directory.filename().string()},
-                  {"scene", s.scene_file}, {"inputs_sha256", s.inputs_sha256},
-                  {"status", s.status},   {"wall_s", s.wall_s}, {"results", s.results}};
+      Json j{{"name", s.name},       {"kind", s.kind},     {"directory", s.directory.filename().string()},
+             {"scene", s.scene_file}, {"inputs_sha256", s.inputs_sha256},
+             {"status", s.status},   {"wall_s", s.wall_s}, {"results", s.results}};
+      if (!s.material_cache.is_null())
+        j["material_cache"] = s.material_cache;
+      return j;
+    }
+
+    std::string utc_now()
+    {
+      const std::time_t now = std::time(nullptr);
+      char text[32];
+      std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+      return text;
     }
 
     /// "about 3 min 20 s left" from the earlier run's wall times of the stages not done yet, or for
@@ -413,10 +427,7 @@ namespace anticrack::coupling
       s.directory = dir / weak_layer_directory;
       // With changes, the stage runs a copy of the scene that holds them, in its own folder.
       s.scene_file = scene.weak_layer_changes.empty() ? scene.weak_layer_scene : (s.directory / "scene.prm").string();
-      std::ostringstream snow;
-      snow.precision(17);
-      snow << "\nSnow units: " << scene.snow.bond_tensile_strength << " " << scene.snow.particle_density;
-      s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene) + snow.str());
+      s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene) + snow_units_text(scene.snow));
       stages.push_back(s);
     }
     for (std::size_t k = 0; k < names.size(); ++k)
@@ -464,15 +475,36 @@ namespace anticrack::coupling
                   << std::flush;
     };
 
-    // --- 1. the weak layer: campaign, calibration, material in snow units
+    // --- 1. the weak layer: campaign, calibration, material in snow units (or the material cache's)
     Stage &weak = stages.front();
     const fs::path material = weak.directory / material_file_name(0, 1, true);
+    const MaterialCache cache(options.material_cache);
+    const std::string material_inputs_sha256 = util::sha256_hex(weak_layer_material_inputs(scene));
+    const std::string cache_key = cache.enabled() ? MaterialCache::key(material_inputs_sha256) : "";
+    const std::optional<fs::path> cached = cache.find(cache_key);
     if (unchanged(weak) && fs::exists(material))
     {
       weak.status = "completed earlier";
       weak.wall_s = before.at(weak.name).value("wall_s", 0.0);
       if (root)
         std::cout << "pipeline stage 1/" << stages.size() << ", weak layer: completed earlier, inputs unchanged\n";
+    }
+    else if (cached)
+    {
+      const auto stage_start = Clock::now();
+      if (root)
+      {
+        const Json record = cache.restore(cache_key, weak.directory);
+        weak.material_cache = {{"used", *cached}, {"key", cache_key},
+                               {"calibrated_by", record.value("pipeline", "")},
+                               {"calibrated_at", record.value("calibrated_at", "")}};
+        std::cout << "pipeline stage 1/" << stages.size() << ", weak layer: from the material cache, " << cached->string()
+                  << " (calibrated by " << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?")
+                  << ")\n";
+      }
+      barrier();
+      weak.status = "completed";
+      weak.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
     }
     else
     {
@@ -501,6 +533,22 @@ namespace anticrack::coupling
       {
         write_summary(weak.status);
         return code;
+      }
+      if (cache.enabled() && root)
+      {
+        weak.material_cache = {{"stored", (cache.directory() / cache_key).string()}, {"key", cache_key}};
+        try
+        {
+          cache.store(cache_key, material_inputs_sha256, weak.directory,
+                      {{"pipeline", scene.file}, {"output", weak.directory.string()}, {"calibrated_at", utc_now()}});
+        }
+        catch (const fs::filesystem_error &e)
+        {
+          // The run's own results stand; only later runs lose the reuse, which they are told.
+          weak.material_cache = {{"stored", nullptr}, {"key", cache_key}, {"error", e.what()}};
+          std::cerr << "anticrack: warning: the calibrated weak layer was not stored in the material cache "
+                    << cache.directory().string() << ": " << e.what() << "\n";
+        }
       }
     }
     barrier();

@@ -96,6 +96,21 @@ namespace anticrack::coupling
                                      scene.weak_layer_scene);
   }
 
+  std::string weak_layer_material_inputs(const PipelineScene &scene)
+  {
+    return scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
+                                   "by the pipeline: Pipeline/Weak layer scene changes") +
+           snow_units_text(scene.snow);
+  }
+
+  std::string snow_units_text(const SnowUnits &snow)
+  {
+    std::ostringstream text;
+    text.precision(17);
+    text << "\nSnow units: " << snow.bond_tensile_strength << " " << snow.particle_density;
+    return text.str();
+  }
+
   std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file)
   {
     // The stage runs a copy of the scene from its own folder: relocatable_scene_text makes the

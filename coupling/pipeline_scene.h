@@ -53,6 +53,14 @@ namespace anticrack::coupling
   /// of scene.weak_layer_changes (the last setting of an entry wins).
   std::string weak_layer_scene_text(const PipelineScene &scene);
 
+  /// What decides the weak layer's material, and nothing of where it is asked for: the weak
+  /// layer's scene text with the pipeline's changes (the block's comment naming no pipeline) and
+  /// the snow units. The material cache's key hashes it (coupling/material_cache.h).
+  std::string weak_layer_material_inputs(const PipelineScene &scene);
+
+  /// The snow units as the pipeline's stage hashes record them.
+  std::string snow_units_text(const SnowUnits &snow);
+
   /// The text of snowpack scene `file` as the pipeline runs it: the file, then a block setting each
   /// of scene.snowpack_changes (the last setting of an entry wins), then, if `material_file` is not
   /// empty, the weak layer's Material file.

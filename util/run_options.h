@@ -19,5 +19,8 @@ namespace anticrack
     bool quiet = false;       ///< no start, progress and end lines (campaign tests)
     std::string progress_label; ///< quiet runs with a label print "<label>: step ..." once a minute
     nlohmann::ordered_json labels; ///< copied into summary.json as "labels" (a campaign test's identity)
+    /// Pipelines: the folder of calibrated weak layers shared between runs ("": none;
+    /// coupling/material_cache.h).
+    std::string material_cache;
   };
 } // namespace anticrack

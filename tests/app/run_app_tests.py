@@ -101,11 +101,13 @@ def write(path, text):
 
 
 # ------------------------------------------------------------------------------------- running
-def anticrack(*args, expect=0, cwd=None, timeout=300):
+def anticrack(*args, expect=0, cwd=None, timeout=300, env=None):
     """Runs anticrack; checks the exit code; returns (stdout, stderr). `timeout` [s] stops a hung run
-    (the campaigns of the cross-validation take minutes, and longer when the machine is slow)."""
+    (the campaigns of the cross-validation take minutes, and longer when the machine is slow); `env`
+    adds to the environment."""
     command = [ANTICRACK, *map(str, args)]
-    result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    result = subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout,
+                            env=dict(os.environ, **env) if env else None)
     check(result.returncode == expect,
           f"`{' '.join(command)}` exited with {result.returncode}, expected {expect}\n"
           f"--- stdout\n{result.stdout}--- stderr\n{result.stderr}")
@@ -2147,6 +2149,58 @@ def pipeline_files(work):
         "  set Weak layer scene changes = Calibration/Bootstrap resamples = 0", "end",
         "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
     return pipeline, weak, flat, steep
+
+
+@case
+def pipeline_material_cache(work):
+    """`run --material-cache DIR` (or ANTICRACK_MATERIAL_CACHE): the first pipeline calibrates its weak
+    layer and stores the stage's folder under a key (cache_entry.json records it); a second pipeline
+    with the same weak layer, in another folder, under another name and with other snowpack scenes,
+    copies it instead of running the campaign: the same material file to the byte. The key is the weak layer's inputs: other snow units miss the cache and store a second
+    entry; without the option nothing is read or stored."""
+    pipeline, weak, flat, _ = pipeline_files(work)
+    cache = os.path.join(work, "cache")
+    text = open(pipeline).read().replace("flat.prm, steep.prm", "flat.prm").replace(
+        "end\nsubsection Snow units", "  set Uncertainty = none\nend\nsubsection Snow units")
+    first = write(os.path.join(work, "first.prm"), text)
+    stdout, _ = anticrack("run", first, "-o", os.path.join(work, "out1"), "--material-cache", cache)
+    summary = json.load(open(os.path.join(work, "out1", "summary.json")))
+    stored = summary["stages"][0]["material_cache"]
+    check("from the material cache" not in stdout and "used" not in stored, f"the first pipeline did not calibrate: {stored}")
+    entries = [e for e in os.listdir(cache) if not e.startswith(".")]
+    check(entries == [stored["key"]] and stored["stored"] == os.path.join(cache, stored["key"]),
+          f"cache {entries}, stage {stored}")
+    record = json.load(open(os.path.join(cache, stored["key"], "cache_entry.json")))
+    check(record["key"] == stored["key"] and record["pipeline"] == first and len(record["executable_sha256"]) == 64,
+          f"cache_entry.json {record}")
+
+    # Another pipeline elsewhere: the same weak layer (its own copy of the scene), another snowpack.
+    other = os.path.join(work, "elsewhere")
+    os.makedirs(other)
+    shutil.copy(weak, os.path.join(other, "weak.prm"))
+    write(os.path.join(other, "steep.prm"), open(os.path.join(work, "steep.prm")).read())
+    second = write(os.path.join(other, "second.prm"), text.replace("flat.prm", "steep.prm"))
+    stdout, _ = anticrack("run", second, "-o", os.path.join(work, "out2"), env={"ANTICRACK_MATERIAL_CACHE": cache})
+    check("weak layer: from the material cache" in stdout and "completed earlier, skipped" not in stdout,
+          f"the second pipeline did not take the cached weak layer:\n{stdout[-2000:]}")
+    material = lambda out: open(os.path.join(work, out, "weak_layer", "material_snow.prm"), "rb").read()
+    check(material("out2") == material("out1"), "the cached material differs from the calibrated one")
+    used = json.load(open(os.path.join(work, "out2", "summary.json")))["stages"][0]
+    check(used["status"] == "completed" and used["material_cache"]["key"] == stored["key"] and
+          used["material_cache"]["calibrated_by"] == first, f"stage {used}")
+
+    # Other snow units are another material: a miss, and a second entry.
+    third = write(os.path.join(work, "third.prm"), text.replace("2e5", "3e5"))
+    stdout, _ = anticrack("run", third, "-o", os.path.join(work, "out3"), "--material-cache", cache)
+    missed = json.load(open(os.path.join(work, "out3", "summary.json")))["stages"][0]["material_cache"]
+    check("from the material cache" not in stdout and "stored" in missed and missed["key"] != stored["key"],
+          f"other snow units: {missed}\n{stdout[-2000:]}")
+    check(len([e for e in os.listdir(cache) if not e.startswith(".")]) == 2, f"cache {os.listdir(cache)}")
+    # Without the option (and without the variable) no cache is read or written.
+    stdout, _ = anticrack("run", first, "-o", os.path.join(work, "out4"))
+    check("from the material cache" not in stdout and
+          "material_cache" not in json.load(open(os.path.join(work, "out4", "summary.json")))["stages"][0],
+          "a run without --material-cache used a cache")
 
 
 @case

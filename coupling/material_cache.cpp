@@ -1,0 +1,73 @@
+#include "coupling/material_cache.h"
+
+#include "util/run_summary.h"
+#include "util/sha256.h"
+
+#include <unistd.h>
+
+#include <fstream>
+
+namespace anticrack::coupling
+{
+  namespace fs = std::filesystem;
+
+  namespace
+  {
+    /// The SHA-256 of the running executable, read once.
+    const std::string &executable_sha256()
+    {
+      static const std::string hash = util::sha256_of_file(fs::read_symlink("/proc/self/exe").string());
+      return hash;
+    }
+  } // namespace
+
+  MaterialCache::MaterialCache(fs::path directory)
+    : directory_(directory.empty() ? directory : fs::absolute(directory))
+  {}
+
+  std::string MaterialCache::key(const std::string &stage_inputs_sha256)
+  {
+    return util::sha256_hex("weak-layer stage inputs " + stage_inputs_sha256 + "\nexecutable " + executable_sha256());
+  }
+
+  std::optional<fs::path> MaterialCache::find(const std::string &key) const
+  {
+    if (!enabled())
+      return std::nullopt;
+    const fs::path entry = directory_ / key;
+    std::error_code error;
+    if (fs::is_directory(entry, error) && fs::is_regular_file(entry / record_file, error))
+      return entry;
+    return std::nullopt;
+  }
+
+  nlohmann::ordered_json MaterialCache::restore(const std::string &key, const fs::path &stage_directory) const
+  {
+    const fs::path entry = directory_ / key;
+    fs::remove_all(stage_directory);
+    fs::create_directories(stage_directory.parent_path());
+    fs::copy(entry, stage_directory, fs::copy_options::recursive);
+    fs::remove(stage_directory / record_file);
+    std::ifstream in(entry / record_file);
+    return nlohmann::ordered_json::parse(in);
+  }
+
+  void MaterialCache::store(const std::string &key, const std::string &stage_inputs_sha256,
+                            const fs::path &stage_directory, nlohmann::ordered_json record) const
+  {
+    fs::create_directories(directory_);
+    const fs::path entry = directory_ / key;
+    const fs::path staging = directory_ / (".incoming-" + key + "-" + std::to_string(::getpid()));
+    fs::remove_all(staging);
+    fs::copy(stage_directory, staging, fs::copy_options::recursive);
+    record["key"] = key;
+    record["stage_inputs_sha256"] = stage_inputs_sha256;
+    record["executable_sha256"] = executable_sha256();
+    record["versions"] = version_info();
+    write_json_atomically((staging / record_file).string(), record);
+    std::error_code error;
+    fs::rename(staging, entry, error); // fails if another run stored the same key first
+    if (error)
+      fs::remove_all(staging);
+  }
+} // namespace anticrack::coupling
