@@ -16,13 +16,14 @@ import os
 import re
 import sys
 
-from scene_study import ROOT, check_scenes, template, write_pipeline, write_refused
+from scene_study import ROOT, check_scenes, fit_template_to_test, template, write_pipeline, write_refused
 
 FIELD = os.path.join(ROOT, "scenes", "field")
 DATA = os.path.join(ROOT, "data", "field_psts")
 
 
-def scene_text(text, pit_file, test_number, pit):
+def scene_text(text, pit_file, test_number, pit, row):
+    text = fit_template_to_test(text, float(row["wl_thickness_cm"]) / 100, float(row["column_cm"]) / 100)
     text = re.sub(r"set Profile file = .*", f"set Profile file = ../../data/field_psts/snowpilot/{pit_file}", text)
     text = re.sub(r"set Propagation saw test = .*", f"set Propagation saw test = {test_number}", text)
     body = text[text.index("set Scene"):]
@@ -47,7 +48,7 @@ def main():
         paths.append(os.path.join(FIELD, name))
         observed[name] = f"{row['outcome']} at {row['cut_cm']} cm"
         with open(paths[-1], "w") as f:
-            f.write(scene_text(template(), row["file"], seen[pit], pit))
+            f.write(scene_text(template(), row["file"], seen[pit], pit, row))
     kept, refused = check_scenes(anticrack, paths)
     write_refused(FIELD, "Field PSTs of data/field_psts", "scripts/field_scenes.py", [(n[:-4], observed[n], r) for n, r in refused])
     write_pipeline(os.path.join(FIELD, "field_psts.prm"),
@@ -58,7 +59,8 @@ def main():
 # scripts/field_score.py scores the predictions against the observations (docs/validation.md).
 # Written by scripts/field_scenes.py.
 #
-#   anticrack run scenes/field/field_psts.prm -o out/field && scripts/field_score.py out/field
+#   anticrack run scenes/field/field_psts.prm -o out/field --material-cache out/material_cache &&
+#     scripts/field_score.py out/field
 """, kept)
     print(f"{len(kept)} scenes, {len(refused)} refused (scenes/field/refused.md); scenes/field/field_psts.prm")
 

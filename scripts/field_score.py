@@ -42,8 +42,8 @@ def ranks(values):
 
 
 def spearman(x, y):
-    if len(x) < 3:
-        return None
+    if len(x) < 3 or len(set(x)) < 2 or len(set(y)) < 2:
+        return None  # undefined for a constant (the baseline's cuts)
     rx, ry = ranks(np.asarray(x, float)), ranks(np.asarray(y, float))
     return float(np.corrcoef(rx, ry)[0, 1])
 

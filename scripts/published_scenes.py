@@ -132,7 +132,7 @@ def main():
 # scripts/field_score.py scores the predictions against observed.csv (docs/validation.md).
 # Written by scripts/published_scenes.py.
 #
-#   anticrack run scenes/published/published_psts.prm -o out/published && \\
+#   anticrack run scenes/published/published_psts.prm -o out/published --material-cache out/material_cache && \\
 #     scripts/field_score.py out/published --observed scenes/published/observed.csv
 """, kept)
     print(f"{len(kept)} scenes, {len(refused)} refused (scenes/published/refused.md); scenes/published/published_psts.prm")
