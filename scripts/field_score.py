@@ -48,8 +48,9 @@ def spearman(x, y):
     return float(np.corrcoef(rx, ry)[0, 1])
 
 
-def score(cases, predicted_outcome, predicted_cut):
-    """cases: dicts with observed outcome/cut; predicted_*: functions of a case."""
+def score(cases, predicted_outcome, predicted_cut, predicts_collapse=True):
+    """cases: dicts with observed outcome/cut; predicted_*: functions of a case; predicts_collapse:
+    whether the predictor gives collapse heights (the baseline does not)."""
     outcomes = [c["observed_outcome"] for c in cases]
     right = [predicted_outcome(c) == c["observed_outcome"] for c in cases]
     per_class = {}
@@ -69,7 +70,7 @@ def score(cases, predicted_outcome, predicted_cut):
         within += 1 / FACTOR <= ratios[-1] <= FACTOR
     r = np.asarray(ratios)
     collapse = np.asarray([c["collapse_height_m"] / c["observed_collapse_height_m"] for c in cases
-                           if c.get("observed_collapse_height_m") and c.get("collapse_height_m")])
+                           if predicts_collapse and c.get("observed_collapse_height_m") and c.get("collapse_height_m")])
     return {
         "tests": len(cases),
         "outcomes_right": int(sum(right)),
@@ -142,7 +143,7 @@ def main():
              if c["observed_outcome"] in ("End", "Arr", "SF")]
     model = score(cases, lambda c: c["predicted_outcome"],
                   lambda c: c["predicted_cut_m"] if c["predicted_outcome"] in ("End", "Arr", "SF") else None)
-    baseline = score(cases, lambda c: "End", lambda c: BASELINE_CUT_M)
+    baseline = score(cases, lambda c: "End", lambda c: BASELINE_CUT_M, predicts_collapse=False)
     result = {"model": model, "baseline_always_end_at_the_median_cut": baseline, "baseline_cut_m": BASELINE_CUT_M,
               "factor": FACTOR, "cases": cases}
     with open(os.path.join(directory, "field_score.json"), "w") as f:
