@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <ctime>
 #include <fstream>
 
 namespace anticrack::coupling
@@ -13,6 +14,15 @@ namespace anticrack::coupling
 
   namespace
   {
+    /// Now, UTC, ISO 8601.
+    std::string utc_now()
+    {
+      const std::time_t now = std::time(nullptr);
+      char text[32];
+      std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+      return text;
+    }
+
     /// The SHA-256 of the running executable, read once.
     const std::string &executable_sha256()
     {
@@ -60,6 +70,7 @@ namespace anticrack::coupling
     const fs::path staging = directory_ / (".incoming-" + key + "-" + std::to_string(::getpid()));
     fs::remove_all(staging);
     fs::copy(stage_directory, staging, fs::copy_options::recursive);
+    record["calibrated_at"] = utc_now(); // stored right after the calibration completed
     record["key"] = key;
     record["stage_inputs_sha256"] = stage_inputs_sha256;
     record["executable_sha256"] = executable_sha256();

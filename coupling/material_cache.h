@@ -46,7 +46,7 @@ namespace anticrack::coupling
     nlohmann::ordered_json restore(const std::string &key, const std::filesystem::path &stage_directory) const;
 
     /// Stores the completed stage folder under `key`; `record` says where it came from (it gets the
-    /// key, the inputs and the executable's hash added). Throws std::filesystem::filesystem_error
+    /// key, the inputs, the executable's hash and the time, calibrated_at, added). Throws std::filesystem::filesystem_error
     /// when the cache cannot be written.
     void store(const std::string &key, const std::string &stage_inputs_sha256,
                const std::filesystem::path &stage_directory, nlohmann::ordered_json record) const;

@@ -26,7 +26,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -208,13 +207,6 @@ namespace anticrack::coupling
       return j;
     }
 
-    std::string utc_now()
-    {
-      const std::time_t now = std::time(nullptr);
-      char text[32];
-      std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-      return text;
-    }
 
     /// "about 3 min 20 s left" from the earlier run's wall times of the stages not done yet, or for
     /// stage `from` itself from `estimate` (this run's measure of it) where there is no earlier run.
@@ -540,7 +532,7 @@ namespace anticrack::coupling
         try
         {
           cache.store(cache_key, material_inputs_sha256, weak.directory,
-                      {{"pipeline", scene.file}, {"output", weak.directory.string()}, {"calibrated_at", utc_now()}});
+                      {{"pipeline", scene.file}, {"output", weak.directory.string()}});
         }
         catch (const fs::filesystem_error &e)
         {

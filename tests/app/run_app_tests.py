@@ -2187,7 +2187,8 @@ def pipeline_material_cache(work):
     check(material("out2") == material("out1"), "the cached material differs from the calibrated one")
     used = json.load(open(os.path.join(work, "out2", "summary.json")))["stages"][0]
     check(used["status"] == "completed" and used["material_cache"]["key"] == stored["key"] and
-          used["material_cache"]["calibrated_by"] == first, f"stage {used}")
+          used["material_cache"]["calibrated_by"] == first and
+          used["material_cache"]["calibrated_at"] == record["calibrated_at"] != "", f"stage {used}")
 
     # Other snow units are another material: a miss, and a second entry.
     third = write(os.path.join(work, "third.prm"), text.replace("2e5", "3e5"))
