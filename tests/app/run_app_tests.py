@@ -2205,6 +2205,46 @@ def pipeline_material_cache(work):
 
 
 @case
+def field_score_counts(work):
+    """scripts/field_score.py on a study of four made-up tests whose score is known by hand: outcomes
+    right 2 of 4 (End 1/2, Arr 1/1, SF 0/1), cut ratios 1.0, 2.0 and 0.5 (a "no propagation" has
+    none), so the median 1.0 and 1 of 4 within a factor 1.5; Spearman of (0.2, 0.4, 0.6) against
+    (0.2, 0.8, 0.3) is 0.5; collapse-height ratios 2 and 0.5 (median 1.25) from --observed; the
+    baseline "always End at 0.45 m" gets 2 of 4 outcomes and 3 of 4 cuts within the factor (0.45/0.2
+    = 2.25 outside; 1.125, 0.75 and 1.5, the bound included, inside)."""
+    study = os.path.join(work, "study")
+    os.makedirs(study)
+    analyses = {
+        "a": {"status": "completed", "outcome": "End", "critical_cut_length_m": 0.2,
+              "observed_saw_test": {"propagation": "End", "cut_length_m": 0.2, "column_length_m": 1}},
+        "b": {"status": "completed", "outcome": "Arr", "critical_cut_length_m": 0.8},
+        "c": {"status": "completed", "outcome": "End", "critical_cut_length_m": 0.3},
+        "d": {"status": "completed", "outcome": "no propagation", "critical_cut_length_m": None},
+    }
+    json.dump({"results": {"analyses": analyses}}, open(os.path.join(study, "summary.json"), "w"))
+    for name, height in (("b", 0.004), ("c", 0.001)):
+        os.makedirs(os.path.join(study, name))
+        json.dump({"results": {"collapsed_layer_under_the_slab": {"collapse_height_m": height}}},
+                  open(os.path.join(study, name, "summary.json"), "w"))
+    observed = write(os.path.join(work, "observed.csv"), "# made up\n"
+                     "test,propagation,cut_length_m,column_length_m,collapse_height_m,failed_depth_m\n"
+                     "b,Arr,0.4,1,0.002,0.5\nc,SF,0.6,1,0.002,0.5\nd,End,0.3,1,,0.5\n")
+    subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "scripts", "field_score.py"), study,
+                    "--observed", observed], check=True, capture_output=True)
+    score = json.load(open(os.path.join(study, "field_score.json")))
+    model, baseline = score["model"], score["baseline_always_end_at_the_median_cut"]
+    check(model["outcomes_right"] == 2 and model["per_observed_class"] ==
+          {"Arr": {"tests": 1, "right": 1}, "End": {"tests": 2, "right": 1}, "SF": {"tests": 1, "right": 0}},
+          f"outcomes {model}")
+    check(model["cuts_compared"] == 4 and model["cuts_predicted"] == 3 and model["cut_ratio_median"] == 1.0 and
+          model["cuts_within_factor"] == 1 and abs(model["cut_rank_correlation"] - 0.5) < 1e-12, f"cuts {model}")
+    check(model["collapse_heights_compared"] == 2 and abs(model["collapse_height_ratio_median"] - 1.25) < 1e-12,
+          f"collapse {model}")
+    check(baseline["outcomes_right"] == 2 and baseline["cuts_within_factor"] == 3 and
+          baseline["cut_rank_correlation"] is None and baseline["collapse_heights_compared"] == 0, f"baseline {baseline}")
+
+
+@case
 def study_small(work):
     """scenes/studies/err_flat_mesh.prm (the CI's tiny study): every variant runs (one equal to another
     once), study.json's errors
