@@ -4,7 +4,8 @@
 //   anticrack check SCENE.prm [--threads T]
 //   anticrack calibrate CAMPAIGN.h5|SCENE.prm -o DIR [--poisson-ratio NU]
 //                       [--bootstrap N] [--seed S] [--confidence C] [--no-plots] [--overwrite]
-//                       [--threads T] [--snow-bond-strength PA --snow-particle-density KG_M3]
+//                       [--threads T] [--snow-bond-strength PA --snow-bond-modulus PA
+//                        --snow-grain-diameter M --snow-particle-density KG_M3]
 //   anticrack params [--snowpack] [--format prm|description|json]
 //   anticrack bench dem --lattice n --steps S --threads T
 //
@@ -144,11 +145,24 @@ int main(int argc, char **argv)
                           "Also write the material in snow units (material_snow.prm): the snow's bond tensile strength "
                           "[Pa]; every modulus and strength scales by it over the DEM's (docs/calibration.md)")
       ->check(CLI::PositiveNumber);
-  calibrate->add_option("--snow-particle-density", snow.particle_density,
-                        "The snow's grain density for material_snow.prm [kg/m^3] (ice: 917)")
-    ->check(CLI::PositiveNumber)
-    ->needs(snow_strength);
-  snow_strength->needs(calibrate->get_option("--snow-particle-density"));
+  // The snow's other units: all four or none (coupling/snow_units.h).
+  const std::vector<CLI::Option *> snow_options = {
+    snow_strength,
+    calibrate->add_option("--snow-bond-modulus", snow.bond_modulus,
+                          "The snow's bond modulus for material_snow.prm [Pa]; the campaign must have been run at "
+                          "its ratio to the bond strength")
+      ->check(CLI::PositiveNumber),
+    calibrate->add_option("--snow-grain-diameter", snow.grain_diameter,
+                          "The snow's grain diameter for material_snow.prm [m]; lengths scale by it over the "
+                          "DEM's mean sphere diameter")
+      ->check(CLI::PositiveNumber),
+    calibrate->add_option("--snow-particle-density", snow.particle_density,
+                          "The snow's grain density for material_snow.prm [kg/m^3] (ice: 917)")
+      ->check(CLI::PositiveNumber)};
+  for (CLI::Option *option : snow_options)
+    for (CLI::Option *other : snow_options)
+      if (other != option)
+        option->needs(other);
   calibrate->add_flag("--no-plots", no_plots, "Do not run scripts/plot_calibration.py");
   calibrate->add_flag("--overwrite", calibrate_options.overwrite, "Replace an earlier calibration in DIR");
   calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads of a scene's campaign")

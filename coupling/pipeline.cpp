@@ -357,9 +357,13 @@ namespace anticrack::coupling
     const PipelineScene scene = read_pipeline_scene(file);
     std::cout << "pipeline " << file << ":\n  1. weak layer: " << scene.weak_layer_scene
               << " (campaign, calibration, material in snow units: bond tensile strength "
-              << scene.snow.bond_tensile_strength << " Pa, grain density " << scene.snow.particle_density << " kg/m^3)\n";
+              << scene.snow.bond_tensile_strength << " Pa, bond modulus " << scene.snow.bond_modulus
+              << " Pa, grain diameter " << scene.snow.grain_diameter << " m, grain density "
+              << scene.snow.particle_density << " kg/m^3)\n";
     for (const auto &[path, value] : scene.weak_layer_changes)
       std::cout << "     (with " << path << " = " << value << ")\n";
+    for (const auto &[path, value] : scene.snow_ratio_changes)
+      std::cout << "     (at the snow's bond modulus over strength: " << path << " = " << value << ")\n";
     for (std::size_t k = 0; k < scene.snowpack_scenes.size(); ++k)
       std::cout << "  " << k + 2 << ". " << scene.snowpack_scenes[k] << " with the calibrated weak layer\n";
     for (const auto &[path, value] : scene.snowpack_changes)
@@ -418,7 +422,7 @@ namespace anticrack::coupling
       s.kind = "calibration";
       s.directory = dir / weak_layer_directory;
       // With changes, the stage runs a copy of the scene that holds them, in its own folder.
-      s.scene_file = scene.weak_layer_changes.empty() ? scene.weak_layer_scene : (s.directory / "scene.prm").string();
+      s.scene_file = !scene.weak_layer_changed() ? scene.weak_layer_scene : (s.directory / "scene.prm").string();
       s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene) + snow_units_text(scene.snow));
       stages.push_back(s);
     }
@@ -501,7 +505,7 @@ namespace anticrack::coupling
     else
     {
       announce(0);
-      if (!scene.weak_layer_changes.empty())
+      if (scene.weak_layer_changed())
       {
         if (root)
         {

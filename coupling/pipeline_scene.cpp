@@ -25,6 +25,28 @@ namespace anticrack::coupling
     constexpr const char *snowpack_entry = "Snowpack scenes";
     constexpr const char *bond_strength_entry = "Bond tensile strength [Pa]";
     constexpr const char *particle_density_entry = "Particle density [kg/m^3]";
+    constexpr const char *bond_modulus_entry = "Bond modulus [Pa]";
+    constexpr const char *grain_diameter_entry = "Grain diameter [m]";
+
+    /// The weak layer's DEM scene, read as its kind reads it with `changes` (throws InputError).
+    dem::SceneParameters weak_layer_dem_scene(const std::string &file,
+                                              const std::vector<std::pair<std::string, std::string>> &changes)
+    {
+      if (scene_kind_in_file(file) == "calibration")
+        return dem::read_scene(file, dem::SceneKind::calibration, changes, CalibrationParameters::declare_parameters);
+      return dem::read_scene(file, dem::SceneKind::campaign, changes);
+    }
+
+    /// The weak layer's scene text with the user's changes, then the snow ratio's; `by` names who
+    /// added them in the blocks' comments, `on` (may be empty) what the user's changes apply to.
+    std::string weak_layer_text(const PipelineScene &scene, const std::string &by, const std::string &on)
+    {
+      const std::string user = scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
+                                                       by + ": Pipeline/Weak layer scene changes" + on);
+      return scene_text_with_changes(user, scene.snow_ratio_changes,
+                                     by + ": the DEM at the snow's bond modulus over tensile strength (Snow "
+                                          "units; coupling/snow_units.h)");
+    }
 
     /// "a scene of kind `campaign`" or "a scene that does not say its kind".
     std::string kind_text(const std::string &file)
@@ -67,6 +89,15 @@ namespace anticrack::coupling
                       "sigma_c: tensile strength of the snow's bonds. Every modulus and strength of the DEM scales by "
                       "it over the DEM's bond tensile strength (coupling/snow_units.h). Units: Pa.",
                       /*has_to_be_set=*/true);
+    prm.declare_entry(bond_modulus_entry, "0", Patterns::Double(0),
+                      "E_bar: modulus of the snow's bonds. The weak layer's DEM is run at E_bar / sigma_c (its bond "
+                      "and contact moduli and its grains' density scaled together, the time step unchanged; "
+                      "coupling/snow_units.h): the DEM's response depends on the ratio. Units: Pa.",
+                      /*has_to_be_set=*/true);
+    prm.declare_entry(grain_diameter_entry, "0", Patterns::Double(0),
+                      "d: diameter of the snow's grains; every length of the DEM (the softening's reference "
+                      "thickness) scales by it over the DEM's mean sphere diameter. Units: m.",
+                      /*has_to_be_set=*/true);
     prm.declare_entry(particle_density_entry, "0", Patterns::Double(0),
                       "rho: density of the snow's grains (ice: 917); the layer's density is the DEM's solid "
                       "fraction times it. Units: kg/m^3.",
@@ -91,23 +122,20 @@ namespace anticrack::coupling
 
   std::string weak_layer_scene_text(const PipelineScene &scene)
   {
-    return scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
-                                   "by the pipeline " + scene.file + ": Pipeline/Weak layer scene changes, on " +
-                                     scene.weak_layer_scene);
+    return weak_layer_text(scene, "by the pipeline " + scene.file, ", on " + scene.weak_layer_scene);
   }
 
   std::string weak_layer_material_inputs(const PipelineScene &scene)
   {
-    return scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
-                                   "by the pipeline: Pipeline/Weak layer scene changes") +
-           snow_units_text(scene.snow);
+    return weak_layer_text(scene, "by the pipeline", "") + snow_units_text(scene.snow);
   }
 
   std::string snow_units_text(const SnowUnits &snow)
   {
     std::ostringstream text;
     text.precision(17);
-    text << "\nSnow units: " << snow.bond_tensile_strength << " " << snow.particle_density;
+    text << "\nSnow units: " << snow.bond_tensile_strength << " " << snow.particle_density << " " << snow.bond_modulus
+         << " " << snow.grain_diameter;
     return text.str();
   }
 
@@ -160,6 +188,8 @@ namespace anticrack::coupling
     prm.enter_subsection("Snow units");
     scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
     scene.snow.particle_density = prm.get_double(particle_density_entry);
+    scene.snow.bond_modulus = prm.get_double(bond_modulus_entry);
+    scene.snow.grain_diameter = prm.get_double(grain_diameter_entry);
     prm.leave_subsection();
 
     if (scene.snowpack_scenes.empty())
@@ -174,6 +204,10 @@ namespace anticrack::coupling
       problems.add(std::string("Snow units/") + bond_strength_entry, scene.snow.bond_tensile_strength, "must be > 0");
     if (!(scene.snow.particle_density > 0))
       problems.add(std::string("Snow units/") + particle_density_entry, scene.snow.particle_density, "must be > 0");
+    if (!(scene.snow.bond_modulus > 0))
+      problems.add(std::string("Snow units/") + bond_modulus_entry, scene.snow.bond_modulus, "must be > 0");
+    if (!(scene.snow.grain_diameter > 0))
+      problems.add(std::string("Snow units/") + grain_diameter_entry, scene.snow.grain_diameter, "must be > 0");
     const std::string weak_entry = std::string("Pipeline/") + weak_layer_entry;
     if (check_exists(scene.weak_layer_scene, weak_entry))
     {
@@ -212,6 +246,17 @@ namespace anticrack::coupling
       throw InputError("Invalid scene file <" + file + ">: Pipeline/" + weak_layer_entry + " = " + scene.weak_layer_scene +
                        (scene.weak_layer_changes.empty() ? "" : " with Pipeline/Weak layer scene changes") + ":\n" +
                        e.what());
+    }
+    // The DEM at the snow's ratio: its entries after the user's changes (the last setting wins).
+    scene.snow_ratio_changes =
+      snow_ratio_changes(weak_layer_dem_scene(scene.weak_layer_scene, scene.weak_layer_changes), scene.snow,
+                         "Invalid scene file <" + file + ">: Snow units with Pipeline/" + weak_layer_entry + " = " +
+                           scene.weak_layer_scene);
+    if (!scene.snow_ratio_changes.empty())
+    {
+      auto changes = scene.weak_layer_changes;
+      changes.insert(changes.end(), scene.snow_ratio_changes.begin(), scene.snow_ratio_changes.end());
+      weak_layer_calibration(scene, scene.weak_layer_scene, changes);
     }
     return scene;
   }

@@ -8,6 +8,8 @@
 //   end                                                    # the calibrated material
 //   subsection Snow units                                  # coupling/snow_units.h
 //     set Bond tensile strength [Pa] = 3e5
+//     set Bond modulus [Pa]          = 3e8
+//     set Grain diameter [m]         = 1e-3
 //     set Particle density [kg/m^3]  = 917
 //   end
 //
@@ -41,6 +43,12 @@ namespace anticrack::coupling
     /// Pipeline/Weak layer scene changes: (path, value) applied to the weak layer's scene, e.g.
     /// ("Campaign/Compaction strain rate [1/s]", "5") to add the compaction tests to a campaign.
     std::vector<std::pair<std::string, std::string>> weak_layer_changes;
+    /// The entries that run the weak layer's DEM at the snow's bond modulus over strength
+    /// (coupling::snow_ratio_changes), set after weak_layer_changes; empty at the DEM's own ratio.
+    std::vector<std::pair<std::string, std::string>> snow_ratio_changes;
+
+    /// Whether the weak layer's stage runs a copy of its scene (with changes of either kind).
+    [[nodiscard]] bool weak_layer_changed() const { return !weak_layer_changes.empty() || !snow_ratio_changes.empty(); }
   };
 
   /// The options of the weak layer's calibration: those of the calibration scene `file` (the
@@ -50,7 +58,8 @@ namespace anticrack::coupling
                                           const std::vector<std::pair<std::string, std::string>> &changes = {});
 
   /// The text of the weak layer's scene as the pipeline runs it: the file, then a block setting each
-  /// of scene.weak_layer_changes (the last setting of an entry wins).
+  /// of scene.weak_layer_changes, then one of scene.snow_ratio_changes (the last setting of an
+  /// entry wins).
   std::string weak_layer_scene_text(const PipelineScene &scene);
 
   /// What decides the weak layer's material, and nothing of where it is asked for: the weak

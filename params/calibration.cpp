@@ -305,6 +305,7 @@ namespace anticrack::params
                                " for the samples; the density and the contact density need 0 < phi < 1 and z > 0");
       c.contact_density = c.solid_fraction * c.coordination; // ν_c = z φ (Ritter et al. 2020)
       c.layer_thickness = mean_of(c.tests, &CampaignTest::layer_thickness);
+      c.grain_diameter = mean_of(c.tests, &CampaignTest::particle_diameter); // NaN before format 4
       c.density = c.solid_fraction * c.material.particle_density;
 
       // The FE elasticity first: it sets the lateral stresses of the tests' paths (test_path.h).

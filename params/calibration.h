@@ -35,6 +35,7 @@
 #include "params/yield_envelopes.h"
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -113,6 +114,9 @@ namespace anticrack::params
     std::vector<int> realizations;    ///< distinct realization ids
     double solid_fraction = 0, coordination = 0, contact_density = 0; ///< means over the tests
     double layer_thickness = 0;       ///< h of the deformable layer [m], the reference thickness
+    /// Mean diameter of the spheres over the tests [m]: the grain size the snow units scale lengths
+    /// by; NaN for a campaign older than format 4.
+    double grain_diameter = std::numeric_limits<double>::quiet_NaN();
     double density = 0;               ///< φ ρ_particle [kg/m³]
     TestPath path;                    ///< the tests' path for the FE point (the FE elasticity's ν)
     /// The DEM's lateral stress ratio at failure, (σ_xx + σ_yy)/(2 σ_zz) of the Love–Weber stress,

@@ -135,6 +135,7 @@ namespace anticrack::params
       hdf5::write_number_attribute(g.id, "coordination", c.coordination);
       hdf5::write_number_attribute(g.id, "contact_density", c.contact_density);
       hdf5::write_number_attribute(g.id, "layer_thickness", c.layer_thickness);
+      hdf5::write_number_attribute(g.id, "grain_diameter", c.grain_diameter);
       hdf5::write_number_attribute(g.id, "bond_tensile_strength", c.material.bond_tensile_strength);
       hdf5::write_number_attribute(g.id, "particle_modulus", c.material.particle_modulus);
       hdf5::write_number_attribute(g.id, "path_lateral_stress_ratio", c.path.lateral_stress_ratio());
@@ -353,6 +354,7 @@ namespace anticrack::params
         {"contact_density", c.contact_density},
         {"density_kg_per_m3", c.density},
         {"layer_thickness_m", c.layer_thickness},
+        {"grain_diameter_m", std::isfinite(c.grain_diameter) ? Json(c.grain_diameter) : Json(nullptr)},
         {"sigma_tau_plane", plane_json(c.base_plane)},
         {"p_q_plane", plane_json(c.invariant_plane)},
         {"p_q_path_plane", plane_json(c.path_plane)},

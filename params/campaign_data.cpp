@@ -47,6 +47,14 @@ namespace anticrack::params
         for (std::size_t k = 0; k < n; ++k)
           rows[k].*member = values[k];
       }
+      // Since format 4: the grains' size (campaigns of format 3 leave it NaN; the snow units'
+      // length needs it and says so).
+      if (hdf5::exists(g.id, name_of(&Row::particle_diameter)))
+      {
+        const auto values = column(g.id, name_of(&Row::particle_diameter), n, file);
+        for (std::size_t k = 0; k < n; ++k)
+          rows[k].particle_diameter = values[k];
+      }
       const auto love = hdf5::read_doubles(g.id, name_of(&Row::love_stress));
       if (love.size() != 9 * n)
         throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::love_stress) + " is not n x 3 x 3");
@@ -71,6 +79,7 @@ namespace anticrack::params
         t.coordination = row.coordination;
         t.specimen_height = row.specimen_height;
         t.layer_thickness = row.layer_thickness;
+        t.particle_diameter = row.particle_diameter;
         if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
           throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
                                  "run by an anticrack "

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ namespace anticrack::params
     double solid_fraction = 0, coordination = 0;
     double specimen_height = 0;     ///< H0 [m], the whole specimen (rigid base and clump included)
     double layer_thickness = 0;     ///< h [m], the deformable layer between base and clump
+    /// Mean diameter of the specimen's spheres [m]; NaN in campaigns older than format 4.
+    double particle_diameter = std::numeric_limits<double>::quiet_NaN();
     std::string reference_for;      ///< a quasi-static reference run: the test it checks
 
     [[nodiscard]] bool completed() const { return status == "completed"; }

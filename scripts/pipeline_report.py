@@ -232,7 +232,9 @@ def field_section(run_dir, summary):
     lines += ["", "The slab is the pit's (its layers, densities measured or inferred, and moduli: the stage's "
               "summary.json, scene/profile). The weak layer is not yet the pit's own: it is the pipeline's DEM "
               "weak layer (its calibrated material in snow units) at the thickness of the layer the field test "
-              "failed in, so the failed layer's grain form, size and density do not enter the prediction."]
+              "failed in. Of the failed layer, its grain size enters only as the pipeline's Snow units/Grain "
+              "diameter [m] gives it (the reference thickness above scales with it); its grain form and "
+              "density do not enter the prediction."]
     for s, _ in rows:
         lines += profile_layers_table(run_dir, s)
     return lines

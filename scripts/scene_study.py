@@ -48,6 +48,8 @@ def write_pipeline(path, header, scenes):
     default = open(os.path.join(ROOT, "scenes", "pipeline.prm")).read()
     changes = re.search(r"set Snowpack scene changes = (.*)", default).group(1).strip()
     snow = default[default.index("subsection Snow units"):]
+    # The default's grain size is its pit's; here it is one weak layer for every test.
+    snow = re.sub(r"  # d: .*\n(  # .*\n)*", "  # d: the default pipeline's (scenes/pipeline.prm): one weak layer for every test\n", snow)
     listing = ", \\\n                         ".join(scenes)
     with open(path, "w") as f:
         f.write(header + f"""set Scene = pipeline

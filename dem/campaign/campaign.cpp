@@ -256,6 +256,7 @@ namespace anticrack::dem
       row.bonds = number_at(s, "/dem/bonds");
       row.specimen_height = number_at(s, "/dem/specimen/height_m");
       row.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
+      row.particle_diameter = number_at(s, "/dem/specimen/mean_particle_diameter_m");
       if (!analysis)
         return o;
       const TestFailureAnalysis &a = *analysis;
@@ -712,7 +713,7 @@ namespace anticrack::dem
     hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
       // 3: love_stress, p and q are the specimen's between its platens (docs/physics.md §1.5).
-      hdf5::write_string_attribute(f.id, "format_version", "3");
+      hdf5::write_string_attribute(f.id, "format_version", "4");
       hdf5::write_string_attribute(f.id, "scene_file", scene.file);
       hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
       hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);

@@ -35,6 +35,7 @@ namespace anticrack::dem
     double max_inertial_number = nan;
     double solid_fraction = nan, coordination = nan, bonds = nan;
     double specimen_height = nan, layer_thickness = nan;
+    double particle_diameter = nan;
   };
 
   /// One column of the table; exactly one of the three members is set (a text per test, a number
@@ -94,7 +95,10 @@ namespace anticrack::dem
       number("specimen_height", "m", "initial height H0 of the tested specimen (strains in the histories are u / H0)",
              &R::specimen_height),
       number("layer_thickness", "m", "deformable layer between the fixed base and the clump (centre to centre), h",
-             &R::layer_thickness)};
+             &R::layer_thickness),
+      number("particle_diameter", "m",
+             "mean diameter of the specimen's spheres (the grain size the snow units scale lengths by)",
+             &R::particle_diameter)};
     return columns;
   }
 

@@ -108,6 +108,7 @@ namespace anticrack::dem
     /// Thickness of the deformable layer between the fixed base and the clump, at the start [m].
     [[nodiscard]] double layer_thickness() const;
     double initial_layer_thickness_ = 0;
+    double mean_particle_diameter_ = 0; ///< 2 x the mean radius of every sphere at the start [m]
     /// The fixed base and the clump when the scene has both: rigid platens, not part of the specimen
     /// whose Love-Weber stress the history records (dem/lab/measurements.h); empty otherwise.
     dem::PlatenSpheres platens_;
@@ -169,6 +170,11 @@ namespace anticrack::dem
     const auto [low, high] = dem::sphere_extent(system_.particles, 2);
     initial_sample_height_ = high - low;
     initial_layer_thickness_ = layer_thickness();
+    // The grains' size: the length the snow units scale the layer by (coupling/snow_units.h).
+    double radius_sum = 0;
+    for (const double r : system_.particles.radius)
+      radius_sum += r;
+    mean_particle_diameter_ = system_.particles.radius.empty() ? 0 : 2 * radius_sum / system_.particles.radius.size();
     if (!model_->fixed_particles.empty() && model_->clump >= 0)
     {
       platens_.assign(system_.particles.size(), dem::Platen::none);
@@ -830,6 +836,7 @@ namespace anticrack::dem
       d["loading"] = l;
       d["specimen"] = {{"height_m", initial_sample_height_},
                        {"layer_thickness_m", initial_layer_thickness_},
+                       {"mean_particle_diameter_m", mean_particle_diameter_},
                        {"love_weber_volume", platens_.empty() ? "sphere extent" : "base area x platen separation"}};
       if (failure_analysis_)
         d["failure_analysis"] = failure_analysis_json(*failure_analysis_);

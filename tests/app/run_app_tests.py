@@ -689,6 +689,12 @@ def campaign_scene(angles, check_mode="none", microstructures="", **changes):
         "DEM/Loading/Slow rate fraction": "0.0625", "DEM/Loading/Lag tolerance": "0.1", **changes})
 
 
+# The tiny pipelines' snow units: bonds of 200 kPa at the DEM's own ratio (1 GPa / 1 MPa, so the DEM
+# runs as campaign_scene writes it) and the DEM's own grains (0.654 mm: lengths unchanged).
+SNOW_UNITS = ["subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Bond modulus [Pa] = 2e8",
+              "  set Grain diameter [m] = 6.54e-4", "  set Particle density [kg/m^3] = 917", "end"]
+
+
 def failure_points(directory):
     with h5py.File(os.path.join(directory, "campaign.h5"), "r") as f:
         return {name: f["failure_points"][name][()] for name in f["failure_points"]}
@@ -701,6 +707,30 @@ def compare_campaigns(a, b):
         for test_id in fa["tests"]:
             ha, hb = fa["tests"][test_id]["history"], fb["tests"][test_id]["history"]
             compare_exactly({k: ha[k][()] for k in ha}, {k: hb[k][()] for k in hb}, f"history of {test_id}")
+
+
+@case
+def campaign_grain_size_is_a_unit(work):
+    """The snow units' length (coupling/snow_units.h): scaling every length of a DEM test by L leaves
+    its stresses and strains as they were, so the grain size is a unit. The tiny campaign at 0 and 90
+    degrees, and again in a box twice as large with the same 256 spheres (radii 2x) and the force
+    rate 2x (forces scale by L^2, times by L): the failure stresses agree to 1e-3 of their size (the
+    geometry is scaled exactly; what differs is round-off, about 6e-5 here, far below a length
+    effect, which would be of order 1), and campaign.h5 records the spheres' mean diameter, 2x."""
+    small = write(os.path.join(work, "small.prm"), campaign_scene("0, 90"))
+    large = write(os.path.join(work, "large.prm"), campaign_scene("0, 90", **{
+        "DEM/Sample/Box edge [m]": "0.01", "DEM/Boundary particles/Clump force rate [N/s]": "200"}))
+    for scene in (small, large):
+        anticrack("run", scene, "-o", os.path.join(work, os.path.basename(scene)[:-4]))
+    a, b = (failure_points(os.path.join(work, name)) for name in ("small", "large"))
+    check(np.all(a["status"] == b"completed") and np.all(b["status"] == b"completed"), f"status {a['status']} {b['status']}")
+    for k in range(2):
+        size = math.hypot(a["sigma"][k], a["tau"][k])
+        for name in ("sigma", "tau", "p", "q"):
+            check(abs(a[name][k] - b[name][k]) <= 1e-3 * size,
+                  f"test {k}: {name} = {a[name][k]} Pa with the small spheres, {b[name][k]} Pa with the large")
+    check(np.allclose(b["particle_diameter"], 2 * a["particle_diameter"], rtol=1e-12) and
+          abs(a["particle_diameter"][0] - 6.54e-4) < 1e-6, f"diameters {a['particle_diameter']} {b['particle_diameter']}")
 
 
 @case
@@ -2147,7 +2177,7 @@ def pipeline_files(work):
         "set Scene = pipeline",
         "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm",
         "  set Weak layer scene changes = Calibration/Bootstrap resamples = 0", "end",
-        "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
+        *SNOW_UNITS]) + "\n")
     return pipeline, weak, flat, steep
 
 
@@ -2197,6 +2227,15 @@ def pipeline_material_cache(work):
     check("from the material cache" not in stdout and "stored" in missed and missed["key"] != stored["key"],
           f"other snow units: {missed}\n{stdout[-2000:]}")
     check(len([e for e in os.listdir(cache) if not e.startswith(".")]) == 2, f"cache {os.listdir(cache)}")
+    # Their bonds are 1.5x stronger at the same modulus: the DEM ran at the snow's ratio, 2e8 / 3e5,
+    # its bond and contact moduli and its grains' density times k = (2e8 / 3e5) / (1e9 / 1e6) (time
+    # step unchanged), its strength its own (coupling/snow_units.h).
+    k = (2e8 / 3e5) / (1e9 / 1e6)
+    with h5py.File(os.path.join(work, "out3", "weak_layer", "campaign", "campaign.h5"), "r") as f:
+        m = f["microstructures"]
+        ran = {name: float(m[name][0]) for name in ("bond_modulus", "contact_modulus", "bond_tensile_strength", "particle_density")}
+    expected = {"bond_modulus": 1e9 * k, "contact_modulus": 1e9 * k, "bond_tensile_strength": 1e6, "particle_density": 1e4 * k}
+    check(all(abs(ran[name] / expected[name] - 1) < 1e-12 for name in expected), f"the DEM ran with {ran}, expected {expected}")
     # Without the option (and without the variable) no cache is read or written.
     stdout, _ = anticrack("run", first, "-o", os.path.join(work, "out4"))
     check("from the material cache" not in stdout and
@@ -2429,7 +2468,8 @@ def pipeline_small(work):
     check(stdout.count("completed earlier, inputs unchanged") == 5 and "steep: completed" in stdout and
           all(f"uncertainty flat_{p}: completed earlier" in stdout for p in ("p0", "beta", "M")),
           f"only the changed PST and its uncertainty runs should have run:\n{stdout}")
-    write(pipeline, open(pipeline).read().replace("2e5", "3e5"))
+    # Bonds 1.5x stronger and stiffer: the DEM's ratio is unchanged, so the campaign is too.
+    write(pipeline, open(pipeline).read().replace("= 2e5", "= 3e5").replace("= 2e8", "= 3e8"))
     stdout, _ = anticrack("run", pipeline, "-o", out, "--resume")
     check("completed earlier, inputs unchanged" not in stdout and stdout.count("completed earlier, skipped") == 5,
           f"new snow units: every stage reruns, the campaign resumes:\n{stdout}")
@@ -2478,7 +2518,7 @@ def crossval_chain_gaume(work):
         "set Scene = pipeline",
         "subsection Pipeline", "  set Weak layer scene = weak.prm", "  set Snowpack scenes = flat.prm, steep.prm",
         "  set Uncertainty = none", "end",
-        "subsection Snow units", "  set Bond tensile strength [Pa] = 2e5", "  set Particle density [kg/m^3] = 917", "end"]) + "\n")
+        *SNOW_UNITS]) + "\n")
     out = os.path.join(work, "out")
     anticrack("run", pipeline, "-o", out)
     element = 0.02
