@@ -54,6 +54,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -107,34 +108,42 @@ namespace anticrack::dem
   /// fewer than 10 samples in the fit.
   /// The stages of a compaction curve as they come, sample by sample: the first peak (the running
   /// maximum until the collapse), the collapse (the stress below compaction_collapse_fraction of
-  /// it, once compaction_elastic_samples samples have carried a compressive stress) and the lock-up
-  /// (above compaction_lock_up_stress_ratio times the peak after the collapse). One definition for
-  /// the fit below and for the test that stops once it has locked up (dem/lab/compaction_test.h).
-  /// Without the count, the arriving stress wave's first readings (4e-9 Pa, then -0.05 Pa, at
-  /// N = 4096) were a "peak" and its "collapse", and the next reading, 45 Pa, a lock-up that
-  /// stopped the test at 800 steps; a real peak is resolved by at least as many samples as the fit
-  /// needs anyway.
+  /// it, once the peak has been reached by compaction_elastic_samples new maxima since the stress
+  /// last fell below that fraction) and the
+  /// lock-up (above compaction_lock_up_stress_ratio times the peak after the collapse). One
+  /// definition, on the same samples (the history's rows), for the fit below and for the test that
+  /// stops once it has locked up (dem/lab/compaction_test.h).
+  /// A real peak is the end of a resolved rise, as many samples as the fit needs anyway. The
+  /// arriving stress wave's first readings are not: 4e-9 Pa, then -0.05 Pa, then 45 Pa at N = 4096
+  /// (a "peak", its "collapse" and a "lock-up" that stopped the test at 800 steps), and 6.6e-8 Pa
+  /// and a dip at phi = 0.22 (after five positive readings, which an earlier count of compressive
+  /// samples let pass). A fall below the fraction before a resolved rise is such a reading: the
+  /// running maximum starts again from it.
   struct CompactionStages
   {
     double lock_up_ratio = compaction_lock_up_stress_ratio; ///< of the stress over the peak at lock-up
     double peak = 0;        ///< the running maximum, frozen at the collapse [Pa]
-    std::size_t compressive_samples = 0; ///< samples with a positive stress so far
+    std::size_t rising_samples = 0; ///< new maxima since the last fall below the fraction
     bool collapsed = false;
     bool locked_up = false;
 
     /// Takes the next stress; returns true if this sample is the new running maximum.
     bool add(double stress)
     {
-      compressive_samples += stress > 0;
       if (!collapsed)
       {
         if (stress > peak)
         {
           peak = stress;
+          ++rising_samples;
           return true;
         }
-        collapsed = peak > 0 && stress < compaction_collapse_fraction * peak &&
-                    compressive_samples >= compaction_elastic_samples;
+        if (stress < compaction_collapse_fraction * peak)
+        {
+          collapsed = rising_samples >= compaction_elastic_samples;
+          if (!collapsed)
+            peak = std::max(stress, 0.0), rising_samples = 0;
+        }
       }
       else if (stress > lock_up_ratio * peak)
         locked_up = true;

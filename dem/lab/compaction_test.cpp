@@ -9,8 +9,8 @@ namespace anticrack::dem
                                  const CompactionSettings &settings)
     : LabProtocol(1), clump_(clump), base_(std::move(base)), area_(area), settings_(settings)
   {
-    // The test runs on past the fit's lock-up, so that the history's samples (sparser than the
-    // control calls, or between them) pass it too.
+    // The test runs on a little past the fit's lock-up (the same rows, dem::CompactionStages), so
+    // that the history holds the row that passes it.
     stages_.lock_up_ratio = 1.1 * compaction_lock_up_stress_ratio;
     const auto &s = settings_;
     auto require = [](bool ok, const std::string &what) {
@@ -55,15 +55,16 @@ namespace anticrack::dem
       return false;
     // The next row one interval past this strain: rows never come closer than the interval.
     next_row_strain_ = e + settings_.curve_strain_interval;
+    // The stages on the rows, the samples the fit reads (dem::CompactionStages).
+    double reaction = 0; // compressive: the specimen pushes the base down
+    for (const Index p : base_)
+      reaction -= system.particles.force[p][2];
+    stages_.add(reaction / area_);
     return true;
   }
 
   void CompactionTest::control(DemSystem &system)
   {
-    double reaction = 0; // compressive: the specimen pushes the base down
-    for (const Index p : base_)
-      reaction -= system.particles.force[p][2];
-    stages_.add(reaction / area_);
     // The speed is reached linearly over the acceleration strain.
     const double acceleration_time = settings_.acceleration_strain / settings_.strain_rate;
     const double ramp =
@@ -112,6 +113,7 @@ namespace anticrack::dem
     return {{"compaction_start_time", start_time_},
             {"compaction_start_displacement", start_displacement_},
             {"compaction_peak", stages_.peak},
+            {"compaction_rising_samples", static_cast<double>(stages_.rising_samples)},
             {"compaction_collapsed", stages_.collapsed ? 1.0 : 0.0},
             {"compaction_locked_up", stages_.locked_up ? 1.0 : 0.0},
             {"compaction_next_row_strain", next_row_strain_},
@@ -131,6 +133,8 @@ namespace anticrack::dem
       set_control_interval(std::max<Index>(1, static_cast<Index>(it->second)));
     if (const auto it = state.find("compaction_peak"); it != state.end())
       stages_.peak = it->second;
+    if (const auto it = state.find("compaction_rising_samples"); it != state.end())
+      stages_.rising_samples = static_cast<std::size_t>(it->second);
     stages_.collapsed = flag("compaction_collapsed");
     stages_.locked_up = flag("compaction_locked_up");
   }

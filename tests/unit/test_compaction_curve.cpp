@@ -145,9 +145,10 @@ TEST(CompactionCurve, RefusesCurvesThatDoNotCollapseOrLockUp)
   // A test that ends on the plateau.
   sample(c, 1e-4, 0.2, 0, e, s);
   EXPECT_THROW(fit_compaction_curve(e, s, c.M), std::invalid_argument);
-  // The stages as a test sees them: collapse below half the peak, lock-up past 3 x it.
+  // The stages as a test sees them: a peak resolved by 5 rising samples, collapse below half of
+  // it, lock-up past 3 x it.
   CompactionStages stages;
-  for (const double stress : {0.0, 5e3, 12e3, 7e3, 5.9e3, 3e3, 20e3})
+  for (const double stress : {0.0, 2e3, 4e3, 6e3, 8e3, 10e3, 12e3, 7e3, 5.9e3, 3e3, 20e3})
     stages.add(stress);
   EXPECT_TRUE(stages.collapsed);
   EXPECT_FALSE(stages.locked_up);
@@ -157,9 +158,19 @@ TEST(CompactionCurve, RefusesCurvesThatDoNotCollapseOrLockUp)
   // The first readings of the arriving stress wave (a test at N = 4096 read 4e-9 Pa, then -0.05 Pa)
   // are neither a peak nor its collapse, and the rise after them no lock-up.
   CompactionStages arriving;
-  for (const double stress : {0.0, 0.0, 4e-9, -0.055, 45.0, 2e3, 8e3, 12e3, 5e3})
+  for (const double stress : {0.0, 0.0, 4e-9, -0.055, 45.0, 2e3, 5e3, 8e3, 12e3, 5e3})
     arriving.add(stress);
   EXPECT_TRUE(arriving.collapsed);
   EXPECT_FALSE(arriving.locked_up);
+  EXPECT_EQ(arriving.peak, 12e3);
+  // Nor are five positive readings of the wave's front and their dip (a test at phi = 0.22 read a
+  // "peak" of 6.6e-8 Pa, then locked up on the real rise at 324 steps): the rise after them is
+  // the curve.
+  CompactionStages front;
+  for (const double stress : {1e-9, 3e-8, 6.6e-8, 5e-8, 4e-8, 2e-8, 1e-6, 0.02, 1.0, 9.3, 38.0, 98.0})
+    front.add(stress);
+  EXPECT_FALSE(front.collapsed);
+  EXPECT_FALSE(front.locked_up);
+  EXPECT_EQ(front.peak, 98.0);
   EXPECT_EQ(arriving.peak, 12e3);
 }
