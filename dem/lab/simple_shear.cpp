@@ -58,6 +58,13 @@ namespace anticrack::dem
                           1.0;
     const double before = platen.velocity[0];
     platen.velocity[0] = ramp * settings_.shear_velocity;
+    // The steady sliding: the base's reactions over the second half of the shear strain.
+    if (shear_strain(system) >= 0.5 * settings_.final_shear_strain)
+    {
+      for (const Index p : base_)
+        steady_shear_force_sum_ += system.particles.force[p][0], steady_normal_force_sum_ -= system.particles.force[p][2];
+      ++steady_samples_;
+    }
     // The driving agent's work on the platen's kinetic energy (as in dem/lab/compaction_test.cpp).
     system.ledger.external_work += 0.5 * platen.mass * (platen.velocity[0] * platen.velocity[0] - before * before);
   }
@@ -87,9 +94,24 @@ namespace anticrack::dem
     return s.str();
   }
 
+  std::map<std::string, double> SimpleShear::results(const DemSystem &) const
+  {
+    if (steady_samples_ == 0)
+      return {};
+    const double area = settings_.area * static_cast<double>(steady_samples_);
+    return {{"steady_shear_stress_Pa", steady_shear_force_sum_ / area},
+            {"steady_normal_stress_Pa", steady_normal_force_sum_ / area},
+            {"steady_stress_ratio", steady_shear_force_sum_ / steady_normal_force_sum_},
+            {"steady_samples", static_cast<double>(steady_samples_)}};
+  }
+
   std::map<std::string, double> SimpleShear::state() const
   {
-    return {{"shear_start_time", shear_start_time_}, {"shear_start_displacement", shear_start_displacement_}};
+    return {{"shear_start_time", shear_start_time_},
+            {"shear_start_displacement", shear_start_displacement_},
+            {"steady_shear_force_sum", steady_shear_force_sum_},
+            {"steady_normal_force_sum", steady_normal_force_sum_},
+            {"steady_samples", static_cast<double>(steady_samples_)}};
   }
 
   void SimpleShear::restore(const std::map<std::string, double> &state)
@@ -98,5 +120,11 @@ namespace anticrack::dem
       shear_start_time_ = it->second;
     if (const auto it = state.find("shear_start_displacement"); it != state.end())
       shear_start_displacement_ = it->second;
+    if (const auto it = state.find("steady_shear_force_sum"); it != state.end())
+      steady_shear_force_sum_ = it->second;
+    if (const auto it = state.find("steady_normal_force_sum"); it != state.end())
+      steady_normal_force_sum_ = it->second;
+    if (const auto it = state.find("steady_samples"); it != state.end())
+      steady_samples_ = static_cast<Index>(it->second);
   }
 } // namespace anticrack::dem

@@ -8,7 +8,10 @@
 // `acceleration_time`, to avoid a velocity jump) while z stays free under the constant normal force,
 // so the specimen dilates or compacts as it wants (u_z of the clump). The test ends at the shear
 // strain gamma = u_x / H = final_shear_strain. The base shear stress tau = sum f_x / A against gamma
-// is the shear curve; its peak is the shear strength at this normal stress.
+// is the shear curve; its peak is the shear strength at this normal stress. Over the second half
+// of the shear strain the base's mean reactions give the steady sliding: results() reports the
+// steady shear and normal stresses and their ratio, the friction coefficient of the sheared layer
+// once it slides steadily (of a collapsed weak layer: scenes/shs_collapsed_friction.prm).
 #pragma once
 
 #include "dem/lab/lab_protocol.h"
@@ -43,6 +46,9 @@ namespace anticrack::dem
     void control(DemSystem &system) override;
     [[nodiscard]] bool finished(const DemSystem &system) const override;
     [[nodiscard]] std::string stage(const DemSystem &system) const override;
+    /// steady_shear_stress_Pa, steady_normal_stress_Pa and steady_stress_ratio (the base's mean
+    /// reactions over the second half of the shear strain), once that half has begun.
+    [[nodiscard]] std::map<std::string, double> results(const DemSystem &system) const override;
     [[nodiscard]] std::map<std::string, double> state() const override;
     void restore(const std::map<std::string, double> &state) override;
 
@@ -56,5 +62,8 @@ namespace anticrack::dem
     SimpleShearSettings settings_;
     double shear_start_time_ = -1;       ///< time shearing began, < 0 while consolidating
     double shear_start_displacement_ = 0;///< u_x of the platen then [m]
+    double steady_shear_force_sum_ = 0;  ///< sum over the steady samples of the base's sum f_x [N]
+    double steady_normal_force_sum_ = 0; ///< ... and of its compressive reaction, -sum f_z [N]
+    Index steady_samples_ = 0;           ///< control calls in the second half of the shear strain
   };
 } // namespace anticrack::dem

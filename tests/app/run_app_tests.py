@@ -1008,6 +1008,16 @@ def simple_shear_constant_normal_stress(work):
     peak = analysis["failure"]["base_shear_stress_tau_Pa"]
     check(peak == tau.max() and peak > 0, f"failure tau {peak} vs max {tau.max()}")
     check(ux[-1] / height >= 0.03 * 0.999, f"final shear strain {ux[-1] / height}")
+    # The steady sliding the protocol reports (its control calls over the second half of the shear
+    # strain) against the history's rows over the same half: the same mean stresses to the
+    # sampling's difference (rows every 100 steps, control calls every 200: 5 %).
+    results = summary["dem"]["lab_test"]["results"]
+    steady = ux / height >= 0.5 * 0.03
+    for name, column in (("steady_shear_stress_Pa", "base_shear_stress"), ("steady_normal_stress_Pa", "base_normal_stress")):
+        rows = h[column][steady].mean()
+        check(abs(results[name] - rows) <= 0.05 * abs(rows), f"{name} {results[name]} Pa, the rows' mean {rows} Pa")
+    check(abs(results["steady_stress_ratio"] - results["steady_shear_stress_Pa"] / results["steady_normal_stress_Pa"]) < 1e-12,
+          f"steady ratio {results}")
 
 
 @case
