@@ -446,6 +446,10 @@ namespace anticrack::coupling
     Json summary;
     summary["command"] = options.command_line;
     summary["scene"] = {{"file", scene.file}, {"file_sha256", util::sha256_of_file(scene.file)}};
+    summary["snow_units"] = {{"bond_tensile_strength_Pa", scene.snow.bond_tensile_strength},
+                             {"bond_modulus_Pa", scene.snow.bond_modulus},
+                             {"grain_diameter_m", scene.snow.grain_diameter},
+                             {"particle_density_kg_per_m3", scene.snow.particle_density}};
     const auto write_summary = [&](const std::string &status) {
       if (!root)
         return;

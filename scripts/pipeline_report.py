@@ -194,8 +194,8 @@ def profile_layers_table(run_dir, stage):
         return []
     lines = ["", f"{stage['name']}: the pit `{os.path.basename(profile['file'])}` ({profile['format']}), E by "
              f"{profile['slab_modulus_law']}:", "",
-             "| layer | depth [cm] | grain form | hardness | role | density [kg/m³] | E [MPa] | σ_t [kPa] |",
-             "|---|---|---|---|---|---|---|---|"]
+             "| layer | depth [cm] | grain form | grain size [mm] | hardness | role | density [kg/m³] | E [MPa] | σ_t [kPa] |",
+             "|---|---|---|---|---|---|---|---|---|"]
     sources = {}
 
     def sourced(value, scale, digits):
@@ -205,8 +205,9 @@ def profile_layers_table(run_dir, stage):
         return f"{fmt(value['value'] * scale, digits)} ({'measured' if value['measured'] else 'inferred'}, {note})"
     for k, layer in enumerate(profile["layers"]):
         top = 100 * layer["depth_top_m"]
+        grain = layer.get("grain_size_m")
         lines.append(f"| {k + 1} | {top:.4g}–{top + 100 * layer['thickness_m']:.4g} | {layer['grain_form'] or '—'} | "
-                     f"{layer['hand_hardness'] or '—'} | {layer['role']} | "
+                     f"{'—' if grain is None else fmt(1e3 * grain)} | {layer['hand_hardness'] or '—'} | {layer['role']} | "
                      f"{sourced(layer.get('density_kg_m3'), 1, 3)} | {sourced(layer.get('youngs_modulus_Pa'), 1e-6, 3)} | "
                      f"{sourced(layer.get('tensile_strength_Pa'), 1e-3, 3)} |")
     lines += [""] + [f"({n}) {source}" for source, n in sources.items()]
@@ -235,8 +236,37 @@ def field_section(run_dir, summary):
               "failed in. Of the failed layer, its grain size enters only as the pipeline's Snow units/Grain "
               "diameter [m] gives it (the reference thickness above scales with it); its grain form and "
               "density do not enter the prediction."]
+    lines += failed_layer_against_model(run_dir, summary, [s for s, _ in rows])
     for s, _ in rows:
         lines += profile_layers_table(run_dir, s)
+    return lines
+
+
+def failed_layer_against_model(run_dir, summary, stages):
+    """The failed layer of each pit (grain form, size, density) beside what the model's weak layer
+    has: the calibrated material's density and the snow units' grain diameter."""
+    units = summary.get("snow_units") or {}
+    material = os.path.join(run_dir, "weak_layer", "material_snow.prm")
+    snow = material_entries(material) if os.path.exists(material) else {}
+    model_density = float(snow["Density [kg/m^3]"]) if "Density [kg/m^3]" in snow else None
+    model_grain = units.get("grain_diameter_m")
+    lines = ["", "The failed layer against the model's weak layer (density: the calibrated material's, "
+             "the DEM's solid fraction times the grains'; grain size: the pipeline's Snow units/Grain diameter [m]):",
+             "", "| stage | failed layer | grain size [mm]: pit | model | density [kg/m³]: pit | model |",
+             "|---|---|---|---|---|---|"]
+    for stage in stages:
+        path = os.path.join(run_dir, stage["directory"], "summary.json")
+        profile = (json.load(open(path)).get("scene") or {}).get("profile") or {} if os.path.exists(path) else {}
+        weak = next((l for l in profile.get("layers", []) if l.get("role") == "weak"), None)
+        if weak is None:
+            continue
+        density = weak.get("density_kg_m3")
+        pit_density = (f"{fmt(density['value'])} ({'measured' if density['measured'] else 'inferred'})"
+                       if density else f"— ({weak.get('density_note', 'not recorded')})")
+        grain = weak.get("grain_size_m")
+        lines.append(f"| {stage['name']} | {weak.get('grain_form') or '—'}, {100 * weak['thickness_m']:.3g} cm | "
+                     f"{'—' if grain is None else fmt(1e3 * grain)} | "
+                     f"{'—' if model_grain is None else fmt(1e3 * model_grain)} | {pit_density} | {fmt(model_density)} |")
     return lines
 
 

@@ -169,6 +169,21 @@ namespace anticrack::fem
                                     {"grain_form", l.grain_form},
                                     {"hand_hardness", l.hardness ? l.hardness->text : ""},
                                     {"role", static_cast<int>(k) < weak ? "slab" : static_cast<int>(k) == weak ? "weak" : "below"}};
+      if (l.grain_size_mm)
+        record["grain_size_m"] = 1e-3 * *l.grain_size_mm;
+      // The weak layer's own density, beside the calibrated material's (the report compares them):
+      // measured or inferred as a slab layer's, or why it cannot be had (e.g. surface hoar).
+      if (static_cast<int>(k) == weak)
+      {
+        try
+        {
+          record["density_kg_m3"] = sourced(profile::layer_properties(p, k, law, nu).density);
+        }
+        catch (const profile::ProfileError &e)
+        {
+          record["density_note"] = e.what();
+        }
+      }
       if (static_cast<int>(k) < weak)
       {
         const profile::LayerProperties props = profile::layer_properties(p, k, law, nu);

@@ -2422,6 +2422,8 @@ def pipeline_small(work):
     stdout, _ = anticrack("run", pipeline, "-o", out)
     summary = json.load(open(os.path.join(out, "summary.json")))
     check(summary["status"] == "completed", f"pipeline status {summary['status']}")
+    check(summary["snow_units"] == {"bond_tensile_strength_Pa": 2e5, "bond_modulus_Pa": 2e8, "grain_diameter_m": 6.54e-4,
+                                    "particle_density_kg_per_m3": 917}, f"snow units {summary.get('snow_units')}")
     check([s["name"] for s in summary["stages"]] == ["weak layer", "flat", "steep", "uncertainty"],
           f"stages {summary['stages']}")
     check(all(s["status"] == "completed" and len(s["inputs_sha256"]) == 64 for s in summary["stages"]),
@@ -2854,9 +2856,17 @@ def fem_profile(work):
     check("not yet the pit's own" in report, "the report does not say the weak layer is the DEM's")
     for k, (rho, measured) in enumerate(expected):
         line = next((l for l in report.splitlines() if l.startswith(f"| {k + 1} |")), "")
-        check(f"({'measured' if measured else 'inferred'}, " in line.split("|")[6], f"layer {k + 1}: {line!r}")
+        check(f"({'measured' if measured else 'inferred'}, " in line.split("|")[7], f"layer {k + 1}: {line!r}")
     check("Geldsetzer & Jamieson (2000)" in report and "Gerling" in report and "Sigrist (2006)" in report,
           "the report does not name the laws")
+    # The failed layer's own grain size and density (FC, 2 mm, hand hardness F: 112 + 46 x 1 = 158
+    # kg/m^3 by Geldsetzer & Jamieson 2000), beside the model's (no pipeline here: none).
+    weak = layers[6]
+    check(weak["grain_size_m"] == 0.002 and abs(weak["density_kg_m3"]["value"] - 158) < 1e-9 and
+          not weak["density_kg_m3"]["measured"], f"weak layer record {weak}")
+    row = next((line for line in report.splitlines() if line.startswith("| pit | FC, ")), "")
+    cells = [c.strip() for c in row.split("|")[1:-1]]
+    check(len(cells) == 6 and cells[2] == "2" and cells[4] == "158 (inferred)", f"failed-layer row {row!r}")
 
 
 @case
