@@ -1,10 +1,10 @@
 #include "coupling/snow_units.h"
 
 #include "dem/scene/parameters.h"
+#include "util/format.h"
 #include "util/input_error.h"
 
 #include <cmath>
-#include <sstream>
 
 namespace anticrack::coupling
 {
@@ -38,12 +38,7 @@ namespace anticrack::coupling
       throw InputError(where + ": the weak layer's campaign has Campaign/Microstructures (" +
                        scene.campaign.microstructures_text +
                        "); the snow's bond modulus over strength is applied to the scene's own sample only");
-    const auto text = [](double value) {
-      std::ostringstream out;
-      out.precision(17);
-      out << value;
-      return out.str();
-    };
+    const auto text = [](double value) { return format_number(value, 17); };
     // σ̄_c stays the DEM's; Ē, E_c and ρ grow by k together, so sqrt(k/m) and every time scale of
     // the tests stay as they were; the strains to failure grow by about 1/k.
     std::vector<std::pair<std::string, std::string>> changes = {

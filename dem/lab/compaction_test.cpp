@@ -1,5 +1,7 @@
 #include "dem/lab/compaction_test.h"
 
+#include "dem/lab/measurements.h"
+
 #include <algorithm>
 #include <sstream>
 
@@ -56,10 +58,8 @@ namespace anticrack::dem
     // The next row one interval past this strain: rows never come closer than the interval.
     next_row_strain_ = e + settings_.curve_strain_interval;
     // The stages on the rows, the samples the fit reads (dem::CompactionStages).
-    double reaction = 0; // compressive: the specimen pushes the base down
-    for (const Index p : base_)
-      reaction -= system.particles.force[p][2];
-    stages_.add(reaction / area_);
+    // Compressive: the specimen pushes the base down.
+    stages_.add(-total_force(system.particles, base_)[2] / area_);
     return true;
   }
 

@@ -156,6 +156,14 @@ namespace anticrack::dem
     return {lo, hi};
   }
 
+  Vec3 total_force(const ParticleStore &particles, const std::vector<Index> &spheres)
+  {
+    Vec3 force = Vec3::Zero();
+    for (const Index p : spheres)
+      force += particles.force[p];
+    return force;
+  }
+
   double sample_volume(const DemSystem &system)
   {
     if (system.particles.size() == 0)

@@ -63,6 +63,10 @@ namespace anticrack::dem
   /// the spheres (lowest surface to highest surface). The volume for the Love-Weber stress.
   double sample_volume(const DemSystem &system);
 
+  /// The sum of the forces on `spheres` (e.g. a fixed base: minus its z-component is the compressive
+  /// reaction the specimen exerts on it).
+  Vec3 total_force(const ParticleStore &particles, const std::vector<Index> &spheres);
+
   /// Fraction of bonds that are broken (0 when there are none).
   double broken_bond_fraction(const BondList &bonds);
 

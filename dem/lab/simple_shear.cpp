@@ -1,5 +1,7 @@
 #include "dem/lab/simple_shear.h"
 
+#include "dem/lab/measurements.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -43,9 +45,7 @@ namespace anticrack::dem
     if (!shearing())
     {
       const double target = settings_.normal_stress * settings_.area;
-      double reaction = 0;
-      for (const Index p : base_)
-        reaction -= system.particles.force[p][2]; // compressive reaction of the base
+      const double reaction = -total_force(system.particles, base_)[2]; // compressive reaction of the base
       const bool ramp_done = system.time >= platen.applied_force.time.back();
       if (!(ramp_done && std::abs(reaction - target) <= settings_.consolidation_tolerance * target))
         return;
@@ -61,8 +61,9 @@ namespace anticrack::dem
     // The steady sliding: the base's reactions over the second half of the shear strain.
     if (shear_strain(system) >= 0.5 * settings_.final_shear_strain)
     {
-      for (const Index p : base_)
-        steady_shear_force_sum_ += system.particles.force[p][0], steady_normal_force_sum_ -= system.particles.force[p][2];
+      const Vec3 base = total_force(system.particles, base_);
+      steady_shear_force_sum_ += base[0];
+      steady_normal_force_sum_ -= base[2];
       ++steady_samples_;
     }
     // The driving agent's work on the platen's kinetic energy (as in dem/lab/compaction_test.cpp).

@@ -346,9 +346,7 @@ namespace anticrack::dem
     }
     if (!model_->fixed_particles.empty())
     {
-      Vec3 reaction = Vec3::Zero();
-      for (const Index p : model_->fixed_particles)
-        reaction += system_.particles.force[p];
+      const Vec3 reaction = dem::total_force(system_.particles, model_->fixed_particles);
       row.push_back(-reaction[2] / model_->base_area);
       row.push_back(reaction[0] / model_->base_area);
     }
