@@ -252,6 +252,11 @@ namespace anticrack::coupling
     if (softening.lock_up_strain.n > 0)
       std::cout << ", lock-up strain " << softening.lock_up_strain.mean << ", fracture energy density "
                 << softening.fracture_energy_density.mean << " J/m^3";
+    if (const params::FrictionEstimate &friction = shown_calibration.friction; friction.measured())
+      std::cout << "\n  friction of the collapsed layer (" << friction.readings.size()
+                << " friction test(s)): mu = " << friction.friction_coefficient.mean << " ["
+                << friction.friction_coefficient.mean_ci.lower << ", " << friction.friction_coefficient.mean_ci.upper
+                << "]";
     // A surface that explains little of the failure stresses is still written (its intervals say how
     // little is known), but never without saying so.
     constexpr double poor_fit_r_squared = 0.5;

@@ -129,6 +129,13 @@ namespace anticrack::coupling
       collapse.fracture_energy_density_interval = interval(soft.fracture_energy_density);
       collapse.collapse_energy_density = soft.collapse_energy_density.mean;
     }
+    // The failed layer's friction (its campaign's friction tests): a ratio of stresses, unchanged by
+    // the snow units.
+    if (c.friction.measured())
+    {
+      file.collapse.friction_coefficient = c.friction.friction_coefficient.mean;
+      file.collapse.friction_coefficient_interval = interval(c.friction.friction_coefficient);
+    }
     return file;
   }
 } // namespace anticrack::coupling

@@ -10,6 +10,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -156,6 +157,10 @@ namespace anticrack::coupling
       text += "    # Its Material/Collapse (the DEM compaction tests' lock-up strain and modulus) gives the\n"
               "    # collapse height (lock-up strain x Thickness) and the densification modulus.\n"
               "    set Collapse height [m] = 0\n    set Densification modulus [Pa] = 0\n";
+    if (!std::isnan(collapse.friction_coefficient))
+      text += "    # Its Material/Collapse/Friction coefficient (the DEM friction tests' mu) is the failed\n"
+              "    # layer's friction.\n"
+              "    set Friction coefficient =\n";
     text += "  end\nend\n";
     const std::string analysis = fem::read_snowpack_scene_text(read_scene_file(file), file).analysis.type->name;
     if (collapse.fracture_energy_density > 0 && analysis == std::string("energy release rate"))

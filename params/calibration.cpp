@@ -344,6 +344,11 @@ namespace anticrack::params
                                c.compaction_rate_checks) :
           collapse_softening(campaign, c.index, fe.cam_clay_surface().p0, c.elastic.continuum_bulk_modulus,
                              c.elastic.axial_modulus.mean, options.confidence);
+      // The friction tests must have crushed the layer: beyond the largest compaction peak, or
+      // without compaction tests beyond the surface's compressive tip.
+      const double compressive_strength =
+        c.softening.peak_stress.n > 0 ? c.softening.peak_stress.maximum : fe.cam_clay_surface().p0;
+      c.friction = collapsed_friction(campaign, c.index, compressive_strength, options.confidence);
       result.microstructures.push_back(std::move(c));
     }
     if (std::all_of(result.microstructures.begin(), result.microstructures.end(),

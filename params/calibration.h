@@ -27,6 +27,7 @@
 
 #include "params/campaign_data.h"
 #include "params/collapse_calibration.h"
+#include "params/friction_calibration.h"
 #include "params/elastic_calibration.h"
 #include "params/envelope_fit.h"
 #include "params/flow_rule.h"
@@ -130,6 +131,9 @@ namespace anticrack::params
     /// empty when the campaign has none (softening.source says so).
     std::vector<CompactionReading> compaction_tests;
     std::vector<CompactionRateCheck> compaction_rate_checks;
+    /// The failed layer's friction from the friction tests (friction_calibration.h); not measured
+    /// (n = 0) when the campaign has none.
+    FrictionEstimate friction;
 
     /// Why this microstructure gets no material file ("" when it gets one): its FE surface is not
     /// determined, or no isotropic invariant-plane surface fails where the DEM failed. A campaign of

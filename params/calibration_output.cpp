@@ -265,6 +265,27 @@ namespace anticrack::params
     }
   } // namespace
 
+  namespace
+  {
+    /// summary.json's friction of the failed layer: μ over the realizations and each test's reading.
+    Json friction_json(const FrictionEstimate &f)
+    {
+      if (!f.measured())
+        return Json{{"source", "not measured (no friction tests in the campaign)"}, {"excluded", f.excluded}};
+      Json tests = Json::array();
+      for (const FrictionReading &r : f.readings)
+        tests.push_back(Json{{"test", r.test},
+                             {"realization", r.realization},
+                             {"steady_normal_stress_Pa", r.normal_stress},
+                             {"steady_shear_stress_Pa", r.shear_stress},
+                             {"friction_coefficient", r.ratio}});
+      return Json{{"source", "friction tests: steady shear over normal stress of the collapsed layer's simple shear"},
+                  {"friction_coefficient", statistics_json(f.friction_coefficient)},
+                  {"tests", tests},
+                  {"excluded", f.excluded}};
+    }
+  } // namespace
+
   void write_calibration_data(const Calibration &calibration, const std::string &file)
   {
     hdf5::write_file_atomically(file, [&](const hdf5::Handle &f) {
@@ -382,6 +403,7 @@ namespace anticrack::params
               {"poisson_ratio_from_K0", c.elastic.k0_poisson_ratio.n > 0 ? statistics_json(c.elastic.k0_poisson_ratio) :
                                                                             Json(nullptr)}}},
         {"softening", softening_json(c)},
+        {"friction", friction_json(c.friction)},
         {"material_refused", c.material_refused.empty() ? Json(nullptr) : Json(c.material_refused)}});
     }
     Json s{{"confidence", calibration.options.confidence},

@@ -23,7 +23,7 @@ namespace anticrack::params
       return values;
     }
 
-    /// A table of tests (/failure_points, /compaction_tests, /quasi_static_check) by the names of the
+    /// A table of tests (/failure_points, /compaction_tests, /friction_tests, /quasi_static_check) by the names of the
     /// writer's columns (dem/campaign/campaign_file.h).
     std::vector<CampaignTest> read_test_table(hid_t parent, const std::string &table, const CampaignData &data)
     {
@@ -48,13 +48,15 @@ namespace anticrack::params
           rows[k].*member = values[k];
       }
       // Since format 4: the grains' size (campaigns of format 3 leave it NaN; the snow units'
-      // length needs it and says so).
-      if (hdf5::exists(g.id, name_of(&Row::particle_diameter)))
-      {
-        const auto values = column(g.id, name_of(&Row::particle_diameter), n, file);
-        for (std::size_t k = 0; k < n; ++k)
-          rows[k].particle_diameter = values[k];
-      }
+      // length needs it and says so); since format 5, the friction tests' steady sliding.
+      for (double Row::*member : {&Row::particle_diameter, &Row::steady_shear_stress, &Row::steady_normal_stress,
+                                  &Row::steady_stress_ratio})
+        if (hdf5::exists(g.id, name_of(member)))
+        {
+          const auto values = column(g.id, name_of(member), n, file);
+          for (std::size_t k = 0; k < n; ++k)
+            rows[k].*member = values[k];
+        }
       const auto love = hdf5::read_doubles(g.id, name_of(&Row::love_stress));
       if (love.size() != 9 * n)
         throw CalibrationError(file + ": /" + table + "/" + name_of(&Row::love_stress) + " is not n x 3 x 3");
@@ -80,6 +82,9 @@ namespace anticrack::params
         t.specimen_height = row.specimen_height;
         t.layer_thickness = row.layer_thickness;
         t.particle_diameter = row.particle_diameter;
+        t.steady_shear_stress = row.steady_shear_stress;
+        t.steady_normal_stress = row.steady_normal_stress;
+        t.steady_stress_ratio = row.steady_stress_ratio;
         if (t.completed() && !(t.specimen_height > 0 && t.layer_thickness > 0))
           throw CalibrationError(file + ": test " + t.id + " has no specimen height or layer thickness (it was "
                                  "run by an anticrack "
@@ -136,6 +141,8 @@ namespace anticrack::params
       data.tests = read_test_table(f.id, dem::failure_points_group, data);
       if (hdf5::exists(f.id, dem::compaction_tests_group))
         data.compaction_tests = read_test_table(f.id, dem::compaction_tests_group, data);
+      if (hdf5::exists(f.id, dem::friction_tests_group))
+        data.friction_tests = read_test_table(f.id, dem::friction_tests_group, data);
       if (hdf5::exists(f.id, "quasi_static_check"))
       {
         data.reference_tests = read_test_table(f.id, "quasi_static_check", data);

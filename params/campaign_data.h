@@ -28,6 +28,11 @@ namespace anticrack::params
     double layer_thickness = 0;     ///< h [m], the deformable layer between base and clump
     /// Mean diameter of the specimen's spheres [m]; NaN in campaigns older than format 4.
     double particle_diameter = std::numeric_limits<double>::quiet_NaN();
+    /// Friction tests (format 5): the steady sliding's mean shear and normal stresses [Pa] and their
+    /// ratio, the collapsed layer's friction coefficient; NaN for the other tests.
+    double steady_shear_stress = std::numeric_limits<double>::quiet_NaN();
+    double steady_normal_stress = std::numeric_limits<double>::quiet_NaN();
+    double steady_stress_ratio = std::numeric_limits<double>::quiet_NaN();
     std::string reference_for;      ///< a quasi-static reference run: the test it checks
 
     [[nodiscard]] bool completed() const { return status == "completed"; }
@@ -65,6 +70,8 @@ namespace anticrack::params
     std::vector<CampaignTest> tests;  ///< the campaign proper (quasi-static references apart)
     /// The displacement-controlled compaction tests (/compaction_tests; psi = 0), one per realization.
     std::vector<CampaignTest> compaction_tests;
+    /// The simple shears of the collapsed layer (/friction_tests, format 5), one per realization.
+    std::vector<CampaignTest> friction_tests;
     /// The quasi-static reference runs (/quasi_static_check), of either kind, reference_for set.
     std::vector<CampaignTest> reference_tests;
 

@@ -41,6 +41,8 @@ MATERIAL_ROWS = [  # entry of subsection Material, label, scale, unit
     ("Lock-up modulus [Pa]", "lock-up modulus K_d", 1e-6, "MPa"),
     ("Fracture energy density [J/m^3]", "fracture energy density w_f", 1, "J/m³"),
     ("Collapse energy density [J/m^3]", "collapse energy density w_c", 1, "J/m³"),
+    # ... and from the DEM friction tests (absent without them)
+    ("Friction coefficient", "friction coefficient μ of the failed layer", 1, ""),
 ]
 
 

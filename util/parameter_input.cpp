@@ -213,4 +213,22 @@ namespace anticrack
       throw InputError("Invalid " + what + " <" + file + ">:\n" + deal_ii_message(e, text));
     }
   }
+  std::optional<double> parse_optional_number(const std::string &text)
+  {
+    if (text.empty())
+      return std::nullopt;
+    std::size_t used = 0;
+    double value = 0;
+    try
+    {
+      value = std::stod(text, &used);
+    }
+    catch (const std::exception &)
+    {
+      used = 0;
+    }
+    if (used != text.size() || !std::isfinite(value))
+      throw std::invalid_argument("\"" + text + "\" is not a number");
+    return value;
+  }
 } // namespace anticrack

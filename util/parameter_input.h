@@ -43,4 +43,9 @@ namespace anticrack
     const char *why;
   };
   std::optional<MagnitudeLimit> physical_magnitude_limit(const std::string &unit);
+
+  /// The value of an entry that may be left empty (an optional number, declared as text): nullopt for
+  /// empty text; the number when the whole text is one finite number; throws std::invalid_argument
+  /// otherwise (the caller names the file and the entry).
+  std::optional<double> parse_optional_number(const std::string &text);
 } // namespace anticrack

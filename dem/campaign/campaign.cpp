@@ -47,21 +47,46 @@ namespace anticrack::dem
       double angle_deg = 0;
       double slowdown = 1;       ///< > 1: a quasi-static reference run
       std::string reference_for; ///< the test a reference run checks
-      bool compaction = false;   ///< the displacement-controlled compaction test (psi = 0)
+      /// The loading: a load-controlled mixed-mode test at the angle, the displacement-controlled
+      /// compaction test (psi = 0), or the simple shear of the collapsed layer.
+      enum class Kind
+      {
+        load_controlled,
+        compaction,
+        friction
+      };
+      Kind kind = Kind::load_controlled;
+
+      [[nodiscard]] bool compaction() const { return kind == Kind::compaction; }
+      [[nodiscard]] bool friction() const { return kind == Kind::friction; }
+      /// As campaign.h5 and summary.json name the loading.
+      [[nodiscard]] const char *loading_name() const
+      {
+        return compaction() ? "compaction" : friction() ? "friction" : "load-controlled";
+      }
 
       /// Expected cost in units of a load-controlled test at the campaign's rate (block_of).
       [[nodiscard]] double cost(const parameters::Campaign &c) const
       {
-        return slowdown * (compaction ? compaction_cost_factor * c.compaction_final_strain : 1.0);
+        return slowdown * (compaction() ? compaction_cost_factor * c.compaction_final_strain :
+                           friction()   ? friction_cost_factor :
+                                          1.0);
       }
-      /// A compaction test to strain 1 costs about this many load-controlled tests (measured on the SHS
-      /// weak layer of scenes/shs_weak_layer.prm; only the balance of the ranks' shares depends on it).
+      /// A compaction test to strain 1 costs about this many load-controlled tests, a friction test
+      /// about that many (measured on the SHS weak layer of scenes/shs_weak_layer.prm; only the
+      /// balance of the ranks' shares depends on them).
       static constexpr double compaction_cost_factor = 10;
+      static constexpr double friction_cost_factor = 6;
     };
 
     std::string compaction_test_id(Index m, Index r)
     {
       return "m" + std::to_string(m) + "_r" + std::to_string(r) + "_compaction";
+    }
+
+    std::string friction_test_id(Index m, Index r)
+    {
+      return "m" + std::to_string(m) + "_r" + std::to_string(r) + "_friction";
     }
 
     std::string test_id(Index m, Index r, double angle)
@@ -73,18 +98,23 @@ namespace anticrack::dem
     }
 
     /// Every test of the campaign, grouped by sample (microstructure, realization): first the
-    /// angles, then the compaction test, then the sample's quasi-static references (of both).
+    /// angles, then the compaction test, then the friction test, then the sample's quasi-static
+    /// references (of the angles and the compaction test; the friction test's rate is checked by
+    /// hand, docs/calibration.md).
     std::vector<CampaignTest> enumerate_tests(const parameters::Campaign &c, Index microstructures)
     {
       using Check = parameters::Campaign::QuasiStaticCheck;
+      using Kind = CampaignTest::Kind;
       std::vector<CampaignTest> tests;
       for (Index m = 0; m < microstructures; ++m)
         for (Index r = 0; r < c.realizations; ++r)
         {
           for (const double angle : c.loading_angles_deg)
-            tests.push_back({test_id(m, r, angle), m, r, angle, 1.0, "", false});
+            tests.push_back({test_id(m, r, angle), m, r, angle, 1.0, "", Kind::load_controlled});
           if (c.has_compaction_tests())
-            tests.push_back({compaction_test_id(m, r), m, r, 0.0, 1.0, "", true});
+            tests.push_back({compaction_test_id(m, r), m, r, 0.0, 1.0, "", Kind::compaction});
+          if (c.has_friction_tests())
+            tests.push_back({friction_test_id(m, r), m, r, 0.0, 1.0, "", Kind::friction});
           const bool checked = c.quasi_static_check == Check::all ||
                                (c.quasi_static_check == Check::first_realization && r == 0);
           if (!checked)
@@ -93,10 +123,11 @@ namespace anticrack::dem
           std::snprintf(suffix, sizeof suffix, "_slow%g", c.quasi_static_slowdown);
           for (const double angle : c.loading_angles_deg)
             tests.push_back(
-              {test_id(m, r, angle) + suffix, m, r, angle, c.quasi_static_slowdown, test_id(m, r, angle), false});
+              {test_id(m, r, angle) + suffix, m, r, angle, c.quasi_static_slowdown, test_id(m, r, angle),
+               Kind::load_controlled});
           if (c.has_compaction_tests())
             tests.push_back({compaction_test_id(m, r) + suffix, m, r, 0.0, c.quasi_static_slowdown,
-                             compaction_test_id(m, r), true});
+                             compaction_test_id(m, r), Kind::compaction});
         }
       return tests;
     }
@@ -257,6 +288,9 @@ namespace anticrack::dem
       row.specimen_height = number_at(s, "/dem/specimen/height_m");
       row.layer_thickness = number_at(s, "/dem/specimen/layer_thickness_m");
       row.particle_diameter = number_at(s, "/dem/specimen/mean_particle_diameter_m");
+      row.steady_shear_stress = number_at(s, "/dem/lab_test/results/steady_shear_stress_Pa");
+      row.steady_normal_stress = number_at(s, "/dem/lab_test/results/steady_normal_stress_Pa");
+      row.steady_stress_ratio = number_at(s, "/dem/lab_test/results/steady_stress_ratio");
       if (!analysis)
         return o;
       const TestFailureAnalysis &a = *analysis;
@@ -384,12 +418,15 @@ namespace anticrack::dem
     }
     const auto references = std::count_if(tests.begin(), tests.end(), [](const CampaignTest &t) { return !t.reference_for.empty(); });
     const auto compactions = std::count_if(tests.begin(), tests.end(),
-                                           [](const CampaignTest &t) { return t.compaction && t.reference_for.empty(); });
+                                           [](const CampaignTest &t) { return t.compaction() && t.reference_for.empty(); });
     s << "\n  tests               " << tests.size() << " (" << references << " of them quasi-static references, "
       << c.quasi_static_slowdown << "x slower; " << compactions << " compaction test(s)";
     if (c.has_compaction_tests())
       s << " at " << c.compaction_strain_rate << " 1/s to strain " << c.compaction_final_strain << ", a row every "
         << c.compaction_curve_strain_interval << " of strain";
+    if (c.has_friction_tests())
+      s << "; a friction test per realization: simple shear at " << c.friction_normal_stress << " Pa, "
+        << c.friction_shear_velocity << " m/s, to shear strain " << c.friction_final_shear_strain;
     s << ")\n"
       << "  outputs             summary.json, campaign.h5, tests/<id>/{summary.json, history.h5}\n";
     out << s.str();
@@ -488,7 +525,7 @@ namespace anticrack::dem
     root_console() << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
                 << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
                 << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
-                << " (compaction tests and quasi-static references included) on " << members
+                << " (compaction and friction tests and quasi-static references included) on " << members
                 << (workers ? " worker process(es)" : " rank(s)") << " x " << dem::DemSystem::threads()
                 << " thread(s)\n"
                 << std::flush;
@@ -521,7 +558,20 @@ namespace anticrack::dem
         test_scene.dem.boundary.clump_force_rate /= t.slowdown;
         test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
         test_scene.output.progress_interval = 0;
-        if (t.compaction)
+        if (t.friction())
+        {
+          // The simple shear of the collapsed layer (dem/lab/simple_shear.h): it collapses under the
+          // normal force's ramp, then slides; it ends at its shear strain, not at a stop strain.
+          auto &loading = test_scene.dem.loading;
+          loading.test = &lab_test("simple shear");
+          loading.adaptive = false;
+          loading.stop_strain = 0;
+          loading.normal_stress = c.friction_normal_stress;
+          loading.shear_velocity = c.friction_shear_velocity / t.slowdown;
+          loading.consolidation_time = c.friction_consolidation_time * t.slowdown;
+          loading.final_shear_strain = c.friction_final_shear_strain;
+        }
+        if (t.compaction())
         {
           // The displacement-controlled compaction test (dem/lab/compaction_test.h) of this sample.
           auto &loading = test_scene.dem.loading;
@@ -546,7 +596,14 @@ namespace anticrack::dem
                     {"seed", test_scene.dem.seed},
                     {"rate_divisor", t.slowdown},
                     {"reference_for", t.reference_for}};
-        if (t.compaction)
+        if (t.friction())
+        {
+          o.labels["friction_normal_stress_Pa"] = test_scene.dem.loading.normal_stress;
+          o.labels["friction_shear_velocity_m_per_s"] = test_scene.dem.loading.shear_velocity;
+          o.labels["friction_consolidation_time_s"] = test_scene.dem.loading.consolidation_time;
+          o.labels["friction_final_shear_strain"] = test_scene.dem.loading.final_shear_strain;
+        }
+        if (t.compaction())
         {
           o.labels["compaction_strain_rate_per_s"] = test_scene.dem.loading.compaction_strain_rate;
           o.labels["compaction_final_strain"] = test_scene.dem.loading.stop_strain;
@@ -713,7 +770,8 @@ namespace anticrack::dem
     hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
       hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
       // 3: love_stress, p and q are the specimen's between its platens (docs/physics.md §1.5).
-      hdf5::write_string_attribute(f.id, "format_version", "4");
+      // 5: the friction tests and their steady_* columns.
+      hdf5::write_string_attribute(f.id, "format_version", "5");
       hdf5::write_string_attribute(f.id, "scene_file", scene.file);
       hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
       hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
@@ -735,7 +793,7 @@ namespace anticrack::dem
         hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
         hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
         hdf5::write_string_attribute(group.id, "rate_divisor", format_angle(t.slowdown));
-        hdf5::write_string_attribute(group.id, "loading", t.compaction ? "compaction" : "load-controlled");
+        hdf5::write_string_attribute(group.id, "loading", t.loading_name());
         if (fs::exists(history, error))
           copy_history(history, group.id, "history");
       }
@@ -775,9 +833,13 @@ namespace anticrack::dem
       }
 
       // The failure-point table: one row per test of the campaign proper (references apart).
-      std::vector<const CampaignTest *> main_tests, compaction_tests, references;
+      std::vector<const CampaignTest *> main_tests, compaction_tests, friction_tests, references;
       for (const auto &t : tests)
-        (!t.reference_for.empty() ? references : t.compaction ? compaction_tests : main_tests).push_back(&t);
+        (!t.reference_for.empty() ? references :
+         t.compaction()           ? compaction_tests :
+         t.friction()             ? friction_tests :
+                                    main_tests)
+          .push_back(&t);
       auto table = [&](hid_t group, const std::vector<const CampaignTest *> &tests_of_table) {
         std::vector<FailurePointRow> rows;
         for (const auto *t : tests_of_table)
@@ -797,6 +859,15 @@ namespace anticrack::dem
         table(g.id, compaction_tests);
         hdf5::write_doubles(g.id, "strain_rate", std::vector<double>(compaction_tests.size(), c.compaction_strain_rate),
                             "1/s", "the platen's speed over the specimen height (Campaign/Compaction strain rate)");
+      }
+      if (!friction_tests.empty())
+      {
+        // The friction tests: their steady sliding (the steady_* columns) gives the failed layer's
+        // friction coefficient; the calibration reads it from this table.
+        const Handle g = hdf5::create_group(f.id, friction_tests_group);
+        table(g.id, friction_tests);
+        hdf5::write_doubles(g.id, "normal_stress", std::vector<double>(friction_tests.size(), c.friction_normal_stress),
+                            "Pa", "the constant normal stress of the simple shear (Campaign/Friction normal stress)");
       }
       if (!references.empty())
       {
@@ -833,6 +904,10 @@ namespace anticrack::dem
     spec["compaction_strain_rate_per_s"] = c.compaction_strain_rate;
     spec["compaction_final_strain"] = c.compaction_final_strain;
     spec["compaction_curve_strain_interval"] = c.compaction_curve_strain_interval;
+    spec["friction_normal_stress_Pa"] = c.friction_normal_stress;
+    spec["friction_shear_velocity_m_per_s"] = c.friction_shear_velocity;
+    spec["friction_consolidation_time_s"] = c.friction_consolidation_time;
+    spec["friction_final_shear_strain"] = c.friction_final_shear_strain;
     s["campaign"] = spec;
     Json rows = Json::array();
     double test_wall = 0, largest_inertial = 0;
@@ -846,7 +921,7 @@ namespace anticrack::dem
       r["microstructure"] = t.microstructure;
       r["realization"] = t.realization;
       r["rate_divisor"] = t.slowdown;
-      r["loading"] = t.compaction ? "compaction" : "load-controlled";
+      r["loading"] = t.loading_name();
       auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
       r["sigma_Pa"] = finite(o.row.sigma);
       r["tau_Pa"] = finite(o.row.tau);
@@ -862,7 +937,8 @@ namespace anticrack::dem
         r["message"] = o.message;
       rows.push_back(r);
       test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
-      if (t.reference_for.empty() && !t.compaction && std::isfinite(o.row.max_inertial_number))
+      if (t.reference_for.empty() && t.kind == CampaignTest::Kind::load_controlled &&
+          std::isfinite(o.row.max_inertial_number))
         largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
     }
     s["tests"] = rows;

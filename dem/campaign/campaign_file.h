@@ -19,6 +19,8 @@ namespace anticrack::dem
   inline constexpr const char *failure_points_group = "failure_points";
   /// The group of the displacement-controlled compaction tests (one per realization), same columns.
   inline constexpr const char *compaction_tests_group = "compaction_tests";
+  /// The group of the friction tests (simple shear of the collapsed layer, one per realization).
+  inline constexpr const char *friction_tests_group = "friction_tests";
 
   /// One row of /failure_points: a test at one loading angle of one realization of one
   /// microstructure. Stresses tension positive except sigma and p (compression positive).
@@ -36,6 +38,7 @@ namespace anticrack::dem
     double solid_fraction = nan, coordination = nan, bonds = nan;
     double specimen_height = nan, layer_thickness = nan;
     double particle_diameter = nan;
+    double steady_shear_stress = nan, steady_normal_stress = nan, steady_stress_ratio = nan;
   };
 
   /// One column of the table; exactly one of the three members is set (a text per test, a number
@@ -98,7 +101,15 @@ namespace anticrack::dem
              &R::layer_thickness),
       number("particle_diameter", "m",
              "mean diameter of the specimen's spheres (the grain size the snow units scale lengths by)",
-             &R::particle_diameter)};
+             &R::particle_diameter),
+      number("steady_shear_stress", "Pa",
+             "friction tests: the base's mean shear stress over the second half of the shear strain (NaN for the "
+             "other tests)", &R::steady_shear_stress),
+      number("steady_normal_stress", "Pa", "friction tests: the base's mean compressive normal stress over the same",
+             &R::steady_normal_stress),
+      number("steady_stress_ratio", "-",
+             "friction tests: steady shear over normal stress, the collapsed layer's friction coefficient",
+             &R::steady_stress_ratio)};
     return columns;
   }
 

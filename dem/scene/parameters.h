@@ -346,6 +346,14 @@ namespace anticrack::dem
       double compaction_curve_strain_interval = 0; ///< strain between its curve's history rows
 
       [[nodiscard]] bool has_compaction_tests() const { return compaction_strain_rate > 0; }
+      /// Simple shear of the collapsed layer per realization (dem/lab/simple_shear.h), 0 = none: the
+      /// layer crushed under a normal stress above its strength, then sheared at it.
+      double friction_normal_stress = 0;      ///< sigma_n [Pa]
+      double friction_shear_velocity = 0;     ///< v of the platen [m/s]
+      double friction_consolidation_time = 0; ///< the normal-force ramp [s]
+      double friction_final_shear_strain = 0; ///< gamma at which the test ends
+
+      [[nodiscard]] bool has_friction_tests() const { return friction_normal_stress > 0; }
 
       [[nodiscard]] bool enabled() const { return !loading_angles_deg.empty(); }
 

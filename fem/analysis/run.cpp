@@ -151,6 +151,11 @@ namespace anticrack::fem
       if (!layer->material_file.empty())
         scene_json["material_files"][layer->label] = {{"file", layer->material_file},
                                                       {"sha256", util::sha256_of_file(layer->material_file)}};
+    // The failed weak layer's friction and where it comes from (the DEM's friction tests or the scene).
+    if (const fem::Layer &weak = scene.snowpack.weak_layer; !std::isnan(weak.friction_coefficient))
+      scene_json["weak_layer_friction"] = {
+        {"friction_coefficient", weak.friction_coefficient},
+        {"source", weak.friction_from_material_file ? "material file (DEM friction tests)" : "scene"}};
     if (!scene.profile_record.is_null())
       scene_json["profile"] = scene.profile_record; // each layer's values and their sources, the observed PST
     summary["scene"] = scene_json;

@@ -1,8 +1,8 @@
-// Coulomb friction of a collapsed weak layer: the stick–slip update (F2) on the layer plane and its
-// tangent. The
-// equations are in the header.
+// Coulomb friction of a failed weak layer: the stick–slip update (F2) on the layer plane and its
+// tangent. The equations are in the header.
 #include "fem/material/collapsed_layer_friction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -36,9 +36,9 @@ namespace anticrack::fem
     require(std::isfinite(shear_modulus) && shear_modulus > 0, "shear modulus", shear_modulus, "> 0 [Pa]");
     require(std::isfinite(lock_up_modulus) && lock_up_modulus >= 0, "lock-up modulus", lock_up_modulus, ">= 0 [Pa]");
     CollapsedFrictionParameters p;
+    p.enabled = true;
     p.friction_coefficient = friction_coefficient;
-    p.lock_up_modulus = lock_up_modulus;
-    p.shear_modulus = lock_up_modulus * shear_modulus / bulk_modulus; // (F2)
+    p.shear_modulus = shear_modulus * std::max(1., lock_up_modulus / bulk_modulus); // (F2)
     return p;
   }
 
@@ -46,7 +46,9 @@ namespace anticrack::fem
                                                     unsigned int normal_axis,
                                                     const SymmetricTensor<2, 3> &previous,
                                                     const SymmetricTensor<2, 3> &strain_increment,
-                                                    double lock_up_pressure, bool with_tangent)
+                                                    double normal_traction,
+                                                    const SymmetricTensor<2, 3> &normal_traction_gradient,
+                                                    bool with_tangent)
   {
     CollapsedFrictionUpdate result;
     const unsigned int n = normal_axis;
@@ -59,11 +61,11 @@ namespace anticrack::fem
       tau_n[a] = previous[axes[a]][n];
       dgamma[a] = 2 * strain_increment[axes[a]][n];
     }
-    if (parameters.active() && lock_up_pressure > 0)
+    if (parameters.active() && normal_traction > 0)
     {
       const double trial[2] = {tau_n[0] + G_f * dgamma[0], tau_n[1] + G_f * dgamma[1]};
       const double magnitude = std::hypot(trial[0], trial[1]);
-      const double limit = parameters.friction_coefficient * lock_up_pressure; // k of (F1)
+      const double limit = parameters.friction_coefficient * normal_traction; // k of (F1)
       result.sliding = magnitude > limit;
       const double ratio = result.sliding ? limit / magnitude : 1.;
       for (unsigned int a = 0; a < 2; ++a)
@@ -78,10 +80,11 @@ namespace anticrack::fem
             const double direction_term = result.sliding ? trial[a] * trial[b] / (magnitude * magnitude) : 0.;
             result.tangent[axes[a]][n][axes[b]][n] = ratio * G_f * ((a == b ? 1. : 0.) - direction_term);
           }
-          if (result.sliding) // dk = μ dp_d = −μ K_d tr dε
+          if (result.sliding) // dk = μ dσ_n: ∂τ_i/∂ε_kl gains μ t_i ∂σ_n/∂ε_kl (the stick part has no (k, k) entries)
             for (unsigned int k = 0; k < 3; ++k)
-              result.tangent[axes[a]][n][k][k] =
-                -parameters.friction_coefficient * parameters.lock_up_modulus * trial[a] / magnitude;
+              for (unsigned int l = k; l < 3; ++l)
+                result.tangent[axes[a]][n][k][l] +=
+                  parameters.friction_coefficient * normal_traction_gradient[k][l] * trial[a] / magnitude;
         }
     }
     for (unsigned int a = 0; a < 2; ++a)

@@ -9,6 +9,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include <cstdio>
 #include <fstream>
@@ -108,9 +110,13 @@ namespace anticrack::fem
     {
       static const std::vector<CollapseIntervalEntry> entries = {
         {"Lock-up strain interval", &MaterialCollapse::lock_up_strain_interval},
-        {"Fracture energy density interval [J/m^3]", &MaterialCollapse::fracture_energy_density_interval}};
+        {"Fracture energy density interval [J/m^3]", &MaterialCollapse::fracture_energy_density_interval},
+        {"Friction coefficient interval", &MaterialCollapse::friction_coefficient_interval}};
       return entries;
     }
+    /// Material/Collapse/Friction coefficient: empty when the campaign had no friction tests (0 is a
+    /// frictionless layer, a value).
+    constexpr const char *friction_entry = "Friction coefficient";
 
     void declare_material_file(ParameterHandler &prm)
     {
@@ -124,6 +130,10 @@ namespace anticrack::fem
       prm.enter_subsection("Collapse");
       for (const CollapseEntry &e : collapse_entries())
         prm.declare_entry(e.name, "0", Double(0, e.upper), e.meaning);
+      prm.declare_entry(friction_entry, "", Anything(),
+                        "mu: the failed layer's friction coefficient, steady shear over normal stress of the "
+                        "collapsed layer's simple shear in the DEM (its campaign's friction tests); in [0, 2]; empty: "
+                        "not measured. Dimensionless.");
       for (const CollapseIntervalEntry &e : collapse_interval_entries())
         prm.declare_entry(e.name, "", Anything(), "lower, upper");
       prm.leave_subsection();
@@ -195,6 +205,25 @@ namespace anticrack::fem
         throw InputError("material file " + name + ": Material/" + entry + " = \"" + text +
                          "\" is not \"lower, upper\"");
       }
+    }
+
+    /// An entry that may be empty (NaN) or a number in [lower, upper].
+    double parse_optional_number_in(const std::string &text, const std::string &entry, const std::string &name,
+                                    double lower, double upper)
+    {
+      std::optional<double> value;
+      try
+      {
+        value = parse_optional_number(text);
+      }
+      catch (const std::invalid_argument &)
+      {
+        value = std::numeric_limits<double>::quiet_NaN();
+      }
+      if (value && !(*value >= lower && *value <= upper))
+        throw InputError("material file " + name + ": Material/" + entry + " = \"" + text + "\" must be empty or a "
+                         "number in [" + material_file_number(lower) + ", " + material_file_number(upper) + "]");
+      return value.value_or(std::numeric_limits<double>::quiet_NaN());
     }
 
     /// "lower, upper", or empty for an interval that is not known (one realization): a material
@@ -317,6 +346,8 @@ namespace anticrack::fem
     prm.enter_subsection("Collapse");
     for (const CollapseEntry &e : collapse_entries())
       file.collapse.*e.number = prm.get_double(e.name);
+    file.collapse.friction_coefficient = parse_optional_number_in(prm.get(friction_entry), std::string("Collapse/") +
+                                                                  friction_entry, name, 0, 2);
     for (const CollapseIntervalEntry &e : collapse_interval_entries())
       file.collapse.*e.interval = parse_interval(prm.get(e.name), std::string("Collapse/") + e.name, name);
     prm.leave_subsection();
@@ -373,6 +404,8 @@ namespace anticrack::fem
       out << "  subsection Collapse\n";
       for (const CollapseEntry &e : collapse_entries())
         out << "    set " << e.name << " = " << material_file_number(file.collapse.*e.number) << "\n";
+      if (!std::isnan(file.collapse.friction_coefficient))
+        out << "    set " << friction_entry << " = " << material_file_number(file.collapse.friction_coefficient) << "\n";
       for (const CollapseIntervalEntry &e : collapse_interval_entries())
         out << "    set " << e.name << " = " << interval_text(file.collapse.*e.interval) << "\n";
       out << "  end\n";

@@ -79,6 +79,11 @@ namespace anticrack::fem
     double fracture_energy_density = 0; ///< w_f [J/m³], dissipated by the strength drop beyond the residual
     MaterialInterval fracture_energy_density_interval;
     double collapse_energy_density = 0; ///< w_c [J/m³], dissipated up to the lock-up
+    /// μ of the failed layer (fem/material/collapsed_layer_friction.h), the steady shear over normal
+    /// stress of the collapsed layer's simple shear in the DEM; NaN: not measured (the scene's layer
+    /// gives it).
+    double friction_coefficient = std::numeric_limits<double>::quiet_NaN();
+    MaterialInterval friction_coefficient_interval;
 
     [[nodiscard]] bool given() const { return lock_up_strain > 0; }
   };

@@ -341,12 +341,18 @@ namespace anticrack::fem
       else
         parameters.set_elastic_moduli(layer.material.youngs_modulus, layer.material.poisson_ratio);
       cell_parameters_.push_back(parameters);
-      // The friction acts only where the layer locks up (K_d > 0).
+      // A cohesive Cam-Clay layer with a friction coefficient takes the frictional law once it has
+      // failed; its skeleton, once fully broken, has no tension (β = 0).
+      const bool with_friction =
+        layer.model == Layer::Model::cohesive_cam_clay && !std::isnan(layer.friction_coefficient);
       friction_parameters_.push_back(
-        layer.model == Layer::Model::cohesive_cam_clay && parameters.densification_modulus > 0
-          ? CollapsedFrictionParameters::of_layer(layer.friction_coefficient, parameters.bulk_modulus,
-                                                  parameters.shear_modulus, parameters.densification_modulus)
-          : CollapsedFrictionParameters());
+        with_friction ? CollapsedFrictionParameters::of_layer(layer.friction_coefficient, parameters.bulk_modulus,
+                                                              parameters.shear_modulus, parameters.densification_modulus)
+                      : CollapsedFrictionParameters());
+      CamClayParameters failed = parameters;
+      if (with_friction)
+        failed.beta = 0;
+      failed_parameters_.push_back(failed);
     }
 
     FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values | update_quadrature_points);
@@ -552,6 +558,25 @@ namespace anticrack::fem
 
         QuadraturePointState &state = trial_[data.first_qp + q];
         const QuadraturePointState &previous = committed_[data.first_qp + q];
+        state.strain = strain;
+        // A point of a layer with friction has failed once its bonds have broken (any plastic step;
+        // with the collapse law each one softens) or the saw has cut into its cell. From the step
+        // after, its skeleton takes the failed parameters and does not see the layer-plane shear,
+        // which the friction carries (fem/material/collapsed_layer_friction.h); in a sawn cell the
+        // friction's normal traction is the lock-up's once the slab has fallen onto the kerf. The
+        // switch uses the committed state, so a step's Newton iterations see one law.
+        const unsigned int normal = dim - 1;
+        const unsigned int in_plane[2] = {(normal + 1) % 3, (normal + 2) % 3};
+        const bool failed =
+          friction.active() && (previous.material.plastic_strain.norm() > 0 || data.intact < 1);
+        // Its tension β p0 falls with p0 as the bonds break; the last of it, β p0_floor, goes once
+        // the softening is complete (p0 at the floor): the fully broken skeleton has β = 0.
+        const bool broken = failed && previous.material.p0 <= parameters.p0_floor * (1 + 1e-9);
+        const CamClayParameters &skeleton = broken ? failed_parameters_[data.layer] : parameters;
+        SymmetricTensor<2, 3> skeleton_strain = strain;
+        if (failed)
+          for (const unsigned int i : in_plane)
+            skeleton_strain[i][normal] = previous.material.plastic_strain[i][normal];
         SymmetricTensor<4, 3> tangent;
         if (plastic_model)
         {
@@ -559,15 +584,20 @@ namespace anticrack::fem
           {
             if (request.tangent)
             {
-              const CamClayTangentUpdate result = update_stress_and_tangent(parameters, previous.material, strain);
+              const CamClayTangentUpdate result = update_stress_and_tangent(skeleton, previous.material, skeleton_strain);
               state.material = result.update.state;
               state.stress = result.update.stress;
               state.lock_up_pressure = result.update.densification_pressure;
               tangent = result.tangent;
+              if (failed) // ∂ε_skeleton/∂ε drops the layer-plane shear
+                for (unsigned int k = 0; k < 3; ++k)
+                  for (unsigned int l = k; l < 3; ++l)
+                    for (const unsigned int i : in_plane)
+                      tangent[k][l][i][normal] = 0;
             }
             else
             {
-              const CamClayUpdate result = update_stress(parameters, previous.material, strain);
+              const CamClayUpdate result = update_stress(skeleton, previous.material, skeleton_strain);
               state.material = result.state;
               state.stress = result.stress;
               state.lock_up_pressure = result.densification_pressure;
@@ -605,31 +635,46 @@ namespace anticrack::fem
             tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
         }
         const bool locked = state.lock_up_pressure > 0;
-        // The friction of the collapsed grains on the lock-up pressure, in parallel (whole in a cut
-        // cell, like the lock-up).
-        double friction_dissipation = 0;
-        SymmetricTensor<4, 3> friction_tangent;
-        if (friction.active())
-        {
-          const CollapsedFrictionUpdate slip =
-            update_collapsed_friction(friction, dim - 1, previous.friction_stress, strain - previous.material.strain,
-                                      state.lock_up_pressure, request.tangent != nullptr);
-          state.friction_stress = slip.stress;
-          state.stress += slip.stress;
-          friction_dissipation = slip.dissipation;
-          friction_tangent = slip.tangent;
-        }
-        SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);
+        // What the cell carries without the friction, and its tangent: the fraction f of the
+        // Cam-Clay part and the whole lock-up (carried_stress()).
+        state.friction_stress = 0;
         if (request.tangent)
         {
           tangent *= stress_factor;
           if (locked)
             tangent += (1 - stress_factor) * parameters.densification_modulus *
-                         outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>()) +
-                       friction_tangent;
+                       outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>());
         }
+        // The friction of the failed layer's grains on the skeleton's layer-normal compression, in
+        // parallel (whole in a cut cell, like the lock-up). At the switch it starts from the
+        // skeleton's layer-plane shear of the step before (clipped to Coulomb's limit).
+        double friction_dissipation = 0;
+        if (failed)
+        {
+          const SymmetricTensor<2, 3> pressed = carried_stress(state, stress_factor);
+          SymmetricTensor<2, 3> normal_traction_gradient;
+          if (request.tangent)
+            for (unsigned int k = 0; k < 3; ++k)
+              for (unsigned int l = k; l < 3; ++l)
+                normal_traction_gradient[k][l] = -tangent[normal][normal][k][l];
+          // The skeleton's layer-plane shear is zero once failed, so this is the friction's own τ_n,
+          // except at the switch, where it is the skeleton's whole shear (the step before the
+          // switch carried it whole: a cell that the saw reaches switches in that same step).
+          const SymmetricTensor<2, 3> previous_traction = previous.friction_stress + previous.cam_clay_stress();
+          const CollapsedFrictionUpdate slip =
+            update_collapsed_friction(friction, normal, previous_traction, strain - previous.strain,
+                                      std::max(-pressed[normal][normal], 0.), normal_traction_gradient,
+                                      request.tangent != nullptr);
+          state.friction_stress = slip.stress;
+          state.stress += slip.stress;
+          friction_dissipation = slip.dissipation;
+          if (request.tangent)
+            tangent += slip.tangent;
+        }
+        SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);
         cell_modulus = std::max(cell_modulus, stress_factor * (parameters.bulk_modulus + 4 * parameters.shear_modulus / 3) +
-                                                (locked ? parameters.densification_modulus + friction.shear_modulus : 0.));
+                                                (locked ? parameters.densification_modulus : 0.) +
+                                                (failed ? friction.shear_modulus : 0.));
         // Dissipation of this step: trapezoidal f σ_cc : Δε_p (the lock-up does no plastic work),
         // and the frictional slip's.
         const SymmetricTensor<2, 3> plastic_increment = state.material.plastic_strain - previous.material.plastic_strain;
@@ -944,7 +989,7 @@ namespace anticrack::fem
       {
         const QuadraturePointState &state = committed_[data.first_qp + q];
         summary.stress += carried_stress(state, stress_factor) / n_q;
-        summary.strain += state.material.strain / n_q;
+        summary.strain += state.strain / n_q;
         summary.p0 += state.material.p0 / n_q;
       }
       summaries.push_back(summary);

@@ -59,10 +59,15 @@ namespace anticrack::fem
   /// History of one quadrature point.
   struct QuadraturePointState
   {
-    CamClayState material;                 ///< strain, plastic strain, α, p0 (elastic cells: strain only)
+    /// The total strain ε of the point.
+    dealii::SymmetricTensor<2, 3> strain;
+    /// Strain, plastic strain, α, p0 of the Cam-Clay part (elastic cells: strain only). Its strain
+    /// is ε, except at a failed point of a layer with friction, whose skeleton does not see the
+    /// layer-plane shear (fem/material/collapsed_layer_friction.h).
+    CamClayState material;
     dealii::SymmetricTensor<2, 3> stress;  ///< stress of the material (without the intact fraction)
     double lock_up_pressure = 0;           ///< p_d of the densification lock-up, included in stress [Pa]
-    /// s_f, the friction of the collapsed grains on p_d (fem/material/collapsed_layer_friction.h),
+    /// s_f, the friction of the failed layer's grains (fem/material/collapsed_layer_friction.h),
     /// included in stress [Pa].
     dealii::SymmetricTensor<2, 3> friction_stress;
     double dissipation = 0;                ///< plastic and frictional work dissipated so far per volume [J/m³]
@@ -277,6 +282,9 @@ namespace anticrack::fem
 
     std::vector<Layer> layers_;                    ///< by layer id
     std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)
+    /// Per layer id: the skeleton of its failed points where the layer has friction (β = 0: no
+    /// tension; fem/material/collapsed_layer_friction.h), else the same as cell_parameters_.
+    std::vector<CamClayParameters> failed_parameters_;
     std::vector<CollapsedFrictionParameters> friction_parameters_; ///< per layer id
     std::vector<CellData> cells_;                  ///< locally owned cells, by active cell index order
     std::vector<QuadraturePointState> committed_, trial_;

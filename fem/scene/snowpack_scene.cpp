@@ -63,10 +63,13 @@ namespace anticrack::fem
       prm.declare_entry("Densification modulus [Pa]", "0", Double(0),
                         "K_d: bulk modulus of the lock-up once the collapse height is used up. Units: Pa.");
       prm.declare_entry("Friction coefficient", "", Anything(),
-                        "mu: Coulomb friction of the collapsed layer's grains on its lock-up pressure, |tau| <= mu "
-                        "p_d (q <= sqrt(3) mu p_d; docs/physics.md §2). Required, in [0, 2], when the layer locks "
-                        "up (a collapse height, here or from the material file); 0: the collapsed layer is "
-                        "frictionless. Dimensionless.");
+                        "mu: Coulomb friction of the failed layer's grains, from failure on: once its bonds break "
+                        "(or the saw reaches it) the layer keeps no cohesion and no tension, and carries shear on "
+                        "its plane by |tau| <= mu sigma_n, sigma_n its layer-normal compression (docs/physics.md "
+                        "§2). Required, in [0, 2], when the layer locks up (a collapse height, here or from the "
+                        "material file); 0: the failed layer is frictionless; empty (no lock-up only): the "
+                        "Cam-Clay residual surface alone carries the failed layer (Gaume et al. 2018). "
+                        "Dimensionless.");
       declare_material_entries(prm);
     }
 
@@ -76,22 +79,15 @@ namespace anticrack::fem
                          const std::string &scene_file)
   {
     const std::string text = prm.get(entry);
-    if (text.empty())
-      return std::numeric_limits<double>::quiet_NaN();
-    std::size_t used = 0;
-    double value = 0;
     try
     {
-      value = std::stod(text, &used);
+      return parse_optional_number(text).value_or(std::numeric_limits<double>::quiet_NaN());
     }
-    catch (const std::exception &)
+    catch (const std::invalid_argument &)
     {
-      used = 0;
-    }
-    if (used != text.size() || !std::isfinite(value))
       throw InputError("Invalid scene file <" + scene_file + ">: " + section + "/" + entry + " = " + text +
                        " is not a number");
-    return value;
+    }
   }
 
   namespace
@@ -136,6 +132,17 @@ namespace anticrack::fem
             layer.densification_modulus = whole.collapse.lock_up_modulus;
             layer.collapse_from_material_file = true;
           }
+          if (!std::isnan(whole.collapse.friction_coefficient))
+          {
+            // The failed layer's friction measured in the DEM (the campaign's friction tests).
+            if (!std::isnan(layer.friction_coefficient))
+              throw InputError("the material file gives the failed layer's friction (Material/Collapse/Friction "
+                               "coefficient = " + format_number(whole.collapse.friction_coefficient) + "), and " +
+                               section + "/Friction coefficient must then be empty (is " +
+                               format_number(layer.friction_coefficient) + "): give it once");
+            layer.friction_coefficient = whole.collapse.friction_coefficient;
+            layer.friction_from_material_file = true;
+          }
         }
         catch (const InputError &e)
         {
@@ -177,7 +184,7 @@ namespace anticrack::fem
         problems.add(section + "/Friction coefficient",
                      "must be given, in [0, 2], when the layer locks up (collapse height " +
                        format_number(layer.collapse_height) +
-                       " m): the Coulomb friction of the collapsed grains on the lock-up pressure (0: frictionless)");
+                       " m): the Coulomb friction of the failed layer's grains (0: frictionless)");
       if (!layer.tensile_strength_from_density && !std::isnan(layer.tensile_strength) && !(layer.tensile_strength > 0))
         problems.add(section + "/Tensile strength [Pa]",
                      "must be > 0, or empty for Sigrist 2006's density law (is " + format_number(layer.tensile_strength) + ")");

@@ -58,10 +58,11 @@ namespace anticrack::fem
     MaterialInterval fracture_energy_density_interval; ///< its interval (NaN if the file has none)
     double confidence = 0.95;                          ///< level of the file's intervals
     double densification_modulus = 0;
-    /// μ: Coulomb friction of the collapsed layer on its lock-up pressure
-    /// (fem/material/collapsed_layer_friction.h); NaN when the scene does not give it, which is
-    /// refused for a layer that locks up.
+    /// μ: Coulomb friction of the failed layer on its normal compression, from failure on
+    /// (fem/material/collapsed_layer_friction.h); from the scene or the material file; NaN when
+    /// neither gives it, which is refused for a layer that locks up.
     double friction_coefficient = std::numeric_limits<double>::quiet_NaN();
+    bool friction_from_material_file = false; ///< μ is the material file's (Material/Collapse), measured in the DEM
     /// σ_t [Pa] of a slab layer: a dynamic PST ends with a slab fracture when the largest
     /// principal stress in the layer reaches it. From the scene, or (entry empty) the density law
     /// of Sigrist 2006 (fem/closed_forms.h); NaN for the weak layer and the substratum.
