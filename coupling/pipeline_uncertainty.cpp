@@ -75,12 +75,13 @@ namespace anticrack::coupling
     // the lock-up strain are read from the same compaction curves, one estimate of each per
     // realization, so their means' errors are correlated: their covariance is that of the paired
     // realization values (params::covariance_of_means). E comes from the loading tests' elastic part,
-    // independent of both.
+    // μ from the friction tests, each independent of the others.
     enum class Source
     {
       surface_fit,
       elastic_part,
-      softening_curves
+      softening_curves,
+      friction_tests
     };
     struct Candidate
     {
@@ -93,6 +94,7 @@ namespace anticrack::coupling
       bool given = true;      ///< the material file carries it
     };
     const auto lock_up_strain = [](fem::MaterialFile &file) -> double & { return file.collapse.lock_up_strain; };
+    const auto friction = [](fem::MaterialFile &file) -> double & { return file.collapse.friction_coefficient; };
     // A statistics entry of summary.json, or null where the calibration wrote none (e.g. no lock-up
     // strain without compaction tests).
     static const Json none;
@@ -113,7 +115,10 @@ namespace anticrack::coupling
       {"R", material_entry("Residual strength ratio"), snow.material.residual_strength_ratio,
        Source::softening_curves, statistics(softening, "residual_ratio"), 1},
       {"lock_up_strain", lock_up_strain, snow.collapse.lock_up_strain, Source::softening_curves,
-       statistics(softening, "lock_up_strain"), 1, snow.collapse.given()}};
+       statistics(softening, "lock_up_strain"), 1, snow.collapse.given()},
+      // The failed layer's friction, a ratio of stresses, where the campaign measured it.
+      {"mu", friction, snow.collapse.friction_coefficient, Source::friction_tests,
+       statistics(m["friction"], "friction_coefficient"), 1, !std::isnan(snow.collapse.friction_coefficient)}};
     const auto variance = [&](std::size_t k) {
       const Candidate &c = candidates[k];
       if (!c.given)

@@ -8,7 +8,9 @@
 //     part, independent of the surface and of the softening;
 //   - ξ, R and the lock-up strain: the covariance of their means over the realizations, from the
 //     paired per-realization values (one compaction curve gives all three; params::covariance_of_means),
-//     independent of the surface and of E.
+//     independent of the surface and of E;
+//   - μ, the failed layer's friction: the standard error of its mean over the realizations' friction
+//     tests (params/friction_calibration.h), independent of the others (where the campaign has them).
 // For each snowpack scene the FE runs once more per parameter i with θ_i raised by one standard
 // error h_i = √Σ_ii, everything else as calibrated. The sensitivity of an answer y is
 // g_i = (y_i − y_0)/h_i, its variance g^T Σ g, its interval y_0 ± z σ_y with z the normal quantile of
@@ -44,7 +46,7 @@ namespace anticrack::coupling
 
   struct UncertainParameters
   {
-    std::vector<std::string> names;   ///< p0, beta, M, E, xi, R, lock_up_strain
+    std::vector<std::string> names;   ///< p0, beta, M, E, xi, R, lock_up_strain, mu
     /// Where each is in a material file (subsection Material, or Material/Collapse).
     std::vector<std::function<double &(fem::MaterialFile &)>> value_in;
     Eigen::VectorXd value;            ///< calibrated, snow units

@@ -215,4 +215,31 @@ TEST(MaterialFile, TheCollapseIsWrittenOnlyWhenGivenAndReadBack)
   EXPECT_EQ(back.collapse.fracture_energy_density_interval.lower, 0.95);
   EXPECT_EQ(back.collapse.fracture_energy_density_interval.upper, 2.27);
   EXPECT_EQ(back.collapse.collapse_energy_density, 651.5);
+  // No friction tests: the entry stays empty and reads back as not measured (0 would be a value).
+  EXPECT_EQ(fem::material_file_text(file).find("set Friction coefficient ="), std::string::npos);
+  EXPECT_TRUE(std::isnan(back.collapse.friction_coefficient));
+
+  file.collapse.friction_coefficient = 0.383;
+  file.collapse.friction_coefficient_interval = {0.367, 0.399};
+  const fem::MaterialFile with_friction = fem::read_material_file_text(fem::material_file_text(file), "friction");
+  EXPECT_EQ(with_friction.collapse.friction_coefficient, 0.383);
+  EXPECT_EQ(with_friction.collapse.friction_coefficient_interval.lower, 0.367);
+  EXPECT_EQ(with_friction.collapse.friction_coefficient_interval.upper, 0.399);
+  // Out of [0, 2], or not a number: refused naming the entry.
+  for (const char *bad : {"2.5", "-0.1", "0.4x"})
+  {
+    std::string text = fem::material_file_text(file);
+    const std::string entry = "set Friction coefficient = 0.383";
+    text.replace(text.find(entry), entry.size(), std::string("set Friction coefficient = ") + bad);
+    try
+    {
+      fem::read_material_file_text(text, "bad friction");
+      ADD_FAILURE() << bad << " accepted";
+    }
+    catch (const std::exception &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Collapse/Friction coefficient"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("[0, 2]"), std::string::npos) << e.what();
+    }
+  }
 }
