@@ -3,6 +3,7 @@
 #include "coupling/calibration_scene.h"
 #include "dem/scene/parameters.h"
 #include "fem/scene/snowpack_scene.h"
+#include "util/format.h"
 #include "util/input_error.h"
 #include "util/parameter_files.h"
 #include "util/parameter_input.h"
@@ -133,11 +134,10 @@ namespace anticrack::coupling
 
   std::string snow_units_text(const SnowUnits &snow)
   {
-    std::ostringstream text;
-    text.precision(17);
-    text << "\nSnow units: " << snow.bond_tensile_strength << " " << snow.particle_density << " " << snow.bond_modulus
-         << " " << snow.grain_diameter;
-    return text.str();
+    // 17 digits: every double to the bit, so that the cache key tells any two snows apart.
+    return "\nSnow units: " + format_number(snow.bond_tensile_strength, 17) + " " +
+           format_number(snow.particle_density, 17) + " " + format_number(snow.bond_modulus, 17) + " " +
+           format_number(snow.grain_diameter, 17);
   }
 
   std::string snowpack_scene_text(const PipelineScene &scene, const std::string &file, const std::string &material_file)
