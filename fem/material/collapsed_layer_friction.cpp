@@ -28,9 +28,8 @@ namespace anticrack::fem
   CollapsedFrictionParameters CollapsedFrictionParameters::of_layer(double friction_coefficient, double bulk_modulus,
                                                                     double shear_modulus, double lock_up_modulus)
   {
-    // μ up to 2 (a friction angle of 63°) covers every granular material; beyond it the value is a
-    // typo rather than a measurement.
-    require(std::isfinite(friction_coefficient) && friction_coefficient >= 0 && friction_coefficient <= 2,
+    require(std::isfinite(friction_coefficient) && friction_coefficient >= 0 &&
+              friction_coefficient <= max_friction_coefficient,
             "friction coefficient", friction_coefficient, "in [0, 2]");
     require(std::isfinite(bulk_modulus) && bulk_modulus > 0, "bulk modulus", bulk_modulus, "> 0 [Pa]");
     require(std::isfinite(shear_modulus) && shear_modulus > 0, "shear modulus", shear_modulus, "> 0 [Pa]");

@@ -45,6 +45,10 @@
 
 namespace anticrack::fem
 {
+  /// The largest friction coefficient a layer or a material file may give: μ = 2 (a friction angle
+  /// of 63°) covers every granular material; beyond it the value is a typo rather than a measurement.
+  inline constexpr double max_friction_coefficient = 2;
+
   /// Parameters of the friction of a failed layer (SI units).
   struct CollapsedFrictionParameters
   {

@@ -1,5 +1,7 @@
 #include "fem/material/material_file.h"
 
+#include "fem/material/collapsed_layer_friction.h"
+
 #include "util/atomic_file.h"
 #include "util/format.h"
 #include "util/input_error.h"
@@ -347,7 +349,7 @@ namespace anticrack::fem
     for (const CollapseEntry &e : collapse_entries())
       file.collapse.*e.number = prm.get_double(e.name);
     file.collapse.friction_coefficient = parse_optional_number_in(prm.get(friction_entry), std::string("Collapse/") +
-                                                                  friction_entry, name, 0, 2);
+                                                                  friction_entry, name, 0, max_friction_coefficient);
     for (const CollapseIntervalEntry &e : collapse_interval_entries())
       file.collapse.*e.interval = parse_interval(prm.get(e.name), std::string("Collapse/") + e.name, name);
     prm.leave_subsection();

@@ -2,6 +2,7 @@
 #include "fem/scene/profile_snowpack.h"
 #include "profile/layer_properties.h"
 
+#include "fem/material/collapsed_layer_friction.h"
 #include "fem/material/column_collapse.h"
 #include "fem/model/crack_band.h"
 #include "fem/model/layers.h"
@@ -188,7 +189,7 @@ namespace anticrack::fem
       if (!layer.tensile_strength_from_density && !std::isnan(layer.tensile_strength) && !(layer.tensile_strength > 0))
         problems.add(section + "/Tensile strength [Pa]",
                      "must be > 0, or empty for Sigrist 2006's density law (is " + format_number(layer.tensile_strength) + ")");
-      if (!std::isnan(layer.friction_coefficient) && !(layer.friction_coefficient >= 0 && layer.friction_coefficient <= 2))
+      if (!std::isnan(layer.friction_coefficient) && !(layer.friction_coefficient >= 0 && layer.friction_coefficient <= max_friction_coefficient))
         problems.add(section + "/Friction coefficient",
                      "must be in [0, 2] (is " + format_number(layer.friction_coefficient) + ")");
       if (layer.collapse_height > 0 && !(layer.collapse_height < 0.9 * band_height))
