@@ -37,22 +37,6 @@ namespace anticrack::fem
     /// G(a) by less than 1e-6 relative).
     constexpr double cut_stiffness_floor = 1e-6;
 
-    SymmetricTensor<4, 3> isotropic_elasticity(double bulk_modulus, double shear_modulus)
-    {
-      const SymmetricTensor<2, 3> one = unit_symmetric_tensor<3>();
-      return bulk_modulus * outer_product(one, one) +
-             2 * shear_modulus * (identity_tensor<3>() - outer_product(one, one) / 3.);
-    }
-
-    /// What a cell carries at a point: the fraction f of the Cam-Clay stress, and the whole lock-up
-    /// pressure and friction, which are the contact of the faces of a collapsed (or sawn) layer: a
-    /// cut cell lets the slab fall by the collapse height and then carries it, and its shear.
-    SymmetricTensor<2, 3> carried_stress(const QuadraturePointState &state, double stress_factor)
-    {
-      return stress_factor * state.cam_clay_stress() - state.lock_up_pressure * unit_symmetric_tensor<3>() +
-             state.friction_stress;
-    }
-
     std::vector<double> equal_steps(double length, unsigned int count)
     {
       return std::vector<double>(count, length / count);
@@ -60,20 +44,6 @@ namespace anticrack::fem
 
   } // namespace
 
-  SymmetricTensor<2, 3> QuadraturePointState::cam_clay_stress() const
-  {
-    return stress + lock_up_pressure * unit_symmetric_tensor<3>() - friction_stress;
-  }
-
-  double QuadraturePointState::cam_clay_energy_density() const
-  {
-    return 0.5 * (cam_clay_stress() * (material.strain - material.plastic_strain));
-  }
-
-  double QuadraturePointState::lock_up_energy_density(double densification_modulus) const
-  {
-    return densification_modulus > 0 ? lock_up_pressure * lock_up_pressure / (2 * densification_modulus) : 0;
-  }
 
   template <int dim>
   struct SnowpackModel<dim>::CellData
@@ -335,24 +305,12 @@ namespace anticrack::fem
     for (unsigned int id = 0; id < layers_.size(); ++id)
     {
       const Layer &layer = layers_[id];
-      CamClayParameters parameters;
-      if (layer.model == Layer::Model::cohesive_cam_clay)
-        parameters = cam_clay_parameters(layer, band_height(scene_, id));
-      else
-        parameters.set_elastic_moduli(layer.material.youngs_modulus, layer.material.poisson_ratio);
-      cell_parameters_.push_back(parameters);
       // A cohesive Cam-Clay layer with a friction coefficient takes the frictional law once it has
-      // failed; its skeleton, once fully broken, has no tension (β = 0).
-      const bool with_friction =
-        layer.model == Layer::Model::cohesive_cam_clay && !std::isnan(layer.friction_coefficient);
-      friction_parameters_.push_back(
-        with_friction ? CollapsedFrictionParameters::of_layer(layer.friction_coefficient, parameters.bulk_modulus,
-                                                              parameters.shear_modulus, parameters.densification_modulus)
-                      : CollapsedFrictionParameters());
-      CamClayParameters failed = parameters;
-      if (with_friction)
-        failed.beta = 0;
-      failed_parameters_.push_back(failed);
+      // failed (fem/material/layer_point.h).
+      layer_laws_.push_back(layer.model == Layer::Model::cohesive_cam_clay
+                              ? LayerLaw::cohesive_cam_clay(cam_clay_parameters(layer, band_height(scene_, id)),
+                                                            layer.friction_coefficient)
+                              : LayerLaw::elastic(layer.material.youngs_modulus, layer.material.poisson_ratio));
     }
 
     FEValues<dim> fe_values(fe_, quadrature_, update_gradients | update_JxW_values | update_quadrature_points);
@@ -402,7 +360,7 @@ namespace anticrack::fem
       }
       QuadraturePointState initial;
       if (layers_[data.layer].model == Layer::Model::cohesive_cam_clay)
-        initial.material = CamClayState::initial(cell_parameters_[data.layer]);
+        initial.material = CamClayState::initial(layer_laws_[data.layer].parameters);
       committed_.insert(committed_.end(), n_q, initial);
       cells_.push_back(std::move(data));
     }
@@ -521,9 +479,7 @@ namespace anticrack::fem
 
     for (CellData &data : cells_)
     {
-      const CamClayParameters &parameters = cell_parameters_[data.layer];
-      const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
-      const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
+      const LayerLaw &law = layer_laws_[data.layer];
       const double stress_factor = std::max(data.intact, cut_stiffness_floor);
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
       {
@@ -558,129 +514,36 @@ namespace anticrack::fem
 
         QuadraturePointState &state = trial_[data.first_qp + q];
         const QuadraturePointState &previous = committed_[data.first_qp + q];
-        state.strain = strain;
-        // A point of a layer with friction has failed once its bonds have broken (any plastic step;
-        // with the collapse law each one softens) or the saw has cut into its cell. From the step
-        // after, its skeleton takes the failed parameters and does not see the layer-plane shear,
-        // which the friction carries (fem/material/collapsed_layer_friction.h); in a sawn cell the
-        // friction's normal traction is the lock-up's once the slab has fallen onto the kerf. The
-        // switch uses the committed state, so a step's Newton iterations see one law.
-        const unsigned int normal = dim - 1;
-        const unsigned int in_plane[2] = {(normal + 1) % 3, (normal + 2) % 3};
-        const bool failed =
-          friction.active() && (previous.material.plastic_strain.norm() > 0 || data.intact < 1);
-        // Its tension β p0 falls with p0 as the bonds break; the last of it, β p0_floor, goes once
-        // the softening is complete (p0 at the floor): the fully broken skeleton has β = 0.
-        const bool broken = failed && previous.material.p0 <= parameters.p0_floor * (1 + 1e-9);
-        const CamClayParameters &skeleton = broken ? failed_parameters_[data.layer] : parameters;
-        SymmetricTensor<2, 3> skeleton_strain = strain;
-        if (failed)
-          for (const unsigned int i : in_plane)
-            skeleton_strain[i][normal] = previous.material.plastic_strain[i][normal];
         SymmetricTensor<4, 3> tangent;
-        if (plastic_model)
+        try
         {
-          try
+          const LayerPointUpdate update = update_layer_point(law, previous, strain, stress_factor, data.intact < 1,
+                                                             dim - 1, request.tangent != nullptr, state);
+          if (request.tangent)
+            tangent = update.tangent;
+          cell_modulus = std::max(cell_modulus, update.p_wave_modulus);
+        }
+        catch (const ReturnMappingError &e)
+        {
+          // Finish the loop (and the collective compress below) on every rank, then throw on all.
+          if (failure.is_null())
           {
-            if (request.tangent)
-            {
-              const CamClayTangentUpdate result = update_stress_and_tangent(skeleton, previous.material, skeleton_strain);
-              state.material = result.update.state;
-              state.stress = result.update.stress;
-              state.lock_up_pressure = result.update.densification_pressure;
-              tangent = result.tangent;
-              if (failed) // ∂ε_skeleton/∂ε drops the layer-plane shear
-                for (unsigned int k = 0; k < 3; ++k)
-                  for (unsigned int l = k; l < 3; ++l)
-                    for (const unsigned int i : in_plane)
-                      tangent[k][l][i][normal] = 0;
-            }
-            else
-            {
-              const CamClayUpdate result = update_stress(skeleton, previous.material, skeleton_strain);
-              state.material = result.state;
-              state.stress = result.stress;
-              state.lock_up_pressure = result.densification_pressure;
-            }
+            const Point<dim> centre = data.cell->center();
+            std::ostringstream where;
+            where << "in the " << layers_[data.layer].label << " at cell centre " << centre
+                  << ", quadrature point " << q << ": " << e.what();
+            failure = {{"description", where.str()},
+                       {"layer", layers_[data.layer].label},
+                       {"cell", data.cell->id().to_string()},
+                       {"cell_centre_m", std::vector<double>(centre.begin_raw(), centre.end_raw())},
+                       {"quadrature_point", q},
+                       {"rank", Utilities::MPI::this_mpi_process(communicator_)},
+                       {"material", e.what()}};
           }
-          catch (const ReturnMappingError &e)
-          {
-            // Finish the loop (and the collective compress below) on every rank, then throw on all.
-            if (failure.is_null())
-            {
-              const Point<dim> centre = data.cell->center();
-              std::ostringstream where;
-              where << "in the " << layers_[data.layer].label << " at cell centre " << centre
-                    << ", quadrature point " << q << ": " << e.what();
-              failure = {{"description", where.str()},
-                         {"layer", layers_[data.layer].label},
-                         {"cell", data.cell->id().to_string()},
-                         {"cell_centre_m", std::vector<double>(centre.begin_raw(), centre.end_raw())},
-                         {"quadrature_point", q},
-                         {"rank", Utilities::MPI::this_mpi_process(communicator_)},
-                         {"material", e.what()}};
-            }
-            cell_failed = true;
-            break;
-          }
-        }
-        else
-        {
-          // σ = K tr ε I + 2 G dev ε, without forming the 4th-order tensor unless it is needed
-          // (the explicit loop spends most of its time in elastic slab cells).
-          state.material.strain = strain;
-          state.stress = 2 * parameters.shear_modulus * deviator(strain) +
-                         parameters.bulk_modulus * trace(strain) * unit_symmetric_tensor<3>();
-          if (request.tangent)
-            tangent = isotropic_elasticity(parameters.bulk_modulus, parameters.shear_modulus);
-        }
-        const bool locked = state.lock_up_pressure > 0;
-        // What the cell carries without the friction, and its tangent: the fraction f of the
-        // Cam-Clay part and the whole lock-up (carried_stress()).
-        state.friction_stress = 0;
-        if (request.tangent)
-        {
-          tangent *= stress_factor;
-          if (locked)
-            tangent += (1 - stress_factor) * parameters.densification_modulus *
-                       outer_product(unit_symmetric_tensor<3>(), unit_symmetric_tensor<3>());
-        }
-        // The friction of the failed layer's grains on the skeleton's layer-normal compression, in
-        // parallel (whole in a cut cell, like the lock-up). At the switch it starts from the
-        // skeleton's layer-plane shear of the step before (clipped to Coulomb's limit).
-        double friction_dissipation = 0;
-        if (failed)
-        {
-          const SymmetricTensor<2, 3> pressed = carried_stress(state, stress_factor);
-          SymmetricTensor<2, 3> normal_traction_gradient;
-          if (request.tangent)
-            for (unsigned int k = 0; k < 3; ++k)
-              for (unsigned int l = k; l < 3; ++l)
-                normal_traction_gradient[k][l] = -tangent[normal][normal][k][l];
-          // The skeleton's layer-plane shear is zero once failed, so this is the friction's own τ_n,
-          // except at the switch, where it is the skeleton's whole shear (the step before the
-          // switch carried it whole: a cell that the saw reaches switches in that same step).
-          const SymmetricTensor<2, 3> previous_traction = previous.friction_stress + previous.cam_clay_stress();
-          const CollapsedFrictionUpdate slip =
-            update_collapsed_friction(friction, normal, previous_traction, strain - previous.strain,
-                                      std::max(-pressed[normal][normal], 0.), normal_traction_gradient,
-                                      request.tangent != nullptr);
-          state.friction_stress = slip.stress;
-          state.stress += slip.stress;
-          friction_dissipation = slip.dissipation;
-          if (request.tangent)
-            tangent += slip.tangent;
+          cell_failed = true;
+          break;
         }
         SymmetricTensor<2, 3> stress = carried_stress(state, stress_factor);
-        cell_modulus = std::max(cell_modulus, stress_factor * (parameters.bulk_modulus + 4 * parameters.shear_modulus / 3) +
-                                                (locked ? parameters.densification_modulus : 0.) +
-                                                (failed ? friction.shear_modulus : 0.));
-        // Dissipation of this step: trapezoidal f σ_cc : Δε_p (the lock-up does no plastic work),
-        // and the frictional slip's.
-        const SymmetricTensor<2, 3> plastic_increment = state.material.plastic_strain - previous.material.plastic_strain;
-        state.dissipation = previous.dissipation +
-                            stress_factor * 0.5 * (state.cam_clay_stress() + previous.cam_clay_stress()) * plastic_increment +
-                            friction_dissipation;
 
         if (request.velocity && volumetric_rate < 0)
         {
@@ -757,8 +620,8 @@ namespace anticrack::fem
     double elastic = 0, dissipated = 0;
     for (const CellData &data : cells_)
     {
-      const double densification_modulus = cell_parameters_[data.layer].densification_modulus;
-      const CollapsedFrictionParameters &friction = friction_parameters_[data.layer];
+      const double densification_modulus = layer_laws_[data.layer].parameters.densification_modulus;
+      const CollapsedFrictionParameters &friction = layer_laws_[data.layer].friction;
       elastic += std::max(data.intact, cut_stiffness_floor) * cell_elastic_energy(data);
       for (unsigned int q = 0; q < quadrature_.size(); ++q)
       {
@@ -780,7 +643,7 @@ namespace anticrack::fem
   template <int dim>
   double SnowpackModel<dim>::softening_of(const QuadraturePointState &state) const
   {
-    const CamClayParameters &weak = cell_parameters_[layer_weak];
+    const CamClayParameters &weak = layer_laws_[layer_weak].parameters;
     return (weak.p0_initial - state.material.p0) / std::max(weak.p0_initial - weak.p0_floor, 1e-300);
   }
 
@@ -843,7 +706,7 @@ namespace anticrack::fem
     // Per column: Σ h_e mean(−ε_nn) and Σ h_e / H over its weak-layer cells (the second counts the
     // cells across the width in 3D).
     std::vector<double> closure(n_columns_, 0.), across(n_columns_, 0.);
-    const CamClayParameters &weak = cell_parameters_[layer_weak];
+    const CamClayParameters &weak = layer_laws_[layer_weak].parameters;
     const double densification = weak.densification_strain, thickness = layers_[layer_weak].thickness;
     for (const CellData &data : cells_)
     {
@@ -1014,7 +877,7 @@ namespace anticrack::fem
     for (const CellData &data : cells_)
     {
       const unsigned int c = data.cell->active_cell_index();
-      const CamClayParameters &parameters = cell_parameters_[data.layer];
+      const CamClayParameters &parameters = layer_laws_[data.layer].parameters;
       const bool plastic_model = layers_[data.layer].model == Layer::Model::cohesive_cam_clay;
       for (unsigned int k = 0; k < n_q; ++k)
       {

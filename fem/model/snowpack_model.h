@@ -30,8 +30,7 @@
 // mass and its lock-up: the sawn gap closes once the slab has fallen by the collapse height.
 #pragma once
 
-#include "fem/material/cohesive_cam_clay.h"
-#include "fem/material/collapsed_layer_friction.h"
+#include "fem/material/layer_point.h"
 #include "fem/model/failure_site.h"
 #include "fem/model/layers.h"
 #include "fem/scene/snowpack_scene.h"
@@ -56,30 +55,6 @@ namespace dealii::PETScWrappers::MPI
 
 namespace anticrack::fem
 {
-  /// History of one quadrature point.
-  struct QuadraturePointState
-  {
-    /// The total strain ε of the point.
-    dealii::SymmetricTensor<2, 3> strain;
-    /// Strain, plastic strain, α, p0 of the Cam-Clay part (elastic cells: strain only). Its strain
-    /// is ε, except at a failed point of a layer with friction, whose skeleton does not see the
-    /// layer-plane shear (fem/material/collapsed_layer_friction.h).
-    CamClayState material;
-    dealii::SymmetricTensor<2, 3> stress;  ///< stress of the material (without the intact fraction)
-    double lock_up_pressure = 0;           ///< p_d of the densification lock-up, included in stress [Pa]
-    /// s_f, the friction of the failed layer's grains (fem/material/collapsed_layer_friction.h),
-    /// included in stress [Pa].
-    dealii::SymmetricTensor<2, 3> friction_stress;
-    double dissipation = 0;                ///< plastic and frictional work dissipated so far per volume [J/m³]
-
-    /// The Cam-Clay part of the stress (the lock-up and the friction act in parallel with it).
-    dealii::SymmetricTensor<2, 3> cam_clay_stress() const;
-    /// Stored elastic energy per volume of the Cam-Clay part, ½ σ_cc : (ε − ε_p) [J/m³].
-    double cam_clay_energy_density() const;
-    /// Stored energy per volume of the lock-up, p_d² / (2 K_d) [J/m³].
-    double lock_up_energy_density(double densification_modulus) const;
-  };
-
   /// Energies of the model [J per metre of column width in 2D, J in 3D].
   struct Energies
   {
@@ -281,11 +256,8 @@ namespace anticrack::fem
     bool has_ties_ = false;  ///< on any rank
 
     std::vector<Layer> layers_;                    ///< by layer id
-    std::vector<CamClayParameters> cell_parameters_; ///< per layer id (crack band applied)
-    /// Per layer id: the skeleton of its failed points where the layer has friction (β = 0: no
-    /// tension; fem/material/collapsed_layer_friction.h), else the same as cell_parameters_.
-    std::vector<CamClayParameters> failed_parameters_;
-    std::vector<CollapsedFrictionParameters> friction_parameters_; ///< per layer id
+    /// Per layer id: its point law (fem/material/layer_point.h; crack band applied).
+    std::vector<LayerLaw> layer_laws_;
     std::vector<CellData> cells_;                  ///< locally owned cells, by active cell index order
     std::vector<QuadraturePointState> committed_, trial_;
     // Geometry cache (a flat array is ~10× faster than FEValues::reinit per cell in explicit loops):

@@ -1,4 +1,5 @@
-// Helpers shared by the material-point tests (test_cohesive_cam_clay.cpp, test_densification.cpp).
+// Helpers shared by the material-point tests (test_cohesive_cam_clay.cpp, test_densification.cpp,
+// test_point_simple_shear.cpp).
 #pragma once
 
 #include "fem/material/cohesive_cam_clay.h"
@@ -14,6 +15,28 @@
 
 namespace anticrack::fem::test_support
 {
+  /// A weak layer that collapses at once under hydrostatic compaction (collapse law, ξ = 5:
+  /// ξ cosh(ξ α) > 1, see CamClayHardening.CollapseCompactionLowersP0): K = 0.5 MPa, G = 0.3 MPa,
+  /// p0 = 1 kPa, floor 0.2 p0, lock-up at ε_d = 0.2 with K_d = 1 MPa.
+  inline CamClayParameters weak_layer(bool lock_up = true)
+  {
+    CamClayParameters m;
+    m.bulk_modulus = 0.5e6;
+    m.shear_modulus = 0.3e6;
+    m.M = 0.8;
+    m.beta = 0.3;
+    m.p0_initial = 1e3;
+    m.hardening_factor = 5;
+    m.p0_floor = residual_p0_floor(m.p0_initial, 0.2);
+    m.law = HardeningLaw::collapse;
+    if (lock_up)
+      {
+        m.densification_strain = 0.2;
+        m.densification_modulus = 1e6;
+      }
+    return m;
+  }
+
   /// The strain of a hydrostatic state with tr ε = volumetric_strain.
   inline dealii::SymmetricTensor<2, 3> hydrostatic(double volumetric_strain)
   {

@@ -29,28 +29,6 @@ namespace
   /// and local solves converged to ~1e-14 relative; 1e-12 leaves a margin and catches formula errors.
   constexpr double round_off = 1e-12;
 
-  /// A weak layer that collapses at once under hydrostatic compaction (collapse law, ξ = 5:
-  /// ξ cosh(ξ α) > 1, see CamClayHardening.CollapseCompactionLowersP0), floor 0.2 p0, lock-up at
-  /// ε_d = 0.2 with K_d = 1 MPa.
-  CamClayParameters weak_layer(bool lock_up = true)
-  {
-    CamClayParameters m;
-    m.bulk_modulus = 0.5e6;
-    m.shear_modulus = 0.3e6;
-    m.M = 0.8;
-    m.beta = 0.3;
-    m.p0_initial = 1e3;
-    m.hardening_factor = 5;
-    m.p0_floor = residual_p0_floor(m.p0_initial, 0.2);
-    m.law = HardeningLaw::collapse;
-    if (lock_up)
-      {
-        m.densification_strain = 0.2;
-        m.densification_modulus = 1e6;
-      }
-    return m;
-  }
-
   /// The material of test_cohesive_cam_clay.cpp: K = 1 MPa, G = 0.6 MPa, p0 = 10 kPa.
   CamClayParameters stiff(double xi, HardeningLaw law)
   {
