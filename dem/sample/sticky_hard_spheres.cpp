@@ -91,17 +91,20 @@ namespace anticrack::dem::shs
 {
   namespace
   {
-    /// Particles of a periodic cube in a cell grid (cells at least one well-range wide), for the
+    /// Particles of a periodic box in a cell grid (cells at least one well-range wide), for the
     /// sampler's neighbour queries; particles move between cells as they are displaced.
     class PeriodicCells
     {
     public:
-      PeriodicCells(double box, double range, const std::vector<Vec3> &x)
-        : box_(box), cells_(std::max<Index>(1, static_cast<Index>(std::floor(box / range))))
+      PeriodicCells(const Vec3 &box, double range, const std::vector<Vec3> &x) : box_(box)
       {
-        if (cells_ < 3)
-          cells_ = 1; // one cell: every pair is a candidate (minimum image keeps it unique)
-        members_.resize(cells_ * cells_ * cells_);
+        for (int a = 0; a < 3; ++a)
+        {
+          cells_[a] = std::max<Index>(1, static_cast<Index>(std::floor(box[a] / range)));
+          if (cells_[a] < 3)
+            cells_[a] = 1; // one cell across: every pair along it is a candidate (minimum image keeps it unique)
+        }
+        members_.resize(cells_[0] * cells_[1] * cells_[2]);
         cell_of_.resize(x.size());
         slot_.resize(x.size());
         for (std::size_t p = 0; p < x.size(); ++p)
@@ -126,20 +129,16 @@ namespace anticrack::dem::shs
       template <class Visit>
       void for_each_near(const Vec3 &x, Visit &&visit) const
       {
-        if (cells_ == 1)
-        {
-          for (const Index j : members_[0])
-            visit(j);
-          return;
-        }
         const std::array<Index, 3> c = coordinates(x);
-        for (Index dz = -1; dz <= 1; ++dz)
-          for (Index dy = -1; dy <= 1; ++dy)
-            for (Index dx = -1; dx <= 1; ++dx)
+        // the neighbouring cells along an axis, or the one cell across it
+        const auto reach = [&](int a) { return cells_[a] == 1 ? Index(0) : Index(1); };
+        for (Index dz = -reach(2); dz <= reach(2); ++dz)
+          for (Index dy = -reach(1); dy <= reach(1); ++dy)
+            for (Index dx = -reach(0); dx <= reach(0); ++dx)
             {
-              const Index cx = (c[0] + dx + cells_) % cells_, cy = (c[1] + dy + cells_) % cells_,
-                          cz = (c[2] + dz + cells_) % cells_;
-              for (const Index j : members_[cx + cells_ * (cy + cells_ * cz)])
+              const Index cx = (c[0] + dx + cells_[0]) % cells_[0], cy = (c[1] + dy + cells_[1]) % cells_[1],
+                          cz = (c[2] + dz + cells_[2]) % cells_[2];
+              for (const Index j : members_[cx + cells_[0] * (cy + cells_[1] * cz)])
                 visit(j);
             }
       }
@@ -149,13 +148,13 @@ namespace anticrack::dem::shs
       {
         std::array<Index, 3> c{};
         for (int a = 0; a < 3; ++a)
-          c[a] = std::clamp<Index>(static_cast<Index>(std::floor(x[a] / box_ * cells_)), 0, cells_ - 1);
+          c[a] = std::clamp<Index>(static_cast<Index>(std::floor(x[a] / box_[a] * cells_[a])), 0, cells_[a] - 1);
         return c;
       }
       Index cell(const Vec3 &x) const
       {
         const auto c = coordinates(x);
-        return c[0] + cells_ * (c[1] + cells_ * c[2]);
+        return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
       }
       void insert(Index p, Index c)
       {
@@ -164,50 +163,56 @@ namespace anticrack::dem::shs
         members_[c].push_back(p);
       }
 
-      double box_;
-      Index cells_;
+      Vec3 box_;
+      std::array<Index, 3> cells_{};
       std::vector<std::vector<Index>> members_;
       std::vector<Index> cell_of_, slot_;
     };
 
-    Vec3 minimum_image(Vec3 d, double box)
+    Vec3 minimum_image(Vec3 d, const Vec3 &box)
     {
       for (int a = 0; a < 3; ++a)
-        d[a] -= box * std::nearbyint(d[a] / box);
+        d[a] -= box[a] * std::nearbyint(d[a] / box[a]);
       return d;
     }
 
-    Vec3 wrap(Vec3 x, double box)
+    Vec3 wrap(Vec3 x, const Vec3 &box)
     {
       for (int a = 0; a < 3; ++a)
       {
-        x[a] -= box * std::floor(x[a] / box);
-        if (x[a] >= box)
+        x[a] -= box[a] * std::floor(x[a] / box[a]);
+        if (x[a] >= box[a])
           x[a] = 0;
       }
       return x;
     }
 
-    /// Face-centred cubic sites scaled into the cube (a hard-core-free start up to phi = 0.74): n of
-    /// the 4 m^3 sites of the smallest lattice that has enough, taken at an even stride through the
-    /// whole lattice (every site when n = 4 m^3). Filling the first n sites instead left the top
+    /// Face-centred cubic sites scaled into the box (a hard-core-free start up to phi = 0.74): n of
+    /// the 4 m_x m_y m_z sites of the smallest lattice that has enough, its cell counts in the ratio
+    /// of the box's edges (m_a = max(1, round(t L_a / L_min)), t = 1, 2, ...; a cube has m^3 cells),
+    /// taken at an even stride through the whole lattice (every site when n = 4 m_x m_y m_z). Filling the first n sites instead left the top
     /// layers empty whenever n < 4 m^3, and with strong stickiness the Monte Carlo does not relax a
     /// density gradient across the box within its sweeps: at N = 4096 (4 m^3 = 5324) the top fifth
     /// of the box held a third of its share of spheres after 5000 sweeps, and the bonds of two
     /// realizations in three did not reach the actuator (docs/work_precision.md).
-    std::vector<Vec3> fcc_start(Index n, double box)
+    std::vector<Vec3> fcc_start(Index n, const Vec3 &box)
     {
-      Index m = 1;
-      while (4 * m * m * m < n)
-        ++m;
-      const double a = box / m;
+      std::array<Index, 3> m{};
+      for (Index t = 1;; ++t)
+      {
+        for (int a = 0; a < 3; ++a)
+          m[a] = std::max<Index>(1, std::llround(t * box[a] / box.minCoeff()));
+        if (4 * m[0] * m[1] * m[2] >= n)
+          break;
+      }
+      const Vec3 spacing(box[0] / m[0], box[1] / m[1], box[2] / m[2]);
       const std::array<Vec3, 4> basis = {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 0, 0.5), Vec3(0, 0.5, 0.5)};
       std::vector<Vec3> sites;
-      for (Index k = 0; k < m; ++k)
-        for (Index j = 0; j < m; ++j)
-          for (Index i = 0; i < m; ++i)
+      for (Index k = 0; k < m[2]; ++k)
+        for (Index j = 0; j < m[1]; ++j)
+          for (Index i = 0; i < m[0]; ++i)
             for (const Vec3 &b : basis)
-              sites.push_back(a * (Vec3(i, j, k) + b + Vec3::Constant(0.25)));
+              sites.push_back(spacing.cwiseProduct(Vec3(i, j, k) + b + Vec3::Constant(0.25)));
       const auto total = static_cast<Index>(sites.size());
       std::vector<Vec3> x(n);
       for (Index q = 0; q < n; ++q)
@@ -234,6 +239,8 @@ namespace anticrack::dem::shs
       fail("material " + std::to_string(spec.material) + " is not defined");
     if (!(spec.cluster_move_fraction >= 0 && spec.cluster_move_fraction < 1))
       fail("cluster move fraction " + std::to_string(spec.cluster_move_fraction) + " outside [0, 1)");
+    if (!(spec.aspect_ratios.minCoeff() > 0) || !spec.aspect_ratios.allFinite())
+      fail("box aspect ratios must be finite and positive");
 
     SamplerReport report;
     const double phi = spec.volume_fraction;
@@ -244,8 +251,9 @@ namespace anticrack::dem::shs
     const Index n = spec.particle_count;
     const double sigma = 2 * spec.radius;
     const double range = sigma * (1 + spec.well_width);
-    const double box = std::cbrt(n * sphere_volume(spec.radius) / phi);
-    report.box_length = box;
+    // Edges in the ratio of spec.aspect_ratios, their product the volume n v / phi.
+    const Vec3 box = spec.aspect_ratios * std::cbrt(n * sphere_volume(spec.radius) / phi / spec.aspect_ratios.prod());
+    report.box_lengths = box;
     // Boltzmann factor of one contact, from the matched second virial coefficient.
     const double contact_weight =
       1 + 1 / (4 * report.stickiness * (std::pow(1 + spec.well_width, 3) - 1));
@@ -281,9 +289,9 @@ namespace anticrack::dem::shs
     //    a move "in" when i is already in (or "out" when already out) is rejected, and acceptance
     //    carries the volume ratio V_in / V_out (in) or V_out / V_in (out). V_out is the region the
     //    "out" move draws from and an "in" move can start from: the box minus j's shell AND j's core
-    //    (hard core: i is never there), V_out = L^3 - 4/3 pi range^3.
+    //    (hard core: i is never there), V_out = L_x L_y L_z - 4/3 pi range^3.
     const double shell_volume = 4.0 / 3.0 * M_PI * (range * range * range - sigma * sigma * sigma);
-    const double outside_volume = box * box * box - 4.0 / 3.0 * M_PI * range * range * range;
+    const double outside_volume = box.prod() - 4.0 / 3.0 * M_PI * range * range * range;
     const auto random_direction = [&]() {
       const double cos_theta = 2 * unit(rng) - 1, azimuth = 2 * M_PI * unit(rng);
       const double sin_theta = std::sqrt(1 - cos_theta * cos_theta);
@@ -330,7 +338,7 @@ namespace anticrack::dem::shs
           if (member[j])
           {
             // the pair closes a loop: through another periodic image, the cluster wraps
-            if ((unwrapped[i] + d - unwrapped[j]).squaredNorm() > 0.25 * box * box)
+            if ((unwrapped[i] + d - unwrapped[j]).squaredNorm() > 0.25 * box.minCoeff() * box.minCoeff())
               reject = true;
             return;
           }
@@ -414,7 +422,7 @@ namespace anticrack::dem::shs
           else
           {
             do
-              trial = Vec3(unit(rng), unit(rng), unit(rng)) * box;
+              trial = Vec3(unit(rng), unit(rng), unit(rng)).cwiseProduct(box);
             while (in_shell_of(trial, j) || minimum_image(trial - x[j], box).squaredNorm() < sigma * sigma);
             bias = outside_volume / shell_volume;
           }
@@ -478,7 +486,7 @@ namespace anticrack::dem::shs
             return; // a hard-sphere pair that happens to be close, not an adhesive contact
           std::array<int, 3> k{};
           for (int a = 0; a < 3; ++a)
-            k[a] = static_cast<int>(std::nearbyint((image[a] - d[a]) / box)); // j + k box is next to i
+            k[a] = static_cast<int>(std::nearbyint((image[a] - d[a]) / box[a])); // j + k box is next to i
           adjacent[i].push_back({j, k});
           adjacent[j].push_back({i, {-k[0], -k[1], -k[2]}});
           report.bonded_pairs.emplace_back(i, j);
@@ -532,7 +540,7 @@ namespace anticrack::dem::shs
     }
 
     system.domain.lower = Vec3::Zero();
-    system.domain.upper = Vec3::Constant(box);
+    system.domain.upper = box;
     system.domain.periodic = {true, true, true};
     const double density = system.materials[spec.material].density;
     const Index first = system.particles.size();
@@ -543,7 +551,7 @@ namespace anticrack::dem::shs
       i += first;
       j += first;
     }
-    report.volume_fraction = n * sphere_volume(spec.radius) / (box * box * box);
+    report.volume_fraction = n * sphere_volume(spec.radius) / box.prod();
     return report;
   }
 } // namespace anticrack::dem::shs

@@ -35,7 +35,8 @@ namespace anticrack::dem::shs
 
 namespace anticrack::dem::shs
 {
-  /// Monte Carlo sampling of adhesive hard spheres in a periodic cube. Baxter's infinitely narrow
+  /// Monte Carlo sampling of adhesive hard spheres in a periodic box (a cube unless its aspect
+  /// ratios say otherwise: a layer is wider than it is thick). Baxter's infinitely narrow
   /// and deep well is represented by its square-well limit: a well of width delta (relative to the
   /// diameter sigma) and depth eps with the same second virial coefficient,
   ///   ((1 + delta)^3 - 1) (exp(eps/kT) - 1) = 1 / (4 tau)     (B2 = B2_HS (1 - 1/(4 tau))),
@@ -82,7 +83,10 @@ namespace anticrack::dem::shs
     double volume_fraction = 0.3;     ///< phi
     double stickiness = 0.2;          ///< tau (ignored when target_coordination > 0)
     double target_coordination = 0;   ///< z; > 0 selects tau from the Percus-Yevick relation
-    double radius = 1e-4;             ///< sphere radius [m]; the box edge follows from phi
+    double radius = 1e-4;             ///< sphere radius [m]; the box's edges follow from phi
+    /// The box's edges in x, y, z relative to each other (> 0); their size follows from N, phi and
+    /// the radius. (1, 1, 1): a cube.
+    Vec3 aspect_ratios = Vec3::Ones();
     double well_width = 0.03;         ///< delta / sigma
     Index sweeps = 5000;              ///< Monte Carlo sweeps (N trial moves each)
     int material = 0;
@@ -107,12 +111,12 @@ namespace anticrack::dem::shs
                                       ///< clusters included (0 without cluster moves)
     double largest_cluster_fraction = 0;
     bool percolating = false;         ///< the largest cluster wraps around the periodic box
-    double box_length = 0;            ///< [m]
+    Vec3 box_lengths = Vec3::Zero();  ///< the periodic box's edges [m]
     std::vector<double> coordination_history; ///< partners in the well per sphere (2 well pairs / N,
                                               ///< not the bonded z) every 100 sweeps (equilibration check)
   };
 
-  /// Samples the fluid, appends the spheres to `system` (domain set to the periodic cube) and
+  /// Samples the fluid, appends the spheres to `system` (domain set to the periodic box) and
   /// returns the statistics; bonds are made by the caller: bond_touching_pairs with a gap tolerance
   /// of 2 delta (the well width in radii) restricted to report.bonded_pairs. Throws SetupError for
   /// tau < tau_min(phi) or bad input.

@@ -155,6 +155,7 @@ namespace anticrack::dem
       Index sweeps = 5000;
       double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
       double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
+      Vec3 box_aspect_ratios = Vec3::Ones(); ///< L_x : L_y : L_z of the sticky-hard-sphere box
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]

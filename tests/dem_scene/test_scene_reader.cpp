@@ -168,6 +168,7 @@ TEST(DemSceneReader, UndeclaredEntriesKeepTheDocumentedDefaults)
     EXPECT_EQ(from_defaults.sweeps, built_in.sweeps) << name;
     EXPECT_EQ(from_defaults.cluster_move_fraction, built_in.cluster_move_fraction) << name;
     EXPECT_EQ(from_defaults.box_edge, built_in.box_edge) << name;
+    EXPECT_EQ(from_defaults.box_aspect_ratios, built_in.box_aspect_ratios) << name;
     EXPECT_EQ(from_defaults.rolling, built_in.rolling) << name;
     EXPECT_EQ(from_defaults.radius_half_width, built_in.radius_half_width) << name;
     EXPECT_EQ(from_defaults.formation_friction, built_in.formation_friction) << name;

@@ -1,5 +1,5 @@
 // DEM/Sample/Type = sticky hard spheres (dem/sample/sticky_hard_spheres.h): Baxter's adhesive
-// hard-sphere fluid sampled by Monte Carlo in a periodic cube that replaces DEM/Domain.
+// hard-sphere fluid sampled by Monte Carlo in a periodic box that replaces DEM/Domain.
 #include "dem/sample/sticky_hard_spheres.h"
 #include "dem/scene/model.h"
 #include "dem/scene/sample_types.h"
@@ -40,10 +40,15 @@ namespace anticrack::dem
                     "(gap <= delta sigma) become bonds (sticky hard spheres only). "
                     "Dimensionless.");
       entries.entry("Box edge [m]", "0", Patterns::Double(0),
-                    "L: edge of the sticky-hard-sphere cube; > 0 sets the radius "
-                    "R = (phi L^3 / (4/3 pi N))^(1/3) and overrides Radius [m] (Ritter et al. (2020) keep "
+                    "L: the sticky-hard-sphere box's edge along z, the specimen's height (the cube's edge "
+                    "when Box aspect ratios = 1, 1, 1); > 0 sets the radius "
+                    "R = (phi L_x L_y L_z / (4/3 pi N))^(1/3) and overrides Radius [m] (Ritter et al. (2020) keep "
                     "a 1 cm cube for every phi); 0 = from Radius [m] (sticky hard spheres only). "
                     "Units: m.");
+      entries.vector("Box aspect ratios", "1, 1, 1",
+                     "a_x, a_y, a_z: the box's edges relative to each other, L_x : L_y : L_z, all positive; "
+                     "1, 1, 1 is a cube, 2, 2, 1 a layer twice as wide as it is thick (sticky hard "
+                     "spheres only). Dimensionless.");
       entries.entry("Sweeps", "5000", Patterns::Integer(1),
                     "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
       entries.entry("Cluster move fraction", "0", Patterns::Double(0, 1),
@@ -65,6 +70,7 @@ namespace anticrack::dem
       s.sweeps = prm.get_integer("Sweeps");
       s.cluster_move_fraction = prm.get_double("Cluster move fraction");
       s.box_edge = prm.get_double("Box edge [m]");
+      s.box_aspect_ratios = get_triple<Vec3>(prm, "Box aspect ratios");
     }
 
     void check(const Sample &s, const parameters::Dem &, Problems &problems)
@@ -75,6 +81,8 @@ namespace anticrack::dem
       if (!(s.volume_fraction > 0))
         problems.add("DEM/Sample/Volume fraction", s.volume_fraction, "must be in (0, 0.55]" + why_type);
       check_radius(s, problems);
+      if (!(s.box_aspect_ratios.minCoeff() > 0) || !s.box_aspect_ratios.allFinite())
+        problems.add("DEM/Sample/Box aspect ratios", vec(s.box_aspect_ratios), "must be three finite positive numbers" + why_type);
       if (!(s.well_width > 0))
         problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
       if (!(s.cluster_move_fraction < 1))
@@ -112,15 +120,18 @@ namespace anticrack::dem
     void build(const SceneParameters &scene, DemModel &model)
     {
       const auto &d = scene.dem;
-      // The sampler replaces the domain by its periodic cube.
+      // The sampler replaces the domain by its periodic box.
       dem::shs::SamplerSpec spec;
       spec.particle_count = d.sample.particle_count;
       spec.volume_fraction = d.sample.volume_fraction;
       spec.stickiness = d.sample.stickiness;
       spec.target_coordination = d.sample.target_coordination;
+      // Box edge [m] is L_z; the box's volume L_z^3 a_x a_y / a_z^2 holds N spheres at phi.
+      const Vec3 &aspect = d.sample.box_aspect_ratios;
+      spec.aspect_ratios = aspect;
       spec.radius = d.sample.box_edge > 0 ?
-                      std::cbrt(d.sample.volume_fraction * std::pow(d.sample.box_edge, 3) /
-                                (d.sample.particle_count * dem::sphere_volume(1.0))) :
+                      std::cbrt(d.sample.volume_fraction * std::pow(d.sample.box_edge, 3) * aspect[0] * aspect[1] /
+                                (aspect[2] * aspect[2]) / (d.sample.particle_count * dem::sphere_volume(1.0))) :
                       d.sample.radius;
       spec.well_width = d.sample.well_width;
       spec.sweeps = d.sample.sweeps;
@@ -139,8 +150,8 @@ namespace anticrack::dem
       s << "sticky hard spheres, N = " << sample.particle_count << ", R = " << model.system.particles.radius.front()
         << (sample.box_edge > 0 ? " (from Box edge [m])" : "")
         << " m, well width delta/sigma = " << sample.well_width << ", " << sample.sweeps << " sweeps\n"
-        << "                      (DEM/Domain is replaced by the sampler's periodic cube, edge " << r.box_length
-        << " m)\n"
+        << "                      (DEM/Domain is replaced by the sampler's periodic box, edges "
+        << format_vector(r.box_lengths) << " m)\n"
         << "  generator report    phi = " << r.volume_fraction << ", tau = " << r.stickiness
         << (sample.target_coordination > 0 ? " (from the target z)" : "") << ", z = " << r.coordination
         << " (Percus-Yevick " << r.percus_yevick_coordination << "), contacts " << r.contacts
@@ -162,7 +173,7 @@ namespace anticrack::dem
       sample["cluster_acceptance"] = r.cluster_acceptance;
       sample["largest_cluster_fraction"] = r.largest_cluster_fraction;
       sample["percolating"] = r.percolating;
-      sample["box_length_m"] = r.box_length;
+      sample["box_lengths_m"] = {r.box_lengths[0], r.box_lengths[1], r.box_lengths[2]};
       sample["coordination_history"] = r.coordination_history;
     }
   } // namespace
@@ -171,9 +182,10 @@ namespace anticrack::dem
   {
     return {{"sticky hard spheres",
             "N spheres of radius R sampled by Monte Carlo as Baxter's adhesive hard-sphere fluid at volume "
-            "fraction phi and stickiness tau (docs/physics.md §1.4) in a periodic cube of edge "
-            "L = (N 4/3 pi R^3 / phi)^(1/3) (or of edge Box edge [m], which then sets R) with its lower corner "
-            "at the origin: DEM/Domain's corners are ignored and replaced by this cube, sampled periodic in x, y "
+            "fraction phi and stickiness tau (docs/physics.md §1.4) in a periodic box of edges in the ratio "
+            "Box aspect ratios and volume N 4/3 pi R^3 / phi (or of height Box edge [m], which then sets R) with "
+            "its lower corner at the origin: DEM/Domain's corners are ignored and replaced by this box, sampled "
+            "periodic in x, y "
             "and z; axes missing from DEM/Domain/Periodic axes are opened after sampling (no bond crosses them: "
             "Ritter et al.'s (2020) specimen is periodic in x and y only), and every pair inside the well "
             "(gap <= 2 delta R) is bonded, whatever DEM/Bond/Gap tolerance says.",
