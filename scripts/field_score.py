@@ -101,14 +101,44 @@ def observations(path):
                         "failed_depth_m": number(r["failed_depth_m"])} for r in rows}
 
 
+def weak_layer_of(stage_summary):
+    """The profile's own weak layer as the FE run recorded it (summary.json scene/profile, the layer of
+    role `weak`): grain form, grain size, thickness, and density with whether it was measured or
+    inferred (Geldsetzer & Jamieson 2000 from hand hardness), or None without a profile."""
+    layers = ((stage_summary.get("scene") or {}).get("profile") or {}).get("layers") or []
+    for layer in layers:
+        if layer.get("role") == "weak":
+            density = layer.get("density_kg_m3") or {}
+            return {"grain_form": layer.get("grain_form"), "grain_size_m": layer.get("grain_size_m"),
+                    "thickness_m": layer.get("thickness_m"), "density_kg_m3": density.get("value"),
+                    "density_measured": density.get("measured")}
+    return None
+
+
+def weak_layer_text(weak):
+    """"FC 1 mm, 5 cm, 460 kg/m³ (measured)", or "–"."""
+    if not weak:
+        return "–"
+    parts = [weak["grain_form"] or "?"]
+    if weak["grain_size_m"]:
+        parts[0] += f" {1000 * weak['grain_size_m']:g} mm"
+    parts.append(f"{100 * weak['thickness_m']:g} cm")
+    if weak["density_kg_m3"] is not None:
+        parts.append(f"{weak['density_kg_m3']:.0f} kg/m³ ({'measured' if weak['density_measured'] else 'from hardness'})")
+    else:
+        parts.append("no density")
+    return ", ".join(parts)
+
+
 def cases_of(directory, summary, observed):
     out = []
     for name, a in summary["results"]["analyses"].items():
         obs = a.get("observed_saw_test") or observed.get(name) or {}
         ended = a.get("status") == "completed"
         stage = os.path.join(directory, name, "summary.json")
-        results = json.load(open(stage)) if os.path.exists(stage) else {}
-        results = results.get("results", results)
+        stage_summary = json.load(open(stage)) if os.path.exists(stage) else {}
+        results = stage_summary.get("results", stage_summary)
+        weak = weak_layer_of(stage_summary)
         out.append({
             "test": name,
             "status": a.get("status"),
@@ -124,6 +154,7 @@ def cases_of(directory, summary, observed):
             "touchdown_m": a.get("touchdown_distance_m"),
             "arrest_m": a.get("arrest_position_m"),
             "collapse_height_m": (results.get("collapsed_layer_under_the_slab") or {}).get("collapse_height_m"),
+            "weak_layer": weak,
         })
     return sorted(out, key=lambda c: c["test"])
 
@@ -148,8 +179,9 @@ def main():
               "factor": FACTOR, "cases": cases}
     with open(os.path.join(directory, "field_score.json"), "w") as f:
         json.dump(result, f, indent=1)
-    lines = ["| test | depth | observed | predicted | cut ratio | speed | touchdown | collapse height (observed) |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = ["| test | depth | weak layer (the profile's) | observed | predicted | cut ratio | speed | touchdown | "
+             "collapse height (observed) |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for c in cases:
         obs = f"{c['observed_outcome']} from {fmt(c['observed_cut_m'])} m" if c["observed_cut_m"] else c["observed_outcome"]
         if c["predicted_outcome"] is None:
@@ -163,7 +195,8 @@ def main():
                 pred += f", arrested at {fmt(c['arrest_m'])} m"
         ratio = (c["predicted_cut_m"] / c["observed_cut_m"]
                  if c["predicted_cut_m"] is not None and c["observed_cut_m"] else None)
-        lines.append(f"| {c['test']} | {fmt(c['failed_depth_m'])} m | {obs} | {pred} | {fmt(ratio)} | "
+        lines.append(f"| {c['test']} | {fmt(c['failed_depth_m'])} m | {weak_layer_text(c['weak_layer'])} | {obs} | "
+                     f"{pred} | {fmt(ratio)} | "
                      f"{fmt(c['speed_m_per_s'], 1)} | {fmt(c['touchdown_m'])} | "
                      f"{fmt(1000 * c['collapse_height_m'] if c['collapse_height_m'] else None, 1)} mm"
                      + (f" ({fmt(1000 * c['observed_collapse_height_m'], 1)} mm)" if c["observed_collapse_height_m"] else "")

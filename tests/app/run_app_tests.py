@@ -2363,7 +2363,8 @@ def field_score_counts(work):
     none), so the median 1.0 and 1 of 4 within a factor 1.5; Spearman of (0.2, 0.4, 0.6) against
     (0.2, 0.8, 0.3) is 0.5; collapse-height ratios 2 and 0.5 (median 1.25) from --observed; the
     baseline "always End at 0.45 m" gets 2 of 4 outcomes and 3 of 4 cuts within the factor (0.45/0.2
-    = 2.25 outside; 1.125, 0.75 and 1.5, the bound included, inside)."""
+    = 2.25 outside; 1.125, 0.75 and 1.5, the bound included, inside); the profile's weak layer that
+    test b's run recorded is in the table and the JSON, and a test without a profile has none."""
     study = os.path.join(work, "study")
     os.makedirs(study)
     analyses = {
@@ -2376,8 +2377,13 @@ def field_score_counts(work):
     json.dump({"results": {"analyses": analyses}}, open(os.path.join(study, "summary.json"), "w"))
     for name, height in (("b", 0.004), ("c", 0.001)):
         os.makedirs(os.path.join(study, name))
-        json.dump({"results": {"collapsed_layer_under_the_slab": {"collapse_height_m": height}}},
-                  open(os.path.join(study, name, "summary.json"), "w"))
+        stage = {"results": {"collapsed_layer_under_the_slab": {"collapse_height_m": height}}}
+        if name == "b":  # the profile's weak layer, as the FE run records it
+            stage["scene"] = {"profile": {"layers": [
+                {"role": "slab", "grain_form": "RG", "thickness_m": 0.3},
+                {"role": "weak", "grain_form": "FC", "grain_size_m": 0.001, "thickness_m": 0.05,
+                 "density_kg_m3": {"value": 204.0, "measured": False, "source": "Geldsetzer & Jamieson (2000)"}}]}}
+        json.dump(stage, open(os.path.join(study, name, "summary.json"), "w"))
     observed = write(os.path.join(work, "observed.csv"), "# made up\n"
                      "test,propagation,cut_length_m,column_length_m,collapse_height_m,failed_depth_m\n"
                      "b,Arr,0.4,1,0.002,0.5\nc,SF,0.6,1,0.002,0.5\nd,End,0.3,1,,0.5\n")
@@ -2394,6 +2400,11 @@ def field_score_counts(work):
           f"collapse {model}")
     check(baseline["outcomes_right"] == 2 and baseline["cuts_within_factor"] == 3 and
           baseline["cut_rank_correlation"] is None and baseline["collapse_heights_compared"] == 0, f"baseline {baseline}")
+    weak = {c["test"]: c["weak_layer"] for c in score["cases"]}
+    check(weak["b"] == {"grain_form": "FC", "grain_size_m": 0.001, "thickness_m": 0.05, "density_kg_m3": 204.0,
+                        "density_measured": False} and weak["c"] is None, f"weak layers {weak}")
+    table = open(os.path.join(study, "field_score.md")).read()
+    check("| FC 1 mm, 5 cm, 204 kg/m³ (from hardness) |" in table, f"the table's weak layer column:\n{table}")
 
 
 @case
