@@ -374,319 +374,432 @@ namespace anticrack::coupling
     std::cout << "  then report.md, report.png and summary.json\n";
   }
 
-  int run_pipeline_scene(const RunOptions &options)
+  namespace
   {
-    const auto start = Clock::now();
-    const PipelineScene scene = read_pipeline_scene(options.scene_file); // every problem before anything is written
-    const fs::path dir(options.output_directory);
-    std::error_code error;
-    if (fs::exists(dir / "summary.json", error) && !options.resume && !options.overwrite)
-      throw InputError("The output directory <" + dir.string() + "> already holds a pipeline (summary.json). Use "
-                       "--resume to run only the stages whose inputs changed or did not complete, --overwrite to "
-                       "start again, or another directory.");
-
-    // Under mpirun every stage runs on all ranks and MPI is initialised once, here, for all of
-    // them (the campaign's session then finds it initialised). Without mpirun nothing in this
-    // process initialises MPI: the campaign forks its workers and each FE stage gets a process.
-    const bool under_mpirun = launched_by_mpirun();
-    std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-    if (under_mpirun)
-      fem::start_fe_mpi(mpi);
-    const bool root = !under_mpirun || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-    const auto barrier = [&] {
-      if (under_mpirun)
-        MPI_Barrier(MPI_COMM_WORLD);
-    };
-
-    // The earlier run's stage records, by name (read, and refused if unusable, before anything is written).
-    const std::map<std::string, Json> before = options.resume ? earlier_stages(dir) : std::map<std::string, Json>();
-    const std::vector<std::string> names = stage_names(scene.snowpack_scenes);
-    if (root)
+    /// One run of a pipeline scene, as a sequence of named steps (run()): the output directory, the
+    /// stages' plan, the weak layer (campaign, calibration, material in snow units, or the material
+    /// cache's), the snowpack scenes with it, the calibration's uncertainty carried to the answers,
+    /// and the report. Every step records its stages in summary.json as it goes, so that a killed run
+    /// resumes from the last stage it completed.
+    class PipelineRun
     {
-      // --overwrite starts again: every stage's folder goes too (the campaign's tests included).
-      if (options.overwrite && !options.resume)
+    public:
+      PipelineRun(const RunOptions &options, const PipelineScene &scene)
+        : options_(options), scene_(scene), dir_(options.output_directory), start_(Clock::now())
+      {}
+
+      int run()
       {
-        for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory, "uncertainty"})
-          fs::remove_all(dir / name, error);
-        for (const std::string &name : names)
-          fs::remove_all(dir / name, error);
+        refuse_an_earlier_pipeline();
+        start_mpi();
+        // The earlier run's stage records, by name (read, and refused if unusable, before anything is written).
+        before_ = options_.resume ? earlier_stages(dir_) : std::map<std::string, Json>();
+        names_ = stage_names(scene_.snowpack_scenes);
+        prepare_directory();
+        plan_stages();
+        record_the_scene();
+        if (const int code = run_weak_layer(); code != exit_success)
+          return code;
+        run_snowpack_stages();
+        run_uncertainty();
+        return report();
       }
-      fs::create_directories(dir);
-    }
-    barrier();
 
-    std::vector<Stage> stages;
-    {
-      Stage s;
-      s.name = "weak layer";
-      s.kind = "calibration";
-      s.directory = dir / weak_layer_directory;
-      // With changes, the stage runs a copy of the scene that holds them, in its own folder.
-      s.scene_file = !scene.weak_layer_changed() ? scene.weak_layer_scene : (s.directory / "scene.prm").string();
-      s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene) + snow_units_text(scene.snow));
-      stages.push_back(s);
-    }
-    for (std::size_t k = 0; k < names.size(); ++k)
-    {
-      Stage s;
-      s.name = names[k];
-      s.kind = "snowpack";
-      s.directory = dir / names[k];
-      s.scene_file = (s.directory / "scene.prm").string();
-      stages.push_back(s);
-    }
-    {
-      Stage s;
-      s.name = "uncertainty";
-      s.kind = "uncertainty";
-      s.directory = dir / "uncertainty";
-      stages.push_back(s);
-    }
+    private:
+      const RunOptions &options_;
+      const PipelineScene &scene_;
+      const fs::path dir_;
+      const Clock::time_point start_;
+      // Under mpirun every stage runs on all ranks and MPI is initialised once, here, for all of
+      // them (the campaign's session then finds it initialised). Without mpirun nothing in this
+      // process initialises MPI: the campaign forks its workers and each FE stage gets a process.
+      bool under_mpirun_ = false;
+      std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi_;
+      bool root_ = true;
+      std::map<std::string, Json> before_;
+      std::vector<std::string> names_;
+      std::vector<Stage> stages_; ///< the weak layer, the snowpack scenes, the uncertainty
+      Json summary_;
+      fs::path material_;          ///< the weak layer's material in snow units
+      std::string material_sha256_;
+      bool interrupted_ = false, failed_ = false;
 
-    Json summary;
-    summary["command"] = options.command_line;
-    summary["scene"] = {{"file", scene.file}, {"file_sha256", util::sha256_of_file(scene.file)}};
-    summary["snow_units"] = {{"bond_tensile_strength_Pa", scene.snow.bond_tensile_strength},
-                             {"bond_modulus_Pa", scene.snow.bond_modulus},
-                             {"grain_diameter_m", scene.snow.grain_diameter},
-                             {"particle_density_kg_per_m3", scene.snow.particle_density}};
-    const auto write_summary = [&](const std::string &status) {
-      if (!root)
-        return;
-      summary["status"] = status;
-      summary["stages"] = Json::array();
-      for (const Stage &s : stages)
-        summary["stages"].push_back(stage_json(s));
-      summary["timing"] = {{"wall_s", std::chrono::duration<double>(Clock::now() - start).count()}};
-      summary["versions"] = version_info();
-      write_json_atomically((dir / "summary.json").string(), summary);
-    };
-    const auto unchanged = [&](const Stage &s) {
-      const auto it = before.find(s.name);
-      return it != before.end() && it->second.value("inputs_sha256", "") == s.inputs_sha256 &&
-             (it->second.value("status", "") == "completed" || it->second.value("status", "") == "completed earlier") &&
-             fs::exists(s.kind == "uncertainty" ? s.directory : s.directory / "summary.json");
-    };
-    const auto announce = [&](std::size_t k, std::optional<double> estimate = std::nullopt) {
-      if (root)
-        std::cout << "\npipeline stage " << k + 1 << "/" << stages.size() << ", " << stages[k].name << " ("
-                  << stages[k].kind << "): elapsed " << format_duration(std::chrono::duration<double>(Clock::now() - start).count())
-                  << ", " << time_left(stages, k, before, estimate) << "\n"
-                  << std::flush;
-    };
+      Stage &weak() { return stages_.front(); }
+      Stage &uncertainty() { return stages_.back(); }
 
-    // --- 1. the weak layer: campaign, calibration, material in snow units (or the material cache's)
-    Stage &weak = stages.front();
-    const fs::path material = weak.directory / material_file_name(0, 1, true);
-    const MaterialCache cache(options.material_cache);
-    const std::string material_inputs_sha256 = util::sha256_hex(weak_layer_material_inputs(scene));
-    const std::string cache_key = cache.enabled() ? MaterialCache::key(material_inputs_sha256) : "";
-    const std::optional<fs::path> cached = cache.find(cache_key);
-    if (unchanged(weak) && fs::exists(material))
-    {
-      weak.status = "completed earlier";
-      weak.wall_s = before.at(weak.name).value("wall_s", 0.0);
-      if (root)
-        std::cout << "pipeline stage 1/" << stages.size() << ", weak layer: completed earlier, inputs unchanged\n";
-    }
-    else if (cached)
-    {
-      const auto stage_start = Clock::now();
-      if (root)
+      void refuse_an_earlier_pipeline() const
       {
-        const Json record = cache.restore(cache_key, weak.directory);
-        weak.material_cache = {{"used", *cached}, {"key", cache_key},
-                               {"calibrated_by", record.value("pipeline", "")},
-                               {"calibrated_at", record.value("calibrated_at", "")}};
-        std::cout << "pipeline stage 1/" << stages.size() << ", weak layer: from the material cache, " << cached->string()
-                  << " (calibrated by " << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?")
-                  << ")\n";
+        std::error_code error;
+        if (fs::exists(dir_ / "summary.json", error) && !options_.resume && !options_.overwrite)
+          throw InputError("The output directory <" + dir_.string() + "> already holds a pipeline (summary.json). Use "
+                           "--resume to run only the stages whose inputs changed or did not complete, --overwrite to "
+                           "start again, or another directory.");
       }
-      barrier();
-      weak.status = "completed";
-      weak.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
-    }
-    else
-    {
-      announce(0);
-      if (scene.weak_layer_changed())
+
+      void start_mpi()
       {
-        if (root)
+        under_mpirun_ = launched_by_mpirun();
+        if (under_mpirun_)
+          fem::start_fe_mpi(mpi_);
+        root_ = !under_mpirun_ || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+      }
+
+      void barrier() const
+      {
+        if (under_mpirun_)
+          MPI_Barrier(MPI_COMM_WORLD);
+      }
+
+      void prepare_directory()
+      {
+        if (root_)
         {
-          fs::create_directories(weak.directory);
-          write_text_atomically(weak.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene); });
+          // --overwrite starts again: every stage's folder goes too (the campaign's tests included).
+          if (options_.overwrite && !options_.resume)
+          {
+            std::error_code error;
+            for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory, "uncertainty"})
+              fs::remove_all(dir_ / name, error);
+            for (const std::string &name : names_)
+              fs::remove_all(dir_ / name, error);
+          }
+          fs::create_directories(dir_);
         }
         barrier();
       }
-      CalibrateOptions calibration = weak_layer_calibration(scene, weak.scene_file);
-      calibration.output_directory = weak.directory.string();
-      calibration.overwrite = true;
-      calibration.threads = options.threads;
-      calibration.command_line = options.command_line;
-      calibration.snow = scene.snow;
-      const auto stage_start = Clock::now();
-      const int code = run_calibration(calibration);
-      weak.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
-      barrier();
-      weak.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
-      if (code != exit_success)
+
+      void plan_stages()
       {
-        write_summary(weak.status);
-        return code;
+        {
+          Stage s;
+          s.name = "weak layer";
+          s.kind = "calibration";
+          s.directory = dir_ / weak_layer_directory;
+          // With changes, the stage runs a copy of the scene that holds them, in its own folder.
+          s.scene_file = !scene_.weak_layer_changed() ? scene_.weak_layer_scene : (s.directory / "scene.prm").string();
+          s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene_) + snow_units_text(scene_.snow));
+          stages_.push_back(s);
+        }
+        for (std::size_t k = 0; k < names_.size(); ++k)
+        {
+          Stage s;
+          s.name = names_[k];
+          s.kind = "snowpack";
+          s.directory = dir_ / names_[k];
+          s.scene_file = (s.directory / "scene.prm").string();
+          stages_.push_back(s);
+        }
+        Stage s;
+        s.name = "uncertainty";
+        s.kind = "uncertainty";
+        s.directory = dir_ / "uncertainty";
+        stages_.push_back(s);
       }
-      if (cache.enabled() && root)
+
+      void record_the_scene()
       {
-        weak.material_cache = {{"stored", (cache.directory() / cache_key).string()}, {"key", cache_key}};
+        summary_["command"] = options_.command_line;
+        summary_["scene"] = {{"file", scene_.file}, {"file_sha256", util::sha256_of_file(scene_.file)}};
+        summary_["snow_units"] = {{"bond_tensile_strength_Pa", scene_.snow.bond_tensile_strength},
+                                  {"bond_modulus_Pa", scene_.snow.bond_modulus},
+                                  {"grain_diameter_m", scene_.snow.grain_diameter},
+                                  {"particle_density_kg_per_m3", scene_.snow.particle_density}};
+      }
+
+      void write_summary(const std::string &status)
+      {
+        if (!root_)
+          return;
+        summary_["status"] = status;
+        summary_["stages"] = Json::array();
+        for (const Stage &s : stages_)
+          summary_["stages"].push_back(stage_json(s));
+        summary_["timing"] = {{"wall_s", std::chrono::duration<double>(Clock::now() - start_).count()}};
+        summary_["versions"] = version_info();
+        write_json_atomically((dir_ / "summary.json").string(), summary_);
+      }
+
+      /// The stage completed in the earlier run with the same inputs, and its outputs are there.
+      bool unchanged(const Stage &s) const
+      {
+        const auto it = before_.find(s.name);
+        return it != before_.end() && it->second.value("inputs_sha256", "") == s.inputs_sha256 &&
+               (it->second.value("status", "") == "completed" || it->second.value("status", "") == "completed earlier") &&
+               fs::exists(s.kind == "uncertainty" ? s.directory : s.directory / "summary.json");
+      }
+
+      void announce(std::size_t k, std::optional<double> estimate = std::nullopt) const
+      {
+        if (root_)
+          std::cout << "\npipeline stage " << k + 1 << "/" << stages_.size() << ", " << stages_[k].name << " ("
+                    << stages_[k].kind << "): elapsed " << format_duration(std::chrono::duration<double>(Clock::now() - start_).count())
+                    << ", " << time_left(stages_, k, before_, estimate) << "\n"
+                    << std::flush;
+      }
+
+      void note(const Stage &st)
+      {
+        interrupted_ = interrupted_ || st.status == "interrupted";
+        failed_ = failed_ || st.status == "failed";
+      }
+
+      /// 1. The weak layer: campaign, calibration, material in snow units (or the material cache's).
+      /// Returns the calibration's exit code when it did not succeed.
+      int run_weak_layer()
+      {
+        Stage &w = weak();
+        material_ = w.directory / material_file_name(0, 1, true);
+        const MaterialCache cache(options_.material_cache);
+        const std::string material_inputs_sha256 = util::sha256_hex(weak_layer_material_inputs(scene_));
+        const std::string cache_key = cache.enabled() ? MaterialCache::key(material_inputs_sha256) : "";
+        const std::optional<fs::path> cached = cache.find(cache_key);
+        if (unchanged(w) && fs::exists(material_))
+        {
+          w.status = "completed earlier";
+          w.wall_s = before_.at(w.name).value("wall_s", 0.0);
+          if (root_)
+            std::cout << "pipeline stage 1/" << stages_.size() << ", weak layer: completed earlier, inputs unchanged\n";
+        }
+        else if (cached)
+        {
+          const auto stage_start = Clock::now();
+          if (root_)
+          {
+            const Json record = cache.restore(cache_key, w.directory);
+            w.material_cache = {{"used", *cached}, {"key", cache_key},
+                                {"calibrated_by", record.value("pipeline", "")},
+                                {"calibrated_at", record.value("calibrated_at", "")}};
+            std::cout << "pipeline stage 1/" << stages_.size() << ", weak layer: from the material cache, " << cached->string()
+                      << " (calibrated by " << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?")
+                      << ")\n";
+          }
+          barrier();
+          w.status = "completed";
+          w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+        }
+        else
+        {
+          announce(0);
+          if (scene_.weak_layer_changed())
+          {
+            if (root_)
+            {
+              fs::create_directories(w.directory);
+              write_text_atomically(w.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene_); });
+            }
+            barrier();
+          }
+          CalibrateOptions calibration = weak_layer_calibration(scene_, w.scene_file);
+          calibration.output_directory = w.directory.string();
+          calibration.overwrite = true;
+          calibration.threads = options_.threads;
+          calibration.command_line = options_.command_line;
+          calibration.snow = scene_.snow;
+          const auto stage_start = Clock::now();
+          const int code = run_calibration(calibration);
+          w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+          barrier();
+          w.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
+          if (code != exit_success)
+          {
+            write_summary(w.status);
+            return code;
+          }
+          if (cache.enabled() && root_)
+            store_in_cache(cache, cache_key, material_inputs_sha256);
+        }
+        barrier();
+        if (!fs::exists(material_))
+          throw InputError(scene_.weak_layer_scene + ": the calibration wrote no " + material_.filename().string() +
+                           " (a pipeline takes a weak layer of one microstructure: leave Campaign/Microstructures "
+                           "empty)");
+        w.results = calibration_headline(w.directory);
+        write_summary("running");
+        material_sha256_ = util::sha256_of_file(material_.string());
+        return exit_success;
+      }
+
+      void store_in_cache(const MaterialCache &cache, const std::string &cache_key, const std::string &material_inputs_sha256)
+      {
+        Stage &w = weak();
+        w.material_cache = {{"stored", (cache.directory() / cache_key).string()}, {"key", cache_key}};
         try
         {
-          cache.store(cache_key, material_inputs_sha256, weak.directory,
-                      {{"pipeline", scene.file}, {"output", weak.directory.string()}});
+          cache.store(cache_key, material_inputs_sha256, w.directory,
+                      {{"pipeline", scene_.file}, {"output", w.directory.string()}});
         }
         catch (const fs::filesystem_error &e)
         {
           // The run's own results stand; only later runs lose the reuse, which they are told.
-          weak.material_cache = {{"stored", nullptr}, {"key", cache_key}, {"error", e.what()}};
+          w.material_cache = {{"stored", nullptr}, {"key", cache_key}, {"error", e.what()}};
           std::cerr << "anticrack: warning: the calibrated weak layer was not stored in the material cache "
                     << cache.directory().string() << ": " << e.what() << "\n";
         }
       }
-    }
-    barrier();
-    if (!fs::exists(material))
-      throw InputError(scene.weak_layer_scene + ": the calibration wrote no " + material.filename().string() +
-                       " (a pipeline takes a weak layer of one microstructure: leave Campaign/Microstructures "
-                       "empty)");
-    weak.results = calibration_headline(weak.directory);
-    write_summary("running");
 
-    // --- 2. the snowpack scenes with the calibrated weak layer
-    const std::string material_sha256 = util::sha256_of_file(material.string());
-    std::vector<std::size_t> to_run;
-    for (std::size_t k = 1; k + 1 < stages.size(); ++k)
-    {
-      Stage &s = stages[k];
-      const std::string text =
-        snowpack_scene_text(scene, scene.snowpack_scenes[k - 1], fs::absolute(material).lexically_normal().string());
-      s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + material_sha256);
-      // Completed earlier: recorded so by the pipeline, or by the FE run itself when the pipeline
-      // was killed before it could record it.
-      const bool recorded = unchanged(s);
-      if (recorded || completed_from_scene((s.directory / "summary.json").string(), util::sha256_hex(text)))
+      /// 2. The snowpack scenes with the calibrated weak layer.
+      void run_snowpack_stages()
       {
-        s.status = "completed earlier";
-        s.wall_s = recorded ? before.at(s.name).value("wall_s", 0.0) : snowpack_wall_s(s.directory);
-        s.results = snowpack_headline(s.directory);
-        if (root)
-          std::cout << "pipeline stage " << k + 1 << "/" << stages.size() << ", " << s.name
-                    << ": completed earlier, inputs unchanged\n";
-        continue;
+        std::vector<std::size_t> to_run;
+        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+        {
+          Stage &s = stages_[k];
+          const std::string text =
+            snowpack_scene_text(scene_, scene_.snowpack_scenes[k - 1], fs::absolute(material_).lexically_normal().string());
+          s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + material_sha256_);
+          // Completed earlier: recorded so by the pipeline, or by the FE run itself when the pipeline
+          // was killed before it could record it.
+          const bool recorded = unchanged(s);
+          if (recorded || completed_from_scene((s.directory / "summary.json").string(), util::sha256_hex(text)))
+          {
+            s.status = "completed earlier";
+            s.wall_s = recorded ? before_.at(s.name).value("wall_s", 0.0) : snowpack_wall_s(s.directory);
+            s.results = snowpack_headline(s.directory);
+            if (root_)
+              std::cout << "pipeline stage " << k + 1 << "/" << stages_.size() << ", " << s.name
+                        << ": completed earlier, inputs unchanged\n";
+            continue;
+          }
+          if (root_)
+          {
+            fs::create_directories(s.directory);
+            write_text_atomically(s.scene_file, [&](std::ostream &out) { out << text; });
+          }
+          to_run.push_back(k);
+        }
+        barrier();
+        if (to_run.empty())
+          return;
+        announce(to_run.front());
+        std::vector<FeJob> jobs;
+        for (const std::size_t k : to_run)
+          jobs.push_back({stages_[k].name, fe_run_options(stages_[k].scene_file, stages_[k].directory, options_)});
+        run_fe_jobs(jobs, under_mpirun_, cores(options_), [&](std::size_t j, int code, double wall) {
+          Stage &st = stages_[to_run[j]];
+          st.wall_s = wall;
+          st.status = status_of(code);
+          st.results = snowpack_headline(st.directory);
+          if (root_)
+            std::cout << "pipeline stage " << st.name << ": " << st.status << " in " << format_duration(wall) << "\n"
+                      << std::flush;
+          note(st);
+          write_summary("running");
+        });
       }
-      if (root)
-      {
-        fs::create_directories(s.directory);
-        write_text_atomically(s.scene_file, [&](std::ostream &out) { out << text; });
-      }
-      to_run.push_back(k);
-    }
-    barrier();
-    bool interrupted = false, failed = false;
-    const auto note = [&](const Stage &st) {
-      interrupted = interrupted || st.status == "interrupted";
-      failed = failed || st.status == "failed";
-    };
-    if (!to_run.empty())
-    {
-      announce(to_run.front());
-      std::vector<FeJob> jobs;
-      for (const std::size_t k : to_run)
-        jobs.push_back({stages[k].name, fe_run_options(stages[k].scene_file, stages[k].directory, options)});
-      run_fe_jobs(jobs, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
-        Stage &st = stages[to_run[j]];
-        st.wall_s = wall;
-        st.status = status_of(code);
-        st.results = snowpack_headline(st.directory);
-        if (root)
-          std::cout << "pipeline stage " << st.name << ": " << st.status << " in " << format_duration(wall) << "\n"
-                    << std::flush;
-        note(st);
-        write_summary("running");
-      });
-    }
 
-    // --- 3. the calibration's uncertainty carried to the answers (coupling/pipeline_uncertainty.h)
-    Stage &uncertainty = stages.back();
-    if (scene.uncertainty)
-    {
-      std::string hashes = material_sha256;
-      for (std::size_t k = 1; k + 1 < stages.size(); ++k)
-        hashes += stages[k].inputs_sha256;
-      uncertainty.inputs_sha256 = util::sha256_hex(hashes);
-      if (unchanged(uncertainty))
+      /// 3. The calibration's uncertainty carried to the answers (coupling/pipeline_uncertainty.h).
+      void run_uncertainty()
       {
-        uncertainty.status = "completed earlier";
-        uncertainty.wall_s = before.at(uncertainty.name).value("wall_s", 0.0);
-        uncertainty.results = before.at(uncertainty.name).value("results", Json());
-        if (root)
-          std::cout << "pipeline stage " << stages.size() << "/" << stages.size()
-                    << ", uncertainty: completed earlier, inputs unchanged\n";
-      }
-      else if (!failed && !interrupted)
-      {
-        const UncertainParameters u = uncertain_parameters(weak.directory);
-        // The analyses of a yielding weak layer (the saw tests, a load to failure) are run again per
-        // parameter. An energy release rate only for E: its layers are elastic, so of the
-        // calibration only E enters it besides G_c, whose interval (the compaction tests' fracture
-        // energy) the stage maps itself, exactly, through its G(a).
-        std::vector<UncertainParameters> rerun(stages.size());
-        for (std::size_t j = 1; j + 1 < stages.size(); ++j)
-          rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene.snowpack_scenes[j - 1]), scene.snowpack_scenes[j - 1])
-                         .analysis.type->yielding_weak_layer ?
-                       u :
-                       restricted_to(u, {"E"});
+        Stage &u_stage = uncertainty();
+        if (!scene_.uncertainty)
+        {
+          u_stage.status = "not requested";
+          return;
+        }
+        std::string hashes = material_sha256_;
+        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+          hashes += stages_[k].inputs_sha256;
+        u_stage.inputs_sha256 = util::sha256_hex(hashes);
+        if (unchanged(u_stage))
+        {
+          u_stage.status = "completed earlier";
+          u_stage.wall_s = before_.at(u_stage.name).value("wall_s", 0.0);
+          u_stage.results = before_.at(u_stage.name).value("results", Json());
+          if (root_)
+            std::cout << "pipeline stage " << stages_.size() << "/" << stages_.size()
+                      << ", uncertainty: completed earlier, inputs unchanged\n";
+          return;
+        }
+        if (failed_ || interrupted_)
+          return;
+        const UncertainParameters u = uncertain_parameters(weak().directory);
+        const std::vector<UncertainParameters> rerun = reruns_of(u);
         // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
         // runs over the cores, each as long as the longest snowpack stage.
         double longest = 0;
-        for (std::size_t k = 1; k + 1 < stages.size(); ++k)
-          longest = std::max(longest, stages[k].wall_s);
+        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+          longest = std::max(longest, stages_[k].wall_s);
         std::size_t runs = 0;
         for (const UncertainParameters &r : rerun)
           runs += r.names.size();
-        announce(stages.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options)))
-                                                : std::nullopt);
+        announce(stages_.size() - 1, longest > 0 ? std::optional<double>(longest * std::ceil(double(runs) / cores(options_)))
+                                                 : std::nullopt);
         const auto stage_start = Clock::now();
-        const fem::MaterialFile calibrated = fem::read_material_file_text(read_text_file((material).string()), material.string());
-        std::vector<FeJob> jobs;     // every run of the stage, in a fixed order
-        std::vector<FeJob> to_start; // those not completed in an earlier, interrupted run
-        std::vector<std::pair<std::size_t, std::size_t>> job_of; // (snowpack stage, parameter)
+        const UncertaintyJobs runs_of_the_stage = write_uncertainty_jobs(u, rerun);
+        const std::vector<FeJob> &to_start = runs_of_the_stage.to_start;
+        bool all_completed = true; // the runs completed earlier did
+        run_fe_jobs(to_start, under_mpirun_, cores(options_), [&](std::size_t j, int code, double wall) {
+          all_completed = all_completed && code == exit_success;
+          if (root_)
+            std::cout << "pipeline uncertainty " << to_start[j].label << ": " << status_of(code) << " in "
+                      << format_duration(wall) << "\n"
+                      << std::flush;
+        });
+        u_stage.results = uncertainty_results(u, rerun, runs_of_the_stage);
+        u_stage.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+        u_stage.status = all_completed ? "completed" : "failed";
+        note(u_stage);
+      }
+
+      /// The analyses of a yielding weak layer (the saw tests, a load to failure) are run again per
+      /// parameter. An energy release rate only for E: its layers are elastic, so of the
+      /// calibration only E enters it besides G_c, whose interval (the compaction tests' fracture
+      /// energy) the stage maps itself, exactly, through its G(a). Indexed like stages_.
+      std::vector<UncertainParameters> reruns_of(const UncertainParameters &u) const
+      {
+        std::vector<UncertainParameters> rerun(stages_.size());
+        for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
+          rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene_.snowpack_scenes[j - 1]), scene_.snowpack_scenes[j - 1])
+                         .analysis.type->yielding_weak_layer ?
+                       u :
+                       restricted_to(u, {"E"});
+        return rerun;
+      }
+
+      struct UncertaintyJobs
+      {
+        std::vector<FeJob> jobs;     ///< every run of the stage, in a fixed order
+        std::vector<FeJob> to_start; ///< those not completed in an earlier, interrupted run
+        std::vector<std::pair<std::size_t, std::size_t>> job_of; ///< (snowpack stage, parameter) per job
+      };
+
+      /// The perturbed material files and the scenes of the stage's runs, written; the runs to start.
+      UncertaintyJobs write_uncertainty_jobs(const UncertainParameters &u, const std::vector<UncertainParameters> &rerun)
+      {
+        Stage &u_stage = uncertainty();
+        const fem::MaterialFile calibrated = fem::read_material_file_text(read_text_file((material_).string()), material_.string());
+        UncertaintyJobs r;
+        std::vector<FeJob> &jobs = r.jobs, &to_start = r.to_start;
+        std::vector<std::pair<std::size_t, std::size_t>> &job_of = r.job_of;
         for (std::size_t k = 0; k < u.names.size(); ++k)
         {
-          const fs::path file = uncertainty.directory / ("material_" + u.names[k] + ".prm");
-          if (root)
+          const fs::path file = u_stage.directory / ("material_" + u.names[k] + ".prm");
+          if (root_)
           {
-            fs::create_directories(uncertainty.directory);
+            fs::create_directories(u_stage.directory);
             write_text_atomically(file.string(), [&](std::ostream &out) {
               out << fem::material_file_text(perturbed_material(calibrated, u, k));
             });
           }
           barrier(); // the material file is there before any rank hashes it
-          for (std::size_t j = 1; j + 1 < stages.size(); ++j)
+          for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
           {
             if (std::find(rerun[j].names.begin(), rerun[j].names.end(), u.names[k]) == rerun[j].names.end())
               continue;
-            const std::string name = stages[j].name + "_" + u.names[k];
-            const fs::path run = uncertainty.directory / name;
+            const std::string name = stages_[j].name + "_" + u.names[k];
+            const fs::path run = u_stage.directory / name;
             const std::string text =
-              snowpack_scene_text(scene, scene.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string()) +
-              first_trial_near(stages[j]);
-            jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options)});
+              snowpack_scene_text(scene_, scene_.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string()) +
+              first_trial_near(stages_[j]);
+            jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options_)});
             job_of.emplace_back(j, k);
-            if (options.resume && completed_from_scene((run / "summary.json").string(), util::sha256_hex(text)))
+            if (options_.resume && completed_from_scene((run / "summary.json").string(), util::sha256_hex(text)))
             {
-              if (root)
+              if (root_)
                 std::cout << "pipeline uncertainty " << name << ": completed earlier, inputs unchanged\n";
               continue;
             }
-            if (root)
+            if (root_)
             {
               fs::create_directories(run);
               write_text_atomically((run / "scene.prm").string(), [&](std::ostream &out) { out << text; });
@@ -695,29 +808,30 @@ namespace anticrack::coupling
           }
         }
         barrier();
-        bool all_completed = true; // the runs completed earlier did
-        run_fe_jobs(to_start, under_mpirun, cores(options), [&](std::size_t j, int code, double wall) {
-          all_completed = all_completed && code == exit_success;
-          if (root)
-            std::cout << "pipeline uncertainty " << to_start[j].label << ": " << status_of(code) << " in "
-                      << format_duration(wall) << "\n"
-                      << std::flush;
-        });
+        return r;
+      }
+
+      /// Per snowpack stage, its answers' linearised intervals from the runs; the parameters.
+      Json uncertainty_results(const UncertainParameters &u, const std::vector<UncertainParameters> &rerun,
+                               const UncertaintyJobs &runs) const
+      {
+        const std::vector<FeJob> &jobs = runs.jobs;
+        const std::vector<std::pair<std::size_t, std::size_t>> &job_of = runs.job_of;
         Json results;
-        for (std::size_t j = 1; j + 1 < stages.size(); ++j)
+        for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
         {
           std::vector<Json> perturbed;
           for (std::size_t n = 0; n < jobs.size(); ++n)
             if (job_of[n].first == j)
               perturbed.push_back(snowpack_headline(jobs[n].options.output_directory));
-          Json &answers = results[stages[j].name] = linearised_intervals(
-            rerun[j], stages[j].results, perturbed, stages[j].results.value("element_length_m", 0.0));
+          Json &answers = results[stages_[j].name] = linearised_intervals(
+            rerun[j], stages_[j].results, perturbed, stages_[j].results.value("element_length_m", 0.0));
           // An elastic stage's critical cut also carries G_c's interval, which the stage mapped
           // itself through its G(a) (fem/analysis/energy_release_rate.cpp).
-          const Json mapped = stages[j].results.value("critical_cut_length_interval", Json());
-          if (mapped.is_object() && stages[j].results["critical_cut_length_m"].is_number())
+          const Json mapped = stages_[j].results.value("critical_cut_length_interval", Json());
+          if (mapped.is_object() && stages_[j].results["critical_cut_length_m"].is_number())
             answers["answers"]["critical_cut_length_m"] = combined_critical_cut_interval(
-              mapped, answers["answers"]["critical_cut_length_m"], stages[j].results["critical_cut_length_m"].get<double>());
+              mapped, answers["answers"]["critical_cut_length_m"], stages_[j].results["critical_cut_length_m"].get<double>());
         }
         Json parameters = Json::object();
         for (std::size_t k = 0; k < u.names.size(); ++k)
@@ -725,27 +839,33 @@ namespace anticrack::coupling
                                     {"standard_error", std::sqrt(u.covariance(static_cast<Eigen::Index>(k),
                                                                               static_cast<Eigen::Index>(k)))}};
         results["parameters"] = parameters;
-        uncertainty.results = results;
-        uncertainty.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
-        uncertainty.status = all_completed ? "completed" : "failed";
-        note(uncertainty);
+        return results;
       }
-    }
-    else
-      uncertainty.status = "not requested";
 
-    // --- 3. the report
-    Json results;
-    results["weak_layer"] = weak.results;
-    for (std::size_t k = 1; k + 1 < stages.size(); ++k)
-      results["analyses"][stages[k].name] = stages[k].results;
-    results["uncertainty"] = uncertainty.results;
-    summary["results"] = results;
-    write_summary(interrupted ? "interrupted" : failed ? "failed" : "completed");
-    if (!root)
-      return interrupted ? exit_interrupted : failed ? exit_numerical_failure : exit_success;
-    run_python_script("pipeline_report.py", dir.string(), "summary.json and every stage's outputs");
-    std::cout << "\n" << short_report(dir, stages) << std::flush;
-    return interrupted ? exit_interrupted : failed ? exit_numerical_failure : exit_success;
+      /// 4. The report: summary.json's results, report.md and report.png, the short report.
+      int report()
+      {
+        Json results;
+        results["weak_layer"] = weak().results;
+        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+          results["analyses"][stages_[k].name] = stages_[k].results;
+        results["uncertainty"] = uncertainty().results;
+        summary_["results"] = results;
+        write_summary(interrupted_ ? "interrupted" : failed_ ? "failed" : "completed");
+        const int code = interrupted_ ? exit_interrupted : failed_ ? exit_numerical_failure : exit_success;
+        if (!root_)
+          return code;
+        run_python_script("pipeline_report.py", dir_.string(), "summary.json and every stage's outputs");
+        std::cout << "\n" << short_report(dir_, stages_) << std::flush;
+        return code;
+      }
+    };
+  } // namespace
+
+  int run_pipeline_scene(const RunOptions &options)
+  {
+    const PipelineScene scene = read_pipeline_scene(options.scene_file); // every problem before anything is written
+    return PipelineRun(options, scene).run();
   }
+
 } // namespace anticrack::coupling
