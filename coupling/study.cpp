@@ -360,294 +360,391 @@ namespace anticrack::coupling
     std::cout << "\n";
   }
 
-  int run_study_scene(const RunOptions &options, const SceneRunner &runner)
+  namespace
   {
-    const auto start = Clock::now();
-    const StudyScene study = read_study_scene(options.scene_file);
-    std::vector<VariantRun> runs = variant_runs(study);
-    const fs::path dir(options.output_directory);
-    std::error_code error;
-    if (fs::exists(dir / "study.json", error) && !options.resume && !options.overwrite)
-      throw InputError("The output directory <" + dir.string() + "> already holds a study (study.json). Use --resume "
-                       "to run only the variants that changed or did not complete, --overwrite to start again, or "
-                       "another directory.");
-    const bool under_mpirun = launched_by_mpirun();
-    const int cores = options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-
-    // Under mpirun MPI is started once for every variant (an FE analysis finds it started).
-    std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-    if (under_mpirun)
-      fem::start_fe_mpi(mpi);
-    const MpiSession &session = MpiSession::get();
-    const bool root = session.rank() == 0;
-
-    check_variants(study, runs, runner, cores); // every problem before anything is written
-    if (root)
+    /// One run of a study scene, as a sequence of named steps (run()): the variants checked and
+    /// their scenes written, the ones to run (with --resume, not those that completed with the same
+    /// scene), their runs, the twins' answers, the lines' errors and orders, and the outputs.
+    class StudyRun
     {
-      if (options.overwrite && !options.resume)
-        for (const char *name : {"variants", "study.json", "study.csv", "summary.json", "work_precision.png", "results.png"})
-          fs::remove_all(dir / name, error);
-      for (const VariantRun &r : runs)
+    public:
+      StudyRun(const RunOptions &options, const SceneRunner &runner)
+        : options_(options), runner_(runner), start_(Clock::now()), study_(read_study_scene(options.scene_file)),
+          runs_(variant_runs(study_)), dir_(options.output_directory)
+      {}
+
+      int run()
       {
-        const fs::path folder = dir / "variants" / r.variant.id;
-        fs::create_directories(folder);
-        write_text_atomically((folder / "scene.prm").string(), [&](std::ostream &out) { out << r.scene_text; });
+        refuse_an_earlier_study();
+        start_mpi();
+        check_variants(study_, runs_, runner_, cores_); // every problem before anything is written
+        write_variant_scenes();
+        const std::vector<std::size_t> to_run = variants_to_run();
+        if (root_)
+          std::cout << "study " << study_.file << ": " << runs_.size() << " variants of " << study_.base_scene << ", "
+                    << to_run.size() << " to run" << (under_mpirun_ ? " on " + std::to_string(session().size()) + " ranks" : "")
+                    << "\n"
+                    << std::flush;
+        if (!to_run.empty())
+          run_variants(to_run);
+        give_twins_their_runs();
+        read_answers();
+        analyse_lines();
+        return write_outputs();
       }
-    }
-    session.barrier();
 
-    // Which variants run: with --resume not those whose scene is unchanged and whose run completed.
-    std::vector<std::size_t> to_run;
-    for (std::size_t k = 0; k < runs.size(); ++k)
-    {
-      if (runs[k].same_as)
-        continue; // takes the run of the variant it equals, below
-      const fs::path record = dir / "variants" / runs[k].variant.id / "variant.json";
-      if (options.resume && fs::exists(record))
+    private:
+      const RunOptions &options_;
+      const SceneRunner &runner_;
+      const Clock::time_point start_;
+      const StudyScene study_;
+      std::vector<VariantRun> runs_;
+      const fs::path dir_;
+      bool under_mpirun_ = false;
+      int cores_ = 1;
+      // Under mpirun MPI is started once for every variant (an FE analysis finds it started).
+      std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi_;
+      bool root_ = true;
+      std::vector<std::vector<std::optional<double>>> errors_;
+      Json lines_json_ = Json::array();
+
+      static const MpiSession &session() { return MpiSession::get(); }
+
+      void refuse_an_earlier_study() const
       {
-        const bool completed = interpret_json_file(record.string(), "a study variant's record", [&](const Json &before) {
-          if (before.value("scene_sha256", "") != runs[k].scene_sha256 ||
-              (before.value("status", "") != "completed" && before.value("status", "") != "completed earlier"))
-            return false;
-          runs[k].wall_s = before.value("wall_s", 0.0);
-          return true;
-        });
-        if (completed)
+        std::error_code error;
+        if (fs::exists(dir_ / "study.json", error) && !options_.resume && !options_.overwrite)
+          throw InputError("The output directory <" + dir_.string() + "> already holds a study (study.json). Use --resume "
+                           "to run only the variants that changed or did not complete, --overwrite to start again, or "
+                           "another directory.");
+      }
+
+      void start_mpi()
+      {
+        under_mpirun_ = launched_by_mpirun();
+        cores_ = options_.threads > 0 ? options_.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+        if (under_mpirun_)
+          fem::start_fe_mpi(mpi_);
+        root_ = session().rank() == 0;
+      }
+
+      void write_variant_scenes() const
+      {
+        if (root_)
         {
-          runs[k].status = "completed earlier";
-          continue;
+          std::error_code error;
+          if (options_.overwrite && !options_.resume)
+            for (const char *name : {"variants", "study.json", "study.csv", "summary.json", "work_precision.png", "results.png"})
+              fs::remove_all(dir_ / name, error);
+          for (const VariantRun &r : runs_)
+          {
+            const fs::path folder = dir_ / "variants" / r.variant.id;
+            fs::create_directories(folder);
+            write_text_atomically((folder / "scene.prm").string(), [&](std::ostream &out) { out << r.scene_text; });
+          }
         }
+        session().barrier();
       }
-      // A run that completed although the study was killed before it could record it.
-      const fs::path run_summary = dir / "variants" / runs[k].variant.id / "run" / "summary.json";
-      if (options.resume && completed_from_scene(run_summary.string(), runs[k].scene_sha256))
-      {
-        runs[k].status = "completed earlier";
-        runs[k].wall_s = interpret_json_file(run_summary.string(), "a run's summary", [](const Json &s) {
-          return s.at("timing").at("wall_s").get<double>();
-        });
-        continue;
-      }
-      to_run.push_back(k);
-    }
-    const auto options_of = [&](std::size_t k, int threads) {
-      const fs::path folder = dir / "variants" / runs[k].variant.id;
-      RunOptions o;
-      o.scene_file = (folder / "scene.prm").string();
-      o.output_directory = (folder / "run").string();
-      // A variant that ran before (interrupted, or failed) continues from its checkpoint where its
-      // kind has one; a new one starts in a clean folder.
-      o.resume = options.resume && fs::exists(folder / "run" / "summary.json");
-      o.overwrite = !o.resume;
-      o.threads = threads;
-      o.command_line = options.command_line;
-      o.labels = {{"study", study.file}, {"variant", runs[k].variant.id}};
-      return o;
-    };
-    const auto record = [&](std::size_t k, int code, double wall_s) {
-      runs[k].exit_code = code;
-      runs[k].wall_s = wall_s;
-      runs[k].status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
-      write_json_atomically((dir / "variants" / runs[k].variant.id / "variant.json").string(),
-                            Json{{"variant", runs[k].variant.id},
-                                 {"changes", changes_text(runs[k].variant)},
-                                 {"scene_sha256", runs[k].scene_sha256},
-                                 {"status", runs[k].status},
-                                 {"exit_code", code},
-                                 {"wall_s", wall_s}});
-      std::cout << "study: " << runs[k].variant.id << " (" << changes_text(runs[k].variant) << ") " << runs[k].status
-                << " in " << format_duration(wall_s) << "\n"
-                << std::flush;
-    };
 
-    if (root)
-      std::cout << "study " << study.file << ": " << runs.size() << " variants of " << study.base_scene << ", "
-                << to_run.size() << " to run" << (under_mpirun ? " on " + std::to_string(session.size()) + " ranks" : "")
-                << "\n"
-                << std::flush;
-    if (!to_run.empty())
-    {
-      if (!under_mpirun)
+      /// Which variants run: with --resume not those whose scene is unchanged and whose run completed.
+      std::vector<std::size_t> variants_to_run()
       {
-        const int side_by_side = std::min<int>(study.side_by_side, static_cast<int>(to_run.size()));
-        const int threads = std::max(1, cores / side_by_side);
+        std::vector<std::size_t> to_run;
+        for (std::size_t k = 0; k < runs_.size(); ++k)
+        {
+          if (runs_[k].same_as)
+            continue; // takes the run of the variant it equals (give_twins_their_runs)
+          const fs::path record = dir_ / "variants" / runs_[k].variant.id / "variant.json";
+          if (options_.resume && fs::exists(record))
+          {
+            const bool completed = interpret_json_file(record.string(), "a study variant's record", [&](const Json &before) {
+              if (before.value("scene_sha256", "") != runs_[k].scene_sha256 ||
+                  (before.value("status", "") != "completed" && before.value("status", "") != "completed earlier"))
+                return false;
+              runs_[k].wall_s = before.value("wall_s", 0.0);
+              return true;
+            });
+            if (completed)
+            {
+              runs_[k].status = "completed earlier";
+              continue;
+            }
+          }
+          // A run that completed although the study was killed before it could record it.
+          const fs::path run_summary = dir_ / "variants" / runs_[k].variant.id / "run" / "summary.json";
+          if (options_.resume && completed_from_scene(run_summary.string(), runs_[k].scene_sha256))
+          {
+            runs_[k].status = "completed earlier";
+            runs_[k].wall_s = interpret_json_file(run_summary.string(), "a run's summary", [](const Json &s) {
+              return s.at("timing").at("wall_s").get<double>();
+            });
+            continue;
+          }
+          to_run.push_back(k);
+        }
+        return to_run;
+      }
+
+      RunOptions options_of(std::size_t k, int threads) const
+      {
+        const fs::path folder = dir_ / "variants" / runs_[k].variant.id;
+        RunOptions o;
+        o.scene_file = (folder / "scene.prm").string();
+        o.output_directory = (folder / "run").string();
+        // A variant that ran before (interrupted, or failed) continues from its checkpoint where its
+        // kind has one; a new one starts in a clean folder.
+        o.resume = options_.resume && fs::exists(folder / "run" / "summary.json");
+        o.overwrite = !o.resume;
+        o.threads = threads;
+        o.command_line = options_.command_line;
+        o.labels = {{"study", study_.file}, {"variant", runs_[k].variant.id}};
+        return o;
+      }
+
+      void record(std::size_t k, int code, double wall_s)
+      {
+        runs_[k].exit_code = code;
+        runs_[k].wall_s = wall_s;
+        runs_[k].status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
+        write_json_atomically((dir_ / "variants" / runs_[k].variant.id / "variant.json").string(),
+                              Json{{"variant", runs_[k].variant.id},
+                                   {"changes", changes_text(runs_[k].variant)},
+                                   {"scene_sha256", runs_[k].scene_sha256},
+                                   {"status", runs_[k].status},
+                                   {"exit_code", code},
+                                   {"wall_s", wall_s}});
+        std::cout << "study: " << runs_[k].variant.id << " (" << changes_text(runs_[k].variant) << ") " << runs_[k].status
+                  << " in " << format_duration(wall_s) << "\n"
+                  << std::flush;
+      }
+
+      void run_variants(const std::vector<std::size_t> &to_run)
+      {
+        if (!under_mpirun_)
+          run_in_worker_processes(to_run);
+        else if (study_.base_kind == "dem")
+          run_dem_variants_over_ranks(to_run);
+        else
+          run_variants_on_all_ranks(to_run);
+      }
+
+      /// Side by side in worker processes, each with its share of the cores.
+      void run_in_worker_processes(const std::vector<std::size_t> &to_run)
+      {
+        const int side_by_side = std::min<int>(study_.side_by_side, static_cast<int>(to_run.size()));
+        const int threads = std::max(1, cores_ / side_by_side);
         const std::vector<WorkerExit> exits = run_jobs_in_worker_processes(
           static_cast<int>(to_run.size()), side_by_side,
           [&](int job, std::string &) {
             const std::size_t k = to_run[static_cast<std::size_t>(job)];
             if (side_by_side == 1)
-              return runner.run(options_of(k, threads));
-            const LineLabel out(std::cout, "[" + runs[k].variant.id + "] "), err(std::cerr, "[" + runs[k].variant.id + "] ");
-            return runner.run(options_of(k, threads));
+              return runner_.run(options_of(k, threads));
+            const LineLabel out(std::cout, "[" + runs_[k].variant.id + "] "), err(std::cerr, "[" + runs_[k].variant.id + "] ");
+            return runner_.run(options_of(k, threads));
           },
           [&](int job, const WorkerExit &exit) {
             if (exit.signal != 0)
-              std::cerr << "study: " << runs[to_run[static_cast<std::size_t>(job)]].variant.id << ": "
+              std::cerr << "study: " << runs_[to_run[static_cast<std::size_t>(job)]].variant.id << ": "
                         << describe_worker_exit(job, exit) << "\n";
             record(to_run[static_cast<std::size_t>(job)], exit.exit_code, exit.wall_s);
           });
         for (std::size_t j = 0; j < exits.size(); ++j)
           if (!exits[j].started)
-            runs[to_run[j]].status = "not run";
+            runs_[to_run[j]].status = "not run";
       }
-      else if (study.base_kind == "dem")
+
+      /// Whole runs per rank, as a campaign's tests: variant j of to_run on rank j mod size.
+      void run_dem_variants_over_ranks(const std::vector<std::size_t> &to_run)
       {
-        // Whole runs per rank, as a campaign's tests: variant j of to_run on rank j mod size.
-        for (std::size_t j = static_cast<std::size_t>(session.rank()); j < to_run.size(); j += static_cast<std::size_t>(session.size()))
+        for (std::size_t j = static_cast<std::size_t>(session().rank()); j < to_run.size(); j += static_cast<std::size_t>(session().size()))
         {
           const auto variant_start = Clock::now();
-          const int code = runner.run(options_of(to_run[j], options.threads));
+          const int code = runner_.run(options_of(to_run[j], options_.threads));
           record(to_run[j], code, std::chrono::duration<double>(Clock::now() - variant_start).count());
         }
-        session.barrier();
+        session().barrier();
         for (std::size_t k : to_run) // every rank reads what the others recorded
         {
-          const Json r = read_json_file((dir / "variants" / runs[k].variant.id / "variant.json").string());
-          runs[k].status = r.value("status", "failed");
-          runs[k].exit_code = r.value("exit_code", 1);
-          runs[k].wall_s = r.value("wall_s", 0.0);
+          const Json r = read_json_file((dir_ / "variants" / runs_[k].variant.id / "variant.json").string());
+          runs_[k].status = r.value("status", "failed");
+          runs_[k].exit_code = r.value("exit_code", 1);
+          runs_[k].wall_s = r.value("wall_s", 0.0);
         }
       }
-      else
+
+      /// One variant after the other, each on every rank.
+      void run_variants_on_all_ranks(const std::vector<std::size_t> &to_run)
       {
         for (std::size_t k : to_run)
         {
           const auto variant_start = Clock::now();
-          const int code = runner.run(options_of(k, options.threads));
-          session.barrier();
+          const int code = runner_.run(options_of(k, options_.threads));
+          session().barrier();
           const double wall_s = std::chrono::duration<double>(Clock::now() - variant_start).count();
-          if (root)
+          if (root_)
             record(k, code, wall_s);
           else
-            runs[k].exit_code = code, runs[k].status = code == exit_success ? "completed" : "failed";
+            runs_[k].exit_code = code, runs_[k].status = code == exit_success ? "completed" : "failed";
           if (code == exit_interrupted)
             break;
         }
       }
-    }
 
-    // Variants equal to an earlier one take its run.
-    for (VariantRun &run : runs)
-      if (run.same_as)
+      /// Variants equal to an earlier one take its run.
+      void give_twins_their_runs()
       {
-        const VariantRun &twin = runs[*run.same_as];
-        run.status = twin.status, run.exit_code = twin.exit_code, run.wall_s = twin.wall_s;
-        if (root)
-          write_json_atomically((dir / "variants" / run.variant.id / "variant.json").string(),
-                                Json{{"variant", run.variant.id},
-                                     {"changes", changes_text(run.variant)},
-                                     {"scene_sha256", run.scene_sha256},
-                                     {"same_as", twin.variant.id},
-                                     {"status", run.status}});
+        for (VariantRun &run : runs_)
+          if (run.same_as)
+          {
+            const VariantRun &twin = runs_[*run.same_as];
+            run.status = twin.status, run.exit_code = twin.exit_code, run.wall_s = twin.wall_s;
+            if (root_)
+              write_json_atomically((dir_ / "variants" / run.variant.id / "variant.json").string(),
+                                    Json{{"variant", run.variant.id},
+                                         {"changes", changes_text(run.variant)},
+                                         {"scene_sha256", run.scene_sha256},
+                                         {"same_as", twin.variant.id},
+                                         {"status", run.status}});
+          }
       }
 
-    // The answers, their errors and the lines' analysis.
-    for (VariantRun &run : runs)
-    {
-      const std::string folder = run.same_as ? runs[*run.same_as].variant.id : run.variant.id;
-      const fs::path summary = dir / "variants" / folder / "run" / "summary.json";
-      if ((run.status == "completed" || run.status == "completed earlier" || run.status == "failed") && fs::exists(summary))
+      /// The answers of every variant from its run's summary.json.
+      void read_answers()
       {
-        const Json s = read_json_file(summary.string());
-        for (std::size_t r = 0; r < study.results.size(); ++r)
-          run.results[r] = result_at(s, study.results[r].pointer);
-      }
-    }
-    std::vector<std::vector<std::size_t>> lines;
-    for (std::size_t e = 0; e < study.entries.size(); ++e)
-    {
-      std::vector<StudyVariant> variants;
-      for (const VariantRun &run : runs)
-        variants.push_back(run.variant);
-      lines.push_back(line_of_entry(study, variants, e));
-    }
-    std::vector<std::vector<std::optional<double>>> errors(study.results.size());
-    std::vector<std::vector<std::optional<std::size_t>>> reference_variants(study.results.size());
-    for (std::size_t r = 0; r < study.results.size(); ++r)
-      errors[r] = errors_of_result(study, runs, lines, r, reference_variants[r]);
-
-    Json lines_json = Json::array();
-    for (std::size_t e = 0; e < study.entries.size(); ++e)
-      lines_json.push_back(line_json(study, runs, lines[e], e, errors, reference_variants));
-
-    int failed = 0, interrupted = 0;
-    for (const VariantRun &run : runs)
-    {
-      failed += run.status == "failed";
-      interrupted += run.status == "interrupted" || run.status == "not run";
-    }
-    const std::string status = interrupted ? "interrupted" : failed ? "completed with failed variants" : "completed";
-    if (root)
-    {
-      Json variants = Json::array();
-      for (std::size_t v = 0; v < runs.size(); ++v)
-      {
-        Json j{{"id", runs[v].variant.id}, {"changes", Json::object()}};
-        for (const auto &[path, value] : runs[v].variant.changes)
-          j["changes"][path] = value;
-        j["status"] = runs[v].status;
-        if (runs[v].same_as)
-          j["same_as"] = runs[*runs[v].same_as].variant.id;
-        j["exit_code"] = runs[v].exit_code;
-        j["wall_s"] = runs[v].wall_s;
-        j["results"] = Json::object();
-        j["errors"] = Json::object();
-        for (std::size_t r = 0; r < study.results.size(); ++r)
+        for (VariantRun &run : runs_)
         {
-          j["results"][study.results[r].label] = optional_json(runs[v].results[r]);
-          j["errors"][study.results[r].label] = optional_json(errors[r][v]);
+          const std::string folder = run.same_as ? runs_[*run.same_as].variant.id : run.variant.id;
+          const fs::path summary = dir_ / "variants" / folder / "run" / "summary.json";
+          if ((run.status == "completed" || run.status == "completed earlier" || run.status == "failed") && fs::exists(summary))
+          {
+            const Json s = read_json_file(summary.string());
+            for (std::size_t r = 0; r < study_.results.size(); ++r)
+              run.results[r] = result_at(s, study_.results[r].pointer);
+          }
         }
-        variants.push_back(j);
       }
-      Json entries = Json::array();
-      for (const StudyEntry &entry : study.entries)
-        entries.push_back({{"path", entry.path},
-                           {"values", entry.values},
-                           {"refinement", refinement_name(entry.refinement)},
-                           {"base_value", entry.base_value ? Json(*entry.base_value) : Json(nullptr)}});
-      Json results = Json::array();
-      for (const StudyResult &r : study.results)
-        results.push_back({{"pointer", r.pointer}, {"label", r.label}, {"reference_value", optional_json(r.reference)}});
-      const Json study_json{{"study", study.file},
-                            {"base_scene", study.base_scene},
-                            {"base_kind", study.base_kind},
-                            {"combination", study.product ? "product" : "one at a time"},
-                            {"cost", "wall time of each variant's run [s], " +
-                                       std::string(under_mpirun ? "on " + std::to_string(session.size()) + " ranks"
-                                                                : std::to_string(std::min(study.side_by_side, static_cast<int>(runs.size()))) +
-                                                                    " side by side on " + std::to_string(cores) + " cores")},
-                            {"entries", entries},
-                            {"results", results},
-                            {"variants", variants},
-                            {"lines", lines_json}};
-      write_json_atomically((dir / "study.json").string(), study_json);
-      write_csv(dir / "study.csv", study, runs, errors);
-      Json summary;
-      summary["command"] = options.command_line;
-      summary["scene"] = {{"file", study.file},
-                          {"file_sha256", util::sha256_of_file(study.file)},
-                          {"base_scene", study.base_scene},
-                          {"base_scene_sha256", util::sha256_of_file(study.base_scene)}};
-      summary["status"] = status;
-      summary["results"] = {{"variants", runs.size()}, {"failed", failed}, {"not_completed", interrupted}, {"lines", lines_json}};
-      summary["timing"] = {{"wall_s", std::chrono::duration<double>(Clock::now() - start).count()}};
-      summary["versions"] = version_info();
-      write_json_atomically((dir / "summary.json").string(), summary);
-      if (!interrupted)
-        run_python_script("plot_study.py", dir.string(), "study.json and study.csv");
-      std::cout << "\nstudy " << status << ": " << runs.size() << " variants";
-      if (failed)
+
+      /// The answers' errors and each entry's line: orders, the cheapest setting within a tolerance.
+      void analyse_lines()
       {
-        std::cout << ", failed:";
-        for (const VariantRun &run : runs)
-          if (run.status == "failed")
-            std::cout << " " << run.variant.id << " (" << changes_text(run.variant) << ", exit " << run.exit_code
-                      << ", see variants/" << run.variant.id << "/run/summary.json)";
+        std::vector<std::vector<std::size_t>> lines;
+        for (std::size_t e = 0; e < study_.entries.size(); ++e)
+        {
+          std::vector<StudyVariant> variants;
+          for (const VariantRun &run : runs_)
+            variants.push_back(run.variant);
+          lines.push_back(line_of_entry(study_, variants, e));
+        }
+        errors_.assign(study_.results.size(), {});
+        std::vector<std::vector<std::optional<std::size_t>>> reference_variants(study_.results.size());
+        for (std::size_t r = 0; r < study_.results.size(); ++r)
+          errors_[r] = errors_of_result(study_, runs_, lines, r, reference_variants[r]);
+        for (std::size_t e = 0; e < study_.entries.size(); ++e)
+          lines_json_.push_back(line_json(study_, runs_, lines[e], e, errors_, reference_variants));
       }
-      std::cout << " in " << format_duration(summary["timing"]["wall_s"].get<double>()) << "\n";
-      print_headline(std::cout, lines_json);
-      std::cout << "  " << (dir / "study.json").string() << ", study.csv, work_precision.png, results.png\n";
-    }
-    return interrupted ? exit_interrupted : failed ? exit_numerical_failure : exit_success;
+
+      Json variants_json() const
+      {
+        Json variants = Json::array();
+        for (std::size_t v = 0; v < runs_.size(); ++v)
+        {
+          Json j{{"id", runs_[v].variant.id}, {"changes", Json::object()}};
+          for (const auto &[path, value] : runs_[v].variant.changes)
+            j["changes"][path] = value;
+          j["status"] = runs_[v].status;
+          if (runs_[v].same_as)
+            j["same_as"] = runs_[*runs_[v].same_as].variant.id;
+          j["exit_code"] = runs_[v].exit_code;
+          j["wall_s"] = runs_[v].wall_s;
+          j["results"] = Json::object();
+          j["errors"] = Json::object();
+          for (std::size_t r = 0; r < study_.results.size(); ++r)
+          {
+            j["results"][study_.results[r].label] = optional_json(runs_[v].results[r]);
+            j["errors"][study_.results[r].label] = optional_json(errors_[r][v]);
+          }
+          variants.push_back(j);
+        }
+        return variants;
+      }
+
+      Json study_json() const
+      {
+        Json entries = Json::array();
+        for (const StudyEntry &entry : study_.entries)
+          entries.push_back({{"path", entry.path},
+                             {"values", entry.values},
+                             {"refinement", refinement_name(entry.refinement)},
+                             {"base_value", entry.base_value ? Json(*entry.base_value) : Json(nullptr)}});
+        Json results = Json::array();
+        for (const StudyResult &r : study_.results)
+          results.push_back({{"pointer", r.pointer}, {"label", r.label}, {"reference_value", optional_json(r.reference)}});
+        return Json{{"study", study_.file},
+                    {"base_scene", study_.base_scene},
+                    {"base_kind", study_.base_kind},
+                    {"combination", study_.product ? "product" : "one at a time"},
+                    {"cost", "wall time of each variant's run [s], " +
+                               std::string(under_mpirun_ ? "on " + std::to_string(session().size()) + " ranks"
+                                                         : std::to_string(std::min(study_.side_by_side, static_cast<int>(runs_.size()))) +
+                                                             " side by side on " + std::to_string(cores_) + " cores")},
+                    {"entries", entries},
+                    {"results", results},
+                    {"variants", variants_json()},
+                    {"lines", lines_json_}};
+      }
+
+      /// study.json, study.csv, summary.json, the plots and the printed headline (root only).
+      int write_outputs() const
+      {
+        int failed = 0, interrupted = 0;
+        for (const VariantRun &run : runs_)
+        {
+          failed += run.status == "failed";
+          interrupted += run.status == "interrupted" || run.status == "not run";
+        }
+        const std::string status = interrupted ? "interrupted" : failed ? "completed with failed variants" : "completed";
+        if (root_)
+        {
+          write_json_atomically((dir_ / "study.json").string(), study_json());
+          write_csv(dir_ / "study.csv", study_, runs_, errors_);
+          Json summary;
+          summary["command"] = options_.command_line;
+          summary["scene"] = {{"file", study_.file},
+                              {"file_sha256", util::sha256_of_file(study_.file)},
+                              {"base_scene", study_.base_scene},
+                              {"base_scene_sha256", util::sha256_of_file(study_.base_scene)}};
+          summary["status"] = status;
+          summary["results"] = {{"variants", runs_.size()}, {"failed", failed}, {"not_completed", interrupted}, {"lines", lines_json_}};
+          summary["timing"] = {{"wall_s", std::chrono::duration<double>(Clock::now() - start_).count()}};
+          summary["versions"] = version_info();
+          write_json_atomically((dir_ / "summary.json").string(), summary);
+          if (!interrupted)
+            run_python_script("plot_study.py", dir_.string(), "study.json and study.csv");
+          print_end(status, failed, summary["timing"]["wall_s"].get<double>());
+        }
+        return interrupted ? exit_interrupted : failed ? exit_numerical_failure : exit_success;
+      }
+
+      void print_end(const std::string &status, int failed, double wall_s) const
+      {
+        std::cout << "\nstudy " << status << ": " << runs_.size() << " variants";
+        if (failed)
+        {
+          std::cout << ", failed:";
+          for (const VariantRun &run : runs_)
+            if (run.status == "failed")
+              std::cout << " " << run.variant.id << " (" << changes_text(run.variant) << ", exit " << run.exit_code
+                        << ", see variants/" << run.variant.id << "/run/summary.json)";
+        }
+        std::cout << " in " << format_duration(wall_s) << "\n";
+        print_headline(std::cout, lines_json_);
+        std::cout << "  " << (dir_ / "study.json").string() << ", study.csv, work_precision.png, results.png\n";
+      }
+    };
+  } // namespace
+
+  int run_study_scene(const RunOptions &options, const SceneRunner &runner)
+  {
+    return StudyRun(options, runner).run();
   }
 } // namespace anticrack::coupling
