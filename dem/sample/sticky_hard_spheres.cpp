@@ -8,6 +8,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace anticrack::dem::shs
@@ -219,6 +221,34 @@ namespace anticrack::dem::shs
         x[q] = sites[q * total / n];
       return x;
     }
+
+    /// The rise of a history from the mean of its third quarter to the mean of its last, relative
+    /// to the last, and the scatter of that rise at equilibrium: the larger of the points' own
+    /// standard error (taken as independent) and 0.54 / sqrt(n). The coordination drifts slowly
+    /// at equilibrium (correlated over more than 10 000 sweeps), so the points' own error
+    /// understates it fivefold; 0.54 / sqrt(n) is the scatter measured for quarters of 5000 sweeps
+    /// at n = 1024 (1.2 % per quarter, 1.7 % for their difference; (phi, tau) = (0.3, 0.178), sweeps
+    /// 20 000-100 000), scaled as a fluctuation of n spheres.
+    std::pair<double, double> relative_rise(const std::vector<double> &history, Index n)
+    {
+      const std::size_t quarter = history.size() / 4;
+      if (quarter < 1)
+        return {0.0, 0.0};
+      const auto mean_and_variance = [&](std::size_t first) {
+        double mean = 0, square = 0;
+        for (std::size_t k = first; k < first + quarter; ++k)
+          mean += history[k] / quarter;
+        for (std::size_t k = first; k < first + quarter; ++k)
+          square += (history[k] - mean) * (history[k] - mean);
+        return std::make_pair(mean, quarter > 1 ? square / (quarter - 1) / quarter : 0.0);
+      };
+      const auto [third, third_variance] = mean_and_variance(history.size() - 2 * quarter);
+      const auto [last, last_variance] = mean_and_variance(history.size() - quarter);
+      if (!(last > 0))
+        return {0.0, 0.0};
+      const double equilibrium_scatter = 0.54 / std::sqrt(static_cast<double>(n));
+      return {(last - third) / last, std::max(std::sqrt(third_variance + last_variance) / last, equilibrium_scatter)};
+    }
   } // namespace
 
   SamplerReport sample_sticky_hard_spheres(DemSystem &system, const SamplerSpec &spec)
@@ -241,6 +271,12 @@ namespace anticrack::dem::shs
       fail("cluster move fraction " + std::to_string(spec.cluster_move_fraction) + " outside [0, 1)");
     if (!(spec.aspect_ratios.minCoeff() > 0) || !spec.aspect_ratios.allFinite())
       fail("box aspect ratios must be finite and positive");
+    if (!(spec.equilibration_tolerance >= 0))
+      fail("equilibration tolerance " + std::to_string(spec.equilibration_tolerance) + " must be at least 0");
+    if (spec.equilibration_tolerance > 0 && spec.sweeps < 400)
+      fail(std::to_string(spec.sweeps) + " sweeps are too few to tell whether the sample has levelled off (the "
+           "coordination is recorded every 100 sweeps and its last two quarters are compared): give at least 400 "
+           "(DEM/Sample/Sweeps)");
 
     SamplerReport report;
     const double phi = spec.volume_fraction;
@@ -536,6 +572,23 @@ namespace anticrack::dem::shs
           << " bonded partners per sphere; the largest cluster holds " << 100 * report.largest_cluster_fraction
           << " % of the spheres and does not wrap around the periodic box). A non-percolating sample carries "
              "no load (Ritter et al. 2020): raise the coordination number (lower tau) or the volume fraction";
+      throw SetupError(why.str());
+    }
+    std::tie(report.coordination_rise, report.coordination_rise_error) = relative_rise(report.coordination_history, n);
+    if (spec.equilibration_tolerance > 0 &&
+        report.coordination_rise > spec.equilibration_tolerance + 1.5 * report.coordination_rise_error)
+    {
+      std::ostringstream why;
+      why << "sticky hard spheres: the sample has not levelled off after " << spec.sweeps
+          << " sweeps: its coordination (partners in the well per sphere) still rose by "
+          << 100 * report.coordination_rise << " % (+- " << 100 * report.coordination_rise_error
+          << " % at equilibrium) from the third to the last quarter of the sweeps, more than the tolerance of "
+          << 100 * spec.equilibration_tolerance
+          << " % (DEM/Sample/Equilibration tolerance) plus 1.5 times that scatter. The start is an unbonded lattice: such a sample is less "
+             "bonded than the fluid at phi = "
+          << spec.volume_fraction << ", tau = " << report.stickiness
+          << ", and its strength is biased low (about 4 % per 1 % of z). Raise DEM/Sample/Sweeps (at phi = 0.3, z = "
+             "2.9: 20 000 for up to 2048 spheres, more in larger boxes; docs/work_precision.md)";
       throw SetupError(why.str());
     }
 

@@ -47,9 +47,11 @@ namespace anticrack::dem::shs
   /// 1 - exp(-eps/kT), and only bonded pairs count as contacts. (Counting every pair in the well
   /// would add 8 phi ((1+delta)^3 - 1) g(sigma) to z, which does not vanish with the stickiness;
   /// with the draw, dilute samples give z = 2 phi / tau, Baxter's low-density limit.) As delta -> 0 the model is Baxter's: at (phi, tau) = (0.3, 0.2) the
-  /// coordination number is the same (2.81) for delta = 0.02 and 0.03, 3 % above Percus-Yevick.
-  /// Aggregation-volume-bias moves help contacts form; dense, very sticky states (phi = 0.4,
-  /// tau = 0.1) still need ~1e4 sweeps: watch `coordination_history` level off.
+  /// coordination number is the same (2.81) for delta = 0.02 and 0.03 after 5000 sweeps, 3 % above
+  /// Percus-Yevick (before levelling off: at tau = 0.178 the levelled chain is 4 % above PY).
+  /// Aggregation-volume-bias moves help contacts form, but the bonded network still rearranges
+  /// slowly: at (0.3, 0.178) z levels off after 15 000-20 000 sweeps, longer in larger boxes, and
+  /// (0.4, 0.1) needs ~1e4 sweeps or more; `equilibration_tolerance` refuses a sample that has not.
   ///
   /// Cluster moves (opt-in: `cluster_move_fraction` > 0 of the trial moves; 0 leaves the random
   /// stream and every sample exactly as without them). Swendsen-Wang construction on Baxter's bond
@@ -88,13 +90,25 @@ namespace anticrack::dem::shs
     /// the radius. (1, 1, 1): a cube.
     Vec3 aspect_ratios = Vec3::Ones();
     double well_width = 0.03;         ///< delta / sigma
-    Index sweeps = 5000;              ///< Monte Carlo sweeps (N trial moves each)
+    Index sweeps = 20000;             ///< Monte Carlo sweeps (N trial moves each)
     int material = 0;
     std::uint64_t seed = 1;
     double cluster_move_fraction = 0; ///< fraction of trial moves that are cluster moves, in [0, 1)
     /// Refuse (SetupError) a sample whose largest bonded cluster does not wrap around the box: it
     /// would carry no load. false only for studies of the fluid itself (dilute-limit checks).
     bool require_percolation = true;
+    /// Refuse (SetupError) a sample that has not levelled off: the well-pair coordination (the
+    /// `coordination_history`) rose from the mean of the third quarter of the sweeps to the mean of
+    /// the last by more than this fraction of it plus 1.5 times the rise's scatter at equilibrium
+    /// (`coordination_rise_error`: 1.7 % at N = 1024, as 1/sqrt(N)). The start is an unbonded
+    /// lattice, so an unequilibrated sample is always less bonded than the fluid it stands for, and
+    /// the DEM strength rises by about 4 % per 1 % of z (docs/work_precision.md). A guard against
+    /// gross cases, not a proof of equilibrium: one chain that fluctuates this slowly cannot tell a
+    /// creep of a few percent from its own drift. At (phi, z) = (0.3, 2.9), N = 1024, it refuses
+    /// 2000 sweeps (5.4 % rise) and passes 5000 (2.2 %, 7 % below equilibrium); the sweeps a
+    /// sample needs are measured, not detected (20 000 up to 2048 spheres, 40 000 for 4096 in a
+    /// 4 x 4 x 1 layer). Needs 400 sweeps or more. 0: not checked (studies of the sampler itself).
+    double equilibration_tolerance = 0.015;
   };
 
   struct SamplerReport
@@ -114,6 +128,11 @@ namespace anticrack::dem::shs
     Vec3 box_lengths = Vec3::Zero();  ///< the periodic box's edges [m]
     std::vector<double> coordination_history; ///< partners in the well per sphere (2 well pairs / N,
                                               ///< not the bonded z) every 100 sweeps (equilibration check)
+    /// Relative rise of the well-pair coordination from the third to the last quarter of the
+    /// sweeps, (mean Q4 - mean Q3) / mean Q4, and its scatter at equilibrium (both 0 with fewer
+    /// than 4 points).
+    double coordination_rise = 0;
+    double coordination_rise_error = 0;
   };
 
   /// Samples the fluid, appends the spheres to `system` (domain set to the periodic box) and

@@ -152,7 +152,8 @@ namespace anticrack::dem
       double stickiness = 0.2;          ///< tau, 0 = from the target coordination number
       double target_coordination = 0;   ///< z, 0 = use tau
       double well_width = 0.03;         ///< delta / sigma
-      Index sweeps = 5000;
+      Index sweeps = 20000;
+      double equilibration_tolerance = 0.015; ///< relative rise of z allowed over the last half (0: not checked)
       double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
       double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
       Vec3 box_aspect_ratios = Vec3::Ones(); ///< L_x : L_y : L_z of the sticky-hard-sphere box

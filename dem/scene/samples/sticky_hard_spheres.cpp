@@ -49,8 +49,17 @@ namespace anticrack::dem
                      "a_x, a_y, a_z: the box's edges relative to each other, L_x : L_y : L_z, all positive; "
                      "1, 1, 1 is a cube, 2, 2, 1 a layer twice as wide as it is thick (sticky hard "
                      "spheres only). Dimensionless.");
-      entries.entry("Sweeps", "5000", Patterns::Integer(1),
-                    "Monte Carlo sweeps of N trial moves each (sticky hard spheres only).");
+      entries.entry("Sweeps", "20000", Patterns::Integer(1),
+                    "Monte Carlo sweeps of N trial moves each; the sample must level off within them "
+                    "(Equilibration tolerance): at phi = 0.3, z = 2.9 it takes 15 000-20 000 "
+                    "(docs/work_precision.md) (sticky hard spheres only).");
+      entries.entry("Equilibration tolerance", "0.015", Patterns::Double(0, 1),
+                    "the largest rise of the sample's coordination (partners in the well per sphere) "
+                    "allowed from the third to the last quarter of the sweeps, relative, beyond 1.5 times "
+                    "its scatter at equilibrium (1.7 % for 1024 spheres, as 1/sqrt(N)); a sample that rises more has not levelled off and is "
+                    "refused (it would be less bonded, so weaker, than the fluid it stands for: about 4 % "
+                    "of strength per 1 % of z). 0 = not checked, for studies of the sampler itself "
+                    "(sticky hard spheres only). Dimensionless.");
       entries.entry("Cluster move fraction", "0", Patterns::Double(0, 1),
                     "fraction of Monte Carlo trial moves that translate a whole cluster of "
                     "spheres in each other's well (pairs in the well linked with the contact "
@@ -69,6 +78,7 @@ namespace anticrack::dem
       s.well_width = prm.get_double("Well width");
       s.sweeps = prm.get_integer("Sweeps");
       s.cluster_move_fraction = prm.get_double("Cluster move fraction");
+      s.equilibration_tolerance = prm.get_double("Equilibration tolerance");
       s.box_edge = prm.get_double("Box edge [m]");
       s.box_aspect_ratios = get_triple<Vec3>(prm, "Box aspect ratios");
     }
@@ -85,6 +95,10 @@ namespace anticrack::dem
         problems.add("DEM/Sample/Box aspect ratios", vec(s.box_aspect_ratios), "must be three finite positive numbers" + why_type);
       if (!(s.well_width > 0))
         problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
+      if (s.equilibration_tolerance > 0 && s.sweeps < 400)
+        problems.add("DEM/Sample/Sweeps", s.sweeps,
+                     "must be at least 400 to tell whether the sample has levelled off (DEM/Sample/Equilibration "
+                     "tolerance > 0 compares the last two quarters of a coordination recorded every 100 sweeps)");
       if (!(s.cluster_move_fraction < 1))
         problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
                      "must be in [0, 1): single-sphere moves are needed to make and break clusters");
@@ -136,6 +150,7 @@ namespace anticrack::dem
       spec.well_width = d.sample.well_width;
       spec.sweeps = d.sample.sweeps;
       spec.cluster_move_fraction = d.sample.cluster_move_fraction;
+      spec.equilibration_tolerance = d.sample.equilibration_tolerance;
       spec.material = 0;
       spec.seed = d.seed;
       model.sticky_hard_spheres = dem::shs::sample_sticky_hard_spheres(model.system, spec);
@@ -157,6 +172,9 @@ namespace anticrack::dem
         << " (Percus-Yevick " << r.percus_yevick_coordination << "), contacts " << r.contacts
         << ",\n                      largest cluster " << r.largest_cluster_fraction << " of the spheres, "
         << (r.percolating ? "percolating" : "not percolating") << ", acceptance " << r.acceptance
+        << ",\n                      coordination rise over the last half " << 100 * r.coordination_rise << " % (scatter at equilibrium "
+        << 100 * r.coordination_rise_error << " %; refused above " << 100 * sample.equilibration_tolerance
+        << " % + 1.5 x scatter)"
         << "\n                      (`check` runs the generator: the sample is the one `run` builds)";
     }
 
@@ -175,6 +193,9 @@ namespace anticrack::dem
       sample["percolating"] = r.percolating;
       sample["box_lengths_m"] = {r.box_lengths[0], r.box_lengths[1], r.box_lengths[2]};
       sample["coordination_history"] = r.coordination_history;
+      sample["coordination_rise"] = r.coordination_rise;
+      sample["coordination_rise_error"] = r.coordination_rise_error;
+      sample["equilibration_tolerance"] = scene.dem.sample.equilibration_tolerance;
     }
   } // namespace
 
