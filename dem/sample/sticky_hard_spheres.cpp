@@ -273,10 +273,10 @@ namespace anticrack::dem::shs
       fail("box aspect ratios must be finite and positive");
     if (!(spec.equilibration_tolerance >= 0))
       fail("equilibration tolerance " + std::to_string(spec.equilibration_tolerance) + " must be at least 0");
-    if (spec.equilibration_tolerance > 0 && spec.sweeps < 400)
+    if (spec.equilibration_tolerance > 0 && spec.sweeps < minimum_sweeps_to_judge_equilibrium)
       fail(std::to_string(spec.sweeps) + " sweeps are too few to tell whether the sample has levelled off (the "
-           "coordination is recorded every 100 sweeps and its last two quarters are compared): give at least 400 "
-           "(DEM/Sample/Sweeps)");
+           "coordination is recorded every 100 sweeps and its last two quarters are compared): give at least " +
+           std::to_string(minimum_sweeps_to_judge_equilibrium) + " (DEM/Sample/Sweeps)");
 
     SamplerReport report;
     const double phi = spec.volume_fraction;

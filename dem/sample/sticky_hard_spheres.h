@@ -79,6 +79,10 @@ namespace anticrack::dem::shs
   /// even per CPU second (cluster moves cost ~2.5x per sweep); none at (0.4, 0.1), where the bonded
   /// network spans the box within ~100 sweeps and a spanning cluster is never moved (cluster
   /// acceptance ~2e-4): the slow creep there is restructuring inside the network.
+  /// Fewest sweeps whose coordination history (a point every 100 sweeps) has two quarters to
+  /// compare: the equilibration check needs them (SamplerSpec::equilibration_tolerance).
+  inline constexpr Index minimum_sweeps_to_judge_equilibrium = 400;
+
   struct SamplerSpec
   {
     Index particle_count = 2048;

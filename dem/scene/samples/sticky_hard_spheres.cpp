@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <ostream>
+#include <string>
 
 namespace anticrack::dem
 {
@@ -95,10 +96,11 @@ namespace anticrack::dem
         problems.add("DEM/Sample/Box aspect ratios", vec(s.box_aspect_ratios), "must be three finite positive numbers" + why_type);
       if (!(s.well_width > 0))
         problems.add("DEM/Sample/Well width", s.well_width, "must be in (0, 0.1]" + why_type);
-      if (s.equilibration_tolerance > 0 && s.sweeps < 400)
+      if (s.equilibration_tolerance > 0 && s.sweeps < dem::shs::minimum_sweeps_to_judge_equilibrium)
         problems.add("DEM/Sample/Sweeps", s.sweeps,
-                     "must be at least 400 to tell whether the sample has levelled off (DEM/Sample/Equilibration "
-                     "tolerance > 0 compares the last two quarters of a coordination recorded every 100 sweeps)");
+                     "must be at least " + std::to_string(dem::shs::minimum_sweeps_to_judge_equilibrium) +
+                       " to tell whether the sample has levelled off (DEM/Sample/Equilibration tolerance > 0 "
+                       "compares the last two quarters of a coordination recorded every 100 sweeps)");
       if (!(s.cluster_move_fraction < 1))
         problems.add("DEM/Sample/Cluster move fraction", s.cluster_move_fraction,
                      "must be in [0, 1): single-sphere moves are needed to make and break clusters");
