@@ -197,7 +197,21 @@ namespace anticrack::dem::shs
     /// density gradient across the box within its sweeps: at N = 4096 (4 m^3 = 5324) the top fifth
     /// of the box held a third of its share of spheres after 5000 sweeps, and the bonds of two
     /// realizations in three did not reach the actuator (docs/work_precision.md).
-    std::vector<Vec3> fcc_start(Index n, const Vec3 &box)
+    /// The closest two sites of an FCC lattice of m[a] cubic cells along each edge of `box`
+    /// (periodic): half a face diagonal of the cell, or a whole cell edge where one cell spans the box.
+    double fcc_nearest_sites(const std::array<Index, 3> &m, const Vec3 &box)
+    {
+      const Vec3 s(box[0] / m[0], box[1] / m[1], box[2] / m[2]);
+      return std::min({0.5 * std::hypot(s[0], s[1]), 0.5 * std::hypot(s[0], s[2]), 0.5 * std::hypot(s[1], s[2]), s[0], s[1],
+                       s[2]});
+    }
+
+    /// The FCC lattice's cells along each edge of `box`: as many along each edge as the edge is
+    /// long, t times the shortest, for the smallest t that gives n sites (cells about cubic); unless
+    /// its closest two sites are nearer than `diameter` (a flat box at high phi: 2 : 2 : 1 jumps from
+    /// 432 to 1024 sites, and 469 spheres at phi = 0.49 would overlap), then the cell counts with at
+    /// least n sites whose closest two sites are furthest apart.
+    std::array<Index, 3> fcc_cells(Index n, const Vec3 &box, double diameter)
     {
       std::array<Index, 3> m{};
       for (Index t = 1;; ++t)
@@ -207,6 +221,29 @@ namespace anticrack::dem::shs
         if (4 * m[0] * m[1] * m[2] >= n)
           break;
       }
+      if (fcc_nearest_sites(m, box) >= diameter)
+        return m;
+      // Around the cubic cell of n/4 cells in the box, each count a few cells either side.
+      const double cell = std::cbrt(4 * box.prod() / static_cast<double>(n));
+      std::array<Index, 3> best = m, low{}, high{};
+      for (int a = 0; a < 3; ++a)
+      {
+        low[a] = std::max<Index>(1, static_cast<Index>(std::floor(box[a] / cell)) - 2);
+        high[a] = static_cast<Index>(std::ceil(box[a] / cell)) + 2;
+      }
+      for (m[0] = low[0]; m[0] <= high[0]; ++m[0])
+        for (m[1] = low[1]; m[1] <= high[1]; ++m[1])
+          for (m[2] = low[2]; m[2] <= high[2]; ++m[2])
+            if (4 * m[0] * m[1] * m[2] >= n && fcc_nearest_sites(m, box) > fcc_nearest_sites(best, box))
+              best = m;
+      return best;
+    }
+
+    /// n sites spread over the FCC lattice of fcc_cells: any n of them are at least its closest two
+    /// sites apart (the caller checks the start against the spheres' diameter).
+    std::vector<Vec3> fcc_start(Index n, const Vec3 &box, double diameter)
+    {
+      const std::array<Index, 3> m = fcc_cells(n, box, diameter);
       const Vec3 spacing(box[0] / m[0], box[1] / m[1], box[2] / m[2]);
       const std::array<Vec3, 4> basis = {Vec3(0, 0, 0), Vec3(0.5, 0.5, 0), Vec3(0.5, 0, 0.5), Vec3(0, 0.5, 0.5)};
       std::vector<Vec3> sites;
@@ -294,7 +331,7 @@ namespace anticrack::dem::shs
     const double contact_weight =
       1 + 1 / (4 * report.stickiness * (std::pow(1 + spec.well_width, 3) - 1));
 
-    std::vector<Vec3> x = fcc_start(n, box);
+    std::vector<Vec3> x = fcc_start(n, box, sigma);
     PeriodicCells cells(box, range, x);
     std::mt19937_64 rng(spec.seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -315,6 +352,14 @@ namespace anticrack::dem::shs
       });
       return overlap ? Index(-1) : count;
     };
+    // Hard spheres never overlap: not at the start (the moves keep it so), whose lattice may be too
+    // tight for n spheres in a flat box at high phi.
+    for (Index i = 0; i < n; ++i)
+      if (partners(x[i], i) < 0)
+        fail("cannot start " + std::to_string(n) + " spheres at phi = " + std::to_string(phi) + " in a box of " +
+             std::to_string(box[0]) + " x " + std::to_string(box[1]) + " x " + std::to_string(box[2]) +
+             " m without overlaps (the start's FCC lattice is too tight in this box): lower the volume fraction or "
+             "change the box's aspect ratios");
 
     // Two kinds of trial move, each in detailed balance on its own, mixed half and half:
     //  - a displacement by up to `step` in each direction (the step adapts towards 40 % acceptance in

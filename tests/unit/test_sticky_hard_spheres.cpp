@@ -376,6 +376,23 @@ TEST(StickyHardSpheresSampler, BoxOfAnyAspectRatioHoldsTheSameFluid)
   EXPECT_THROW(sample(refused, 0.3, 0.2, 10, 0.03, 1, 600, Vec3(1, 0, 1)), SetupError);
 }
 
+// A layer's box at high phi (the pits' dense weak layers, coupling/profile_specimen.h): 469 spheres at
+// phi = 0.49 in a 2 : 2 : 1 box. Cells about cubic would give 1024 sites, whose neighbours are 0.88
+// diameters apart, and the start would overlap; the sampler takes a lattice of 469 sites or a few
+// more instead. No two spheres overlap after one sweep (the start) or after 400, and the
+// coordination history never counts an overlap (it would be negative: -1 partners per overlap).
+TEST(StickyHardSpheresSampler, DenseFlatBoxStartsWithoutOverlaps)
+{
+  for (const Index sweeps : {Index(1), Index(400)})
+  {
+    DemSystem s;
+    const shs::SamplerReport r = sample(s, 0.49, 0.8, sweeps, 0.03, 1, 469, Vec3(2, 2, 1));
+    expect_hard_cores(s, 2e-3);
+    for (const double z : r.coordination_history)
+      EXPECT_GE(z, 0) << sweeps << " sweeps";
+  }
+}
+
 TEST(StickyHardSpheresSampler, NonPercolatingSampleIsRefused)
 {
   DemSystem s;
