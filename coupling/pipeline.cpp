@@ -43,8 +43,6 @@ namespace anticrack::coupling
 
   namespace
   {
-    constexpr const char *weak_layer_directory = "weak_layer";
-
     struct Stage
     {
       std::string name;          ///< "weak layer", or the snowpack scene's stem
@@ -55,7 +53,8 @@ namespace anticrack::coupling
       double wall_s = 0;
       Json results;              ///< the headline of the stage's summary.json
       std::string scene_file;    ///< the scene the stage runs
-      Json material_cache;       ///< the weak layer: what the material cache gave or took (null: no cache)
+      Json material_cache;       ///< a weak layer: what the material cache gave or took (null: no cache)
+      Json weak_layer;           ///< a snowpack stage: its weak layer's stage and, from a pit, the pit's layer and class
     };
 
     /// What an earlier run of the pipeline recorded of its stages (its summary.json), by name; empty
@@ -204,6 +203,8 @@ namespace anticrack::coupling
              {"status", s.status},   {"wall_s", s.wall_s}, {"results", s.results}};
       if (!s.material_cache.is_null())
         j["material_cache"] = s.material_cache;
+      if (!s.weak_layer.is_null())
+        j["weak_layer"] = s.weak_layer;
       return j;
     }
 
@@ -229,13 +230,15 @@ namespace anticrack::coupling
     }
 
     /// The short version of the report, printed at the end of the run.
-    std::string short_report(const fs::path &dir, const std::vector<Stage> &stages)
+    std::string short_report(const fs::path &dir, const std::vector<Stage> &stages, std::size_t weak_layers)
     {
       std::ostringstream out;
       out << "anticrack pipeline: " << dir.string() << "\n";
-      const Json &w = stages.front().results;
-      if (w.contains("material"))
+      for (std::size_t k = 0; k < weak_layers; ++k)
       {
+        const Json &w = stages[k].results;
+        if (!w.contains("material"))
+          continue;
         const auto with_interval = [&](const char *entry, double scale, const char *unit) {
           const Json &e = w["material"][entry];
           std::string text = format_number(e["value"].get<double>() * scale, 3) + unit;
@@ -244,7 +247,8 @@ namespace anticrack::coupling
                     format_number(e["interval"][1].get<double>() * scale, 3) + "]";
           return text;
         };
-        out << "  weak layer (" << fs::path(w["material_file"].get<std::string>()).filename().string() << ", "
+        out << "  " << stages[k].name << " (" << (weak_layers > 1 ? stages[k].directory.filename().string() + "/" : "")
+            << fs::path(w["material_file"].get<std::string>()).filename().string() << ", "
             << format_number(100 * w.value("confidence", 0.95), 3) << " % intervals): p0 = "
             << with_interval("Compressive strength p0 [Pa]", 1e-3, " kPa")
             << ", beta = " << with_interval("Tensile strength ratio beta", 1, "")
@@ -256,7 +260,7 @@ namespace anticrack::coupling
             << " % at worst per angle (fit RMSE " << format_number(100 * w["material_point_replay"]["fit_relative_rmse"].get<double>(), 2) << " %)\n";
       }
       const Json &uncertainty = stages.back().results;
-      for (std::size_t k = 1; k + 1 < stages.size(); ++k)
+      for (std::size_t k = weak_layers; k + 1 < stages.size(); ++k)
       {
         const Json &r = stages[k].results;
         const Json intervals = uncertainty.contains(stages[k].name) ? uncertainty[stages[k].name]["answers"] : Json();
@@ -355,21 +359,45 @@ namespace anticrack::coupling
   void check_pipeline_scene(const std::string &file, int)
   {
     const PipelineScene scene = read_pipeline_scene(file);
-    std::cout << "pipeline " << file << ":\n  1. weak layer: " << scene.weak_layer_scene
-              << " (campaign, calibration, material in snow units: bond tensile strength "
-              << scene.snow.bond_tensile_strength << " Pa, bond modulus " << scene.snow.bond_modulus
-              << " Pa, grain diameter " << scene.snow.grain_diameter << " m, grain density "
-              << scene.snow.particle_density << " kg/m^3)\n";
-    for (const auto &[path, value] : scene.weak_layer_changes)
-      std::cout << "     (with " << path << " = " << value << ")\n";
-    for (const auto &[path, value] : scene.snow_ratio_changes)
-      std::cout << "     (at the snow's bond modulus over strength: " << path << " = " << value << ")\n";
+    const std::size_t weak_layers = scene.weak_layers.size();
+    std::cout << "pipeline " << file << ":\n";
+    for (std::size_t k = 0; k < weak_layers; ++k)
+    {
+      const WeakLayerVariant &v = scene.weak_layers[k];
+      std::cout << "  " << k + 1 << ". " << v.name << ": " << scene.weak_layer_scene
+                << " (campaign, calibration, material in snow units: bond tensile strength "
+                << scene.snow.bond_tensile_strength << " Pa, bond modulus " << scene.snow.bond_modulus
+                << " Pa, grain diameter " << scene.snow.grain_diameter << " m, grain density "
+                << scene.snow.particle_density << " kg/m^3)\n";
+      for (const auto &[path, value] : scene.weak_layer_changes)
+        std::cout << "     (with " << path << " = " << value << ")\n";
+      if (v.specimen)
+      {
+        std::cout << "     the specimen of the pits' weak layers of " << v.specimen->name() << " (solid fraction "
+                  << format_number(v.specimen->solid_fraction, 4) << ", " << specimen_particle_count(*v.specimen)
+                  << " spheres):\n";
+        for (const auto &[path, value] : v.specimen_changes)
+          std::cout << "     (" << path << " = " << value << ")\n";
+      }
+      for (const auto &[path, value] : scene.snow_ratio_changes)
+        std::cout << "     (at the snow's bond modulus over strength: " << path << " = " << value << ")\n";
+    }
     for (std::size_t k = 0; k < scene.snowpack_scenes.size(); ++k)
-      std::cout << "  " << k + 2 << ". " << scene.snowpack_scenes[k] << " with the calibrated weak layer\n";
+    {
+      const SnowpackWeakLayer &w = scene.snowpack_weak_layers[k];
+      std::cout << "  " << k + weak_layers + 1 << ". " << scene.snowpack_scenes[k] << " with the calibrated "
+                << scene.weak_layers[w.variant].name;
+      if (!w.record.is_null())
+        std::cout << " (its pit's layer " << w.record["layer"].get<int>() << ", " << w.record["grain_form"].get<std::string>()
+                  << ", " << format_number(w.record["density_kg_m3"].get<double>(), 4) << " kg/m^3, "
+                  << format_number(w.record["thickness_in_grains"].get<double>(), 3) << " grains of "
+                  << format_number(1e3 * w.grain_diameter, 3) << " mm)";
+      std::cout << "\n";
+    }
     for (const auto &[path, value] : scene.snowpack_changes)
       std::cout << "     (every snowpack scene with " << path << " = " << value << ")\n";
     if (scene.uncertainty)
-      std::cout << "  " << scene.snowpack_scenes.size() + 2
+      std::cout << "  " << scene.snowpack_scenes.size() + weak_layers + 1
                 << ". uncertainty: every snowpack scene again per calibrated parameter raised by one standard error\n";
     std::cout << "  then report.md, report.png and summary.json\n";
   }
@@ -398,8 +426,9 @@ namespace anticrack::coupling
         prepare_directory();
         plan_stages();
         record_the_scene();
-        if (const int code = run_weak_layer(); code != exit_success)
-          return code;
+        for (std::size_t k = 0; k < scene_.weak_layers.size(); ++k)
+          if (const int code = run_weak_layer(k); code != exit_success)
+            return code;
         run_snowpack_stages();
         run_uncertainty();
         return report();
@@ -418,14 +447,21 @@ namespace anticrack::coupling
       bool root_ = true;
       std::map<std::string, Json> before_;
       std::vector<std::string> names_;
-      std::vector<Stage> stages_; ///< the weak layer, the snowpack scenes, the uncertainty
+      std::vector<Stage> stages_; ///< the weak layers, the snowpack scenes, the uncertainty
       Json summary_;
-      fs::path material_;          ///< the weak layer's material in snow units
-      std::string material_sha256_;
+      std::vector<fs::path> materials_;         ///< each weak layer's material in snow units
+      std::vector<std::string> material_sha256s_;
       bool interrupted_ = false, failed_ = false;
 
-      Stage &weak() { return stages_.front(); }
+      Stage &weak(std::size_t k) { return stages_.at(k); }
       Stage &uncertainty() { return stages_.back(); }
+      /// The stage of snowpack scene 0 (after the weak layers').
+      std::size_t first_snowpack() const { return scene_.weak_layers.size(); }
+      const std::string &snowpack_scene_of(std::size_t stage) const { return scene_.snowpack_scenes.at(stage - first_snowpack()); }
+      const SnowpackWeakLayer &weak_layer_of(std::size_t stage) const
+      {
+        return scene_.snowpack_weak_layers.at(stage - first_snowpack());
+      }
 
       void refuse_an_earlier_pipeline() const
       {
@@ -458,8 +494,10 @@ namespace anticrack::coupling
           if (options_.overwrite && !options_.resume)
           {
             std::error_code error;
-            for (const char *name : {"summary.json", "report.md", "report.png", weak_layer_directory, "uncertainty"})
+            for (const char *name : {"summary.json", "report.md", "report.png", "uncertainty"})
               fs::remove_all(dir_ / name, error);
+            for (const WeakLayerVariant &v : scene_.weak_layers)
+              fs::remove_all(dir_ / v.directory, error);
             for (const std::string &name : names_)
               fs::remove_all(dir_ / name, error);
           }
@@ -470,14 +508,15 @@ namespace anticrack::coupling
 
       void plan_stages()
       {
+        for (std::size_t k = 0; k < scene_.weak_layers.size(); ++k)
         {
           Stage s;
-          s.name = "weak layer";
+          s.name = scene_.weak_layers[k].name;
           s.kind = "calibration";
-          s.directory = dir_ / weak_layer_directory;
+          s.directory = dir_ / scene_.weak_layers[k].directory;
           // With changes, the stage runs a copy of the scene that holds them, in its own folder.
-          s.scene_file = !scene_.weak_layer_changed() ? scene_.weak_layer_scene : (s.directory / "scene.prm").string();
-          s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene_) + snow_units_text(scene_.snow));
+          s.scene_file = !scene_.weak_layer_changed(k) ? scene_.weak_layer_scene : (s.directory / "scene.prm").string();
+          s.inputs_sha256 = util::sha256_hex(weak_layer_scene_text(scene_, k) + snow_units_text(scene_.snow));
           stages_.push_back(s);
         }
         for (std::size_t k = 0; k < names_.size(); ++k)
@@ -487,6 +526,10 @@ namespace anticrack::coupling
           s.kind = "snowpack";
           s.directory = dir_ / names_[k];
           s.scene_file = (s.directory / "scene.prm").string();
+          const SnowpackWeakLayer &w = scene_.snowpack_weak_layers[k];
+          s.weak_layer = {{"stage", scene_.weak_layers[w.variant].name}};
+          if (!w.record.is_null())
+            s.weak_layer["from_profile"] = w.record;
           stages_.push_back(s);
         }
         Stage s;
@@ -543,22 +586,23 @@ namespace anticrack::coupling
         failed_ = failed_ || st.status == "failed";
       }
 
-      /// 1. The weak layer: campaign, calibration, material in snow units (or the material cache's).
+      /// 1. Weak layer k: campaign, calibration, material in snow units (or the material cache's).
       /// Returns the calibration's exit code when it did not succeed.
-      int run_weak_layer()
+      int run_weak_layer(std::size_t k)
       {
-        Stage &w = weak();
-        material_ = w.directory / material_file_name(0, 1, true);
+        Stage &w = weak(k);
+        const fs::path material = w.directory / material_file_name(0, 1, true);
         const MaterialCache cache(options_.material_cache);
-        const std::string material_inputs_sha256 = util::sha256_hex(weak_layer_material_inputs(scene_));
+        const std::string material_inputs_sha256 = util::sha256_hex(weak_layer_material_inputs(scene_, k));
         const std::string cache_key = cache.enabled() ? MaterialCache::key(material_inputs_sha256) : "";
         const std::optional<fs::path> cached = cache.find(cache_key);
-        if (unchanged(w) && fs::exists(material_))
+        const std::string stage = "pipeline stage " + std::to_string(k + 1) + "/" + std::to_string(stages_.size()) + ", " + w.name;
+        if (unchanged(w) && fs::exists(material))
         {
           w.status = "completed earlier";
           w.wall_s = before_.at(w.name).value("wall_s", 0.0);
           if (root_)
-            std::cout << "pipeline stage 1/" << stages_.size() << ", weak layer: completed earlier, inputs unchanged\n";
+            std::cout << stage << ": completed earlier, inputs unchanged\n";
         }
         else if (cached)
         {
@@ -569,9 +613,8 @@ namespace anticrack::coupling
             w.material_cache = {{"used", *cached}, {"key", cache_key},
                                 {"calibrated_by", record.value("pipeline", "")},
                                 {"calibrated_at", record.value("calibrated_at", "")}};
-            std::cout << "pipeline stage 1/" << stages_.size() << ", weak layer: from the material cache, " << cached->string()
-                      << " (calibrated by " << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?")
-                      << ")\n";
+            std::cout << stage << ": from the material cache, " << cached->string() << " (calibrated by "
+                      << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?") << ")\n";
           }
           barrier();
           w.status = "completed";
@@ -579,13 +622,13 @@ namespace anticrack::coupling
         }
         else
         {
-          announce(0);
-          if (scene_.weak_layer_changed())
+          announce(k);
+          if (scene_.weak_layer_changed(k))
           {
             if (root_)
             {
               fs::create_directories(w.directory);
-              write_text_atomically(w.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene_); });
+              write_text_atomically(w.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene_, k); });
             }
             barrier();
           }
@@ -606,22 +649,23 @@ namespace anticrack::coupling
             return code;
           }
           if (cache.enabled() && root_)
-            store_in_cache(cache, cache_key, material_inputs_sha256);
+            store_in_cache(w, cache, cache_key, material_inputs_sha256);
         }
         barrier();
-        if (!fs::exists(material_))
-          throw InputError(scene_.weak_layer_scene + ": the calibration wrote no " + material_.filename().string() +
+        if (!fs::exists(material))
+          throw InputError(scene_.weak_layer_scene + ": the calibration wrote no " + material.filename().string() +
                            " (a pipeline takes a weak layer of one microstructure: leave Campaign/Microstructures "
                            "empty)");
         w.results = calibration_headline(w.directory);
         write_summary("running");
-        material_sha256_ = util::sha256_of_file(material_.string());
+        materials_.push_back(material);
+        material_sha256s_.push_back(util::sha256_of_file(material.string()));
         return exit_success;
       }
 
-      void store_in_cache(const MaterialCache &cache, const std::string &cache_key, const std::string &material_inputs_sha256)
+      void store_in_cache(Stage &w, const MaterialCache &cache, const std::string &cache_key,
+                          const std::string &material_inputs_sha256)
       {
-        Stage &w = weak();
         w.material_cache = {{"stored", (cache.directory() / cache_key).string()}, {"key", cache_key}};
         try
         {
@@ -637,16 +681,39 @@ namespace anticrack::coupling
         }
       }
 
+      /// The material file snowpack stage `stage` runs with, from its weak layer's `material` (the
+      /// calibrated one, or a perturbed one): that file, or, for a pit's grain size other than the
+      /// snow units', a copy with the pit's lengths written into `folder` (coupling/snow_units.h).
+      fs::path stage_material(std::size_t stage, const fs::path &material, const fs::path &folder) const
+      {
+        const SnowpackWeakLayer &w = weak_layer_of(stage);
+        if (!(w.grain_diameter > 0) || w.grain_diameter == scene_.snow.grain_diameter)
+          return fs::absolute(material).lexically_normal();
+        const fs::path file = fs::absolute(folder / ("pit_" + material.filename().string())).lexically_normal();
+        if (root_)
+        {
+          fs::create_directories(folder);
+          const fem::MaterialFile pit = with_grain_diameter(
+            fem::read_material_file_text(read_text_file(material.string()), material.string()), scene_.snow.grain_diameter,
+            w.grain_diameter, "the grain size of " + snowpack_scene_of(stage) + "'s pit; the material of " +
+                                material.string() + ", whose header says where it came from");
+          write_text_atomically(file.string(), [&](std::ostream &out) { out << fem::material_file_text(pit); });
+        }
+        barrier(); // the file is there before any rank reads it
+        return file;
+      }
+
       /// 2. The snowpack scenes with the calibrated weak layer.
       void run_snowpack_stages()
       {
         std::vector<std::size_t> to_run;
-        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+        for (std::size_t k = first_snowpack(); k + 1 < stages_.size(); ++k)
         {
           Stage &s = stages_[k];
-          const std::string text =
-            snowpack_scene_text(scene_, scene_.snowpack_scenes[k - 1], fs::absolute(material_).lexically_normal().string());
-          s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + material_sha256_);
+          const std::size_t w = weak_layer_of(k).variant;
+          const fs::path material = stage_material(k, materials_[w], s.directory);
+          const std::string text = snowpack_scene_text(scene_, snowpack_scene_of(k), material.string());
+          s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + util::sha256_of_file(material.string()));
           // Completed earlier: recorded so by the pipeline, or by the FE run itself when the pipeline
           // was killed before it could record it.
           const bool recorded = unchanged(s);
@@ -696,8 +763,8 @@ namespace anticrack::coupling
           u_stage.status = "not requested";
           return;
         }
-        std::string hashes = material_sha256_;
-        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+        std::string hashes = material_sha256s_.front();
+        for (std::size_t k = first_snowpack(); k + 1 < stages_.size(); ++k)
           hashes += stages_[k].inputs_sha256;
         u_stage.inputs_sha256 = util::sha256_hex(hashes);
         if (unchanged(u_stage))
@@ -712,12 +779,13 @@ namespace anticrack::coupling
         }
         if (failed_ || interrupted_)
           return;
-        const UncertainParameters u = uncertain_parameters(weak().directory);
+        // One weak layer (the scene reader refuses an uncertainty stage over several).
+        const UncertainParameters u = uncertain_parameters(weak(0).directory);
         const std::vector<UncertainParameters> rerun = reruns_of(u);
         // Its runs are the snowpack stages' again: as many rounds of `cores` runs as there are
         // runs over the cores, each as long as the longest snowpack stage.
         double longest = 0;
-        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+        for (std::size_t k = first_snowpack(); k + 1 < stages_.size(); ++k)
           longest = std::max(longest, stages_[k].wall_s);
         std::size_t runs = 0;
         for (const UncertainParameters &r : rerun)
@@ -748,8 +816,8 @@ namespace anticrack::coupling
       std::vector<UncertainParameters> reruns_of(const UncertainParameters &u) const
       {
         std::vector<UncertainParameters> rerun(stages_.size());
-        for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
-          rerun[j] = fem::read_snowpack_scene_text(read_scene_file(scene_.snowpack_scenes[j - 1]), scene_.snowpack_scenes[j - 1])
+        for (std::size_t j = first_snowpack(); j + 1 < stages_.size(); ++j)
+          rerun[j] = fem::read_snowpack_scene_text(read_scene_file(snowpack_scene_of(j)), snowpack_scene_of(j))
                          .analysis.type->yielding_weak_layer ?
                        u :
                        restricted_to(u, {"E"});
@@ -767,7 +835,8 @@ namespace anticrack::coupling
       UncertaintyJobs write_uncertainty_jobs(const UncertainParameters &u, const std::vector<UncertainParameters> &rerun)
       {
         Stage &u_stage = uncertainty();
-        const fem::MaterialFile calibrated = fem::read_material_file_text(read_text_file((material_).string()), material_.string());
+        const fem::MaterialFile calibrated =
+          fem::read_material_file_text(read_text_file(materials_.front().string()), materials_.front().string());
         UncertaintyJobs r;
         std::vector<FeJob> &jobs = r.jobs, &to_start = r.to_start;
         std::vector<std::pair<std::size_t, std::size_t>> &job_of = r.job_of;
@@ -782,14 +851,14 @@ namespace anticrack::coupling
             });
           }
           barrier(); // the material file is there before any rank hashes it
-          for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
+          for (std::size_t j = first_snowpack(); j + 1 < stages_.size(); ++j)
           {
             if (std::find(rerun[j].names.begin(), rerun[j].names.end(), u.names[k]) == rerun[j].names.end())
               continue;
             const std::string name = stages_[j].name + "_" + u.names[k];
             const fs::path run = u_stage.directory / name;
             const std::string text =
-              snowpack_scene_text(scene_, scene_.snowpack_scenes[j - 1], fs::absolute(file).lexically_normal().string()) +
+              snowpack_scene_text(scene_, snowpack_scene_of(j), stage_material(j, file, run).string()) +
               first_trial_near(stages_[j]);
             jobs.push_back({name, fe_run_options((run / "scene.prm").string(), run, options_)});
             job_of.emplace_back(j, k);
@@ -818,7 +887,7 @@ namespace anticrack::coupling
         const std::vector<FeJob> &jobs = runs.jobs;
         const std::vector<std::pair<std::size_t, std::size_t>> &job_of = runs.job_of;
         Json results;
-        for (std::size_t j = 1; j + 1 < stages_.size(); ++j)
+        for (std::size_t j = first_snowpack(); j + 1 < stages_.size(); ++j)
         {
           std::vector<Json> perturbed;
           for (std::size_t n = 0; n < jobs.size(); ++n)
@@ -846,8 +915,12 @@ namespace anticrack::coupling
       int report()
       {
         Json results;
-        results["weak_layer"] = weak().results;
-        for (std::size_t k = 1; k + 1 < stages_.size(); ++k)
+        if (scene_.weak_layers.size() == 1)
+          results["weak_layer"] = weak(0).results;
+        else
+          for (std::size_t k = 0; k < first_snowpack(); ++k)
+            results["weak_layers"][stages_[k].name] = stages_[k].results;
+        for (std::size_t k = first_snowpack(); k + 1 < stages_.size(); ++k)
           results["analyses"][stages_[k].name] = stages_[k].results;
         results["uncertainty"] = uncertainty().results;
         summary_["results"] = results;
@@ -856,7 +929,7 @@ namespace anticrack::coupling
         if (!root_)
           return code;
         run_python_script("pipeline_report.py", dir_.string(), "summary.json and every stage's outputs");
-        std::cout << "\n" << short_report(dir_, stages_) << std::flush;
+        std::cout << "\n" << short_report(dir_, stages_, first_snowpack()) << std::flush;
         return code;
       }
     };

@@ -11,6 +11,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -29,6 +30,10 @@ namespace anticrack::coupling
     constexpr const char *particle_density_entry = "Particle density [kg/m^3]";
     constexpr const char *bond_modulus_entry = "Bond modulus [Pa]";
     constexpr const char *grain_diameter_entry = "Grain diameter [m]";
+    constexpr const char *specimen_entry = "Weak layer specimen";
+    constexpr const char *density_class_entry = "Density class width [kg/m^3]";
+    constexpr const char *thickness_classes_entry = "Thickness classes [grains]";
+    constexpr const char *lateral_extent_entry = "Lateral extent [thicknesses]";
 
     /// The weak layer's DEM scene, read as its kind reads it with `changes` (throws InputError).
     dem::SceneParameters weak_layer_dem_scene(const std::string &file,
@@ -39,15 +44,49 @@ namespace anticrack::coupling
       return dem::read_scene(file, dem::SceneKind::campaign, changes);
     }
 
-    /// The weak layer's scene text with the user's changes, then the snow ratio's; `by` names who
-    /// added them in the blocks' comments, `on` (may be empty) what the user's changes apply to.
-    std::string weak_layer_text(const PipelineScene &scene, const std::string &by, const std::string &on)
+    /// Weak layer k's scene text with the user's changes, then its specimen's, then the snow ratio's;
+    /// `by` names who added them in the blocks' comments, `on` (may be empty) what the user's changes
+    /// apply to.
+    std::string weak_layer_text(const PipelineScene &scene, std::size_t k, const std::string &by, const std::string &on)
     {
       const std::string user = scene_text_with_changes(read_scene_file(scene.weak_layer_scene), scene.weak_layer_changes,
                                                        by + ": Pipeline/Weak layer scene changes" + on);
-      return scene_text_with_changes(user, scene.snow_ratio_changes,
+      const WeakLayerVariant &v = scene.weak_layers.at(k);
+      const std::string specimen =
+        !v.specimen ? user :
+                      scene_text_with_changes(user, v.specimen_changes,
+                                              by + ": the specimen of the pits' weak layers of " + v.specimen->name() +
+                                                " (Pipeline/Weak layer specimen = profile; coupling/profile_specimen.h)");
+      return scene_text_with_changes(specimen, scene.snow_ratio_changes,
                                      by + ": the DEM at the snow's bond modulus over tensile strength (Snow "
                                           "units; coupling/snow_units.h)");
+    }
+
+    /// The weak layers to calibrate: the scene's own, or one per class of the pits' (`pits`, one per
+    /// snowpack scene, with Weak layer specimen = profile), each snowpack scene pointed at its own.
+    void add_weak_layers(PipelineScene &scene, const std::vector<ProfileWeakLayer> &pits)
+    {
+      if (!scene.specimen_from_profile)
+      {
+        scene.weak_layers = {{"weak layer", "weak_layer", std::nullopt, {}}};
+        return;
+      }
+      for (std::size_t k = 0; k < pits.size(); ++k)
+      {
+        const ProfileSpecimen specimen = profile_specimen(pits[k], scene.specimen_rules, scene.snow.particle_density);
+        auto same = std::find_if(scene.weak_layers.begin(), scene.weak_layers.end(),
+                                 [&](const WeakLayerVariant &v) { return *v.specimen == specimen; });
+        if (same == scene.weak_layers.end())
+          same = scene.weak_layers.insert(scene.weak_layers.end(),
+                                          {"weak layer " + specimen.name(), specimen.directory(), specimen, {}});
+        SnowpackWeakLayer &w = scene.snowpack_weak_layers[k];
+        w.variant = static_cast<std::size_t>(same - scene.weak_layers.begin());
+        w.grain_diameter = pits[k].grain_size;
+        w.record = specimen_record(pits[k], specimen);
+      }
+      // One class: the pipeline's usual stage and folder.
+      if (scene.weak_layers.size() == 1)
+        scene.weak_layers.front().name = "weak layer", scene.weak_layers.front().directory = "weak_layer";
     }
 
     /// "a scene of kind `campaign`" or "a scene that does not say its kind".
@@ -85,6 +124,29 @@ namespace anticrack::coupling
                       "sensitivities: every snowpack scene again with each calibrated parameter raised by one "
                       "standard error, for intervals on its answers (coupling/pipeline_uncertainty.h); none: the "
                       "answers without intervals.");
+    prm.declare_entry(specimen_entry, "scene", Patterns::Selection("scene|profile"),
+                      "scene: the weak layer scene's sample under every snowpack scene; profile: each snowpack "
+                      "scene's weak layer from its pit (Snowpack/Profile): the sample's solid fraction from the "
+                      "layer's density, its thickness in grains from the layer's thickness over its grain size, "
+                      "the snow units' length from the grain size, one calibration per class of pits "
+                      "(subsection Profile specimen; coupling/profile_specimen.h).");
+    prm.enter_subsection("Profile specimen");
+    prm.declare_entry(density_class_entry, "25", Patterns::Double(1),
+                      "Delta rho: the pits' weak layers are sampled at the centre of their density's class, "
+                      "Delta rho round(rho / Delta rho), so that pits of a class share one calibration. 25 kg/m^3 "
+                      "is finer than the scatter of a density inferred from hand hardness (Geldsetzer & Jamieson "
+                      "2000). Units: kg/m^3.");
+    prm.declare_entry(thickness_classes_entry, "5, 10", Patterns::List(Patterns::Double(3), 1),
+                      "the specimen's thicknesses in grains, ascending: a layer of n = thickness / grain size "
+                      "grains is sampled at the largest class at or below n (the smallest for a thinner layer). "
+                      "A thick layer's collapse localises in a compaction band (Ritter et al. 2020), its "
+                      "strength is the bulk's, and the FE crack band carries the softening from the specimen's "
+                      "thickness to the element rows. Dimensionless.");
+    prm.declare_entry(lateral_extent_entry, "2.8", Patterns::Double(1),
+                      "c: the specimen's lateral edges over its thickness (periodic laterally); the strengths "
+                      "level off from about 2.8 thicknesses (docs/work_precision.md, the lateral-extent study). "
+                      "Dimensionless.");
+    prm.leave_subsection();
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
     prm.declare_entry(bond_strength_entry, "0", Patterns::Double(0),
@@ -122,14 +184,14 @@ namespace anticrack::coupling
     return options;
   }
 
-  std::string weak_layer_scene_text(const PipelineScene &scene)
+  std::string weak_layer_scene_text(const PipelineScene &scene, std::size_t k)
   {
-    return weak_layer_text(scene, "by the pipeline " + scene.file, ", on " + scene.weak_layer_scene);
+    return weak_layer_text(scene, k, "by the pipeline " + scene.file, ", on " + scene.weak_layer_scene);
   }
 
-  std::string weak_layer_material_inputs(const PipelineScene &scene)
+  std::string weak_layer_material_inputs(const PipelineScene &scene, std::size_t k)
   {
-    return weak_layer_text(scene, "by the pipeline", "") + snow_units_text(scene.snow);
+    return weak_layer_text(scene, k, "by the pipeline", "") + snow_units_text(scene.snow);
   }
 
   std::string snow_units_text(const SnowUnits &snow)
@@ -189,7 +251,18 @@ namespace anticrack::coupling
     scene.snowpack_changes = entry_changes_in_list(prm.get("Snowpack scene changes"), "Pipeline/Snowpack scene changes", problems);
     scene.weak_layer_changes =
       entry_changes_in_list(prm.get("Weak layer scene changes"), "Pipeline/Weak layer scene changes", problems);
+    scene.specimen_from_profile = prm.get(specimen_entry) == "profile";
+    prm.enter_subsection("Profile specimen");
+    scene.specimen_rules.density_class_width = prm.get_double(density_class_entry);
+    const std::string thickness_classes = prm.get(thickness_classes_entry);
+    for (const std::string &c : dealii::Utilities::split_string_list(thickness_classes))
+      scene.specimen_rules.thickness_classes.push_back(dealii::Utilities::string_to_double(c));
+    scene.specimen_rules.lateral_extent = prm.get_double(lateral_extent_entry);
     prm.leave_subsection();
+    prm.leave_subsection();
+    if (!std::is_sorted(scene.specimen_rules.thickness_classes.begin(), scene.specimen_rules.thickness_classes.end()))
+      problems.add(std::string("Pipeline/Profile specimen/") + thickness_classes_entry, thickness_classes,
+                   "must be ascending");
     prm.enter_subsection("Snow units");
     scene.snow.bond_tensile_strength = prm.get_double(bond_strength_entry);
     scene.snow.particle_density = prm.get_double(particle_density_entry);
@@ -222,9 +295,11 @@ namespace anticrack::coupling
                                    "; it must be of kind `calibration` or `campaign` (calibrated with the "
                                    "default options)");
     }
+    std::vector<ProfileWeakLayer> pits; // the pits' weak layers, with Weak layer specimen = profile
     for (const std::string &s : scene.snowpack_scenes)
     {
       const std::string entry = std::string("Pipeline/") + snowpack_entry;
+      scene.snowpack_weak_layers.emplace_back();
       if (!check_exists(s, entry))
         continue;
       if (scene_kind_in_file(s) != "snowpack")
@@ -240,8 +315,24 @@ namespace anticrack::coupling
       if (snowpack.snowpack.weak_layer.model != fem::Layer::Model::cohesive_cam_clay && snowpack.analysis.type->yielding_weak_layer)
         problems.add(entry, "names " + s + ", whose weak layer is not a cohesive Cam-Clay layer (Snowpack/Weak layer/Model); "
                             "only an energy release rate scene may have an elastic one");
+      if (scene.specimen_from_profile)
+      {
+        try
+        {
+          pits.push_back(profile_weak_layer(snowpack.profile_record, s));
+        }
+        catch (const InputError &e)
+        {
+          problems.add(std::string("Pipeline/") + specimen_entry + " = profile", e.what());
+        }
+      }
     }
+    if (scene.specimen_from_profile && scene.uncertainty && scene.snowpack_scenes.size() > 1)
+      problems.add(std::string("Pipeline/") + specimen_entry + " = profile",
+                   "with several snowpack scenes, each may have a weak layer of its own class: set Pipeline/Uncertainty "
+                   "= none (the uncertainty stage carries one calibration's intervals)");
     problems.throw_if_any();
+    add_weak_layers(scene, pits);
     try
     {
       weak_layer_calibration(scene, scene.weak_layer_scene, scene.weak_layer_changes);
@@ -257,12 +348,42 @@ namespace anticrack::coupling
       snow_ratio_changes(weak_layer_dem_scene(scene.weak_layer_scene, scene.weak_layer_changes), scene.snow,
                          "Invalid scene file <" + file + ">: Snow units with Pipeline/" + weak_layer_entry + " = " +
                            scene.weak_layer_scene);
-    if (!scene.snow_ratio_changes.empty())
+    const dem::SceneParameters weak_layer_dem = weak_layer_dem_scene(scene.weak_layer_scene, scene.weak_layer_changes);
+    for (WeakLayerVariant &v : scene.weak_layers)
     {
-      auto changes = scene.weak_layer_changes;
-      changes.insert(changes.end(), scene.snow_ratio_changes.begin(), scene.snow_ratio_changes.end());
-      weak_layer_calibration(scene, scene.weak_layer_scene, changes);
+      if (!v.specimen)
+        continue;
+      const std::string where = "Invalid scene file <" + file + ">: Pipeline/" + specimen_entry + " = profile, class " +
+                                v.specimen->name() + ", with Pipeline/" + weak_layer_entry + " = " + scene.weak_layer_scene;
+      v.specimen_changes = specimen_changes(*v.specimen, weak_layer_dem, where);
     }
+    // Each weak layer's scene as its stage runs it; the classes' problems all at once.
+    Problems specimens("scene file <" + file + ">: Pipeline/" + specimen_entry + " = profile with Pipeline/" +
+                       weak_layer_entry + " = " + scene.weak_layer_scene);
+    for (const WeakLayerVariant &v : scene.weak_layers)
+    {
+      if (scene.snow_ratio_changes.empty() && v.specimen_changes.empty())
+        continue;
+      auto changes = scene.weak_layer_changes;
+      changes.insert(changes.end(), v.specimen_changes.begin(), v.specimen_changes.end());
+      changes.insert(changes.end(), scene.snow_ratio_changes.begin(), scene.snow_ratio_changes.end());
+      try
+      {
+        weak_layer_calibration(scene, scene.weak_layer_scene, changes);
+      }
+      catch (const InputError &e)
+      {
+        if (!v.specimen)
+          throw;
+        std::string pits_of_class;
+        for (std::size_t k = 0; k < scene.snowpack_scenes.size(); ++k)
+          if (&scene.weak_layers[scene.snowpack_weak_layers[k].variant] == &v)
+            pits_of_class += (pits_of_class.empty() ? "" : ", ") + fs::path(scene.snowpack_scenes[k]).filename().string();
+        specimens.add("the specimen of class " + v.specimen->name() + " (the weak layers of " + pits_of_class +
+                      ") cannot be made: " + e.what());
+      }
+    }
+    specimens.throw_if_any();
     return scene;
   }
 } // namespace anticrack::coupling

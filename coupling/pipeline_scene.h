@@ -18,8 +18,12 @@
 #pragma once
 
 #include "coupling/calibrate.h"
+#include "coupling/profile_specimen.h"
 #include "coupling/snow_units.h"
 
+#include <nlohmann/json.hpp>
+
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +34,26 @@ namespace dealii
 
 namespace anticrack::coupling
 {
+  /// A weak layer the pipeline calibrates: the weak layer scene's own specimen, or that scene with
+  /// the specimen of one class of the pits' weak layers (Pipeline/Weak layer specimen = profile,
+  /// coupling/profile_specimen.h).
+  struct WeakLayerVariant
+  {
+    std::string name;      ///< its stage: "weak layer", or "weak layer 150 kg/m^3, 10 grains" of several
+    std::string directory; ///< its folder in the pipeline's: weak_layer, or weak_layer_150kgm3_10grains of several
+    std::optional<ProfileSpecimen> specimen;
+    /// coupling::specimen_changes of the specimen, set after the user's Weak layer scene changes.
+    std::vector<std::pair<std::string, std::string>> specimen_changes;
+  };
+
+  /// The weak layer of one snowpack scene.
+  struct SnowpackWeakLayer
+  {
+    std::size_t variant = 0;   ///< into PipelineScene::weak_layers
+    double grain_diameter = 0; ///< the pit's grain size [m]; 0: Snow units/Grain diameter [m]
+    nlohmann::ordered_json record; ///< coupling::specimen_record, or null
+  };
+
   struct PipelineScene
   {
     std::string file;                         ///< the pipeline scene itself
@@ -46,9 +70,18 @@ namespace anticrack::coupling
     /// The entries that run the weak layer's DEM at the snow's bond modulus over strength
     /// (coupling::snow_ratio_changes), set after weak_layer_changes; empty at the DEM's own ratio.
     std::vector<std::pair<std::string, std::string>> snow_ratio_changes;
+    /// Pipeline/Weak layer specimen = profile: each snowpack scene's weak layer is sampled at its
+    /// pit's density and thickness in grains, one calibration per class (specimen_rules).
+    bool specimen_from_profile = false;
+    SpecimenRules specimen_rules;
+    std::vector<WeakLayerVariant> weak_layers;           ///< one, or one per class of the pits'
+    std::vector<SnowpackWeakLayer> snowpack_weak_layers; ///< per snowpack scene
 
-    /// Whether the weak layer's stage runs a copy of its scene (with changes of either kind).
-    [[nodiscard]] bool weak_layer_changed() const { return !weak_layer_changes.empty() || !snow_ratio_changes.empty(); }
+    /// Whether weak layer k's stage runs a copy of its scene (with changes of any kind).
+    [[nodiscard]] bool weak_layer_changed(std::size_t k) const
+    {
+      return !weak_layer_changes.empty() || !snow_ratio_changes.empty() || !weak_layers[k].specimen_changes.empty();
+    }
   };
 
   /// The options of the weak layer's calibration: those of the calibration scene `file` (the
@@ -57,15 +90,15 @@ namespace anticrack::coupling
   CalibrateOptions weak_layer_calibration(const PipelineScene &scene, const std::string &file,
                                           const std::vector<std::pair<std::string, std::string>> &changes = {});
 
-  /// The text of the weak layer's scene as the pipeline runs it: the file, then a block setting each
-  /// of scene.weak_layer_changes, then one of scene.snow_ratio_changes (the last setting of an
-  /// entry wins).
-  std::string weak_layer_scene_text(const PipelineScene &scene);
+  /// The text of weak layer k's scene as the pipeline runs it: the file, then a block setting each
+  /// of scene.weak_layer_changes, then one of its specimen's changes, then one of
+  /// scene.snow_ratio_changes (the last setting of an entry wins).
+  std::string weak_layer_scene_text(const PipelineScene &scene, std::size_t k);
 
-  /// What decides the weak layer's material, and nothing of where it is asked for: the weak
-  /// layer's scene text with the pipeline's changes (the block's comment naming no pipeline) and
-  /// the snow units. The material cache's key hashes it (coupling/material_cache.h).
-  std::string weak_layer_material_inputs(const PipelineScene &scene);
+  /// What decides weak layer k's material, and nothing of where it is asked for: its scene text
+  /// with the pipeline's changes (the blocks' comments naming no pipeline) and the snow units. The
+  /// material cache's key hashes it (coupling/material_cache.h).
+  std::string weak_layer_material_inputs(const PipelineScene &scene, std::size_t k);
 
   /// The snow units as the pipeline's stage hashes record them.
   std::string snow_units_text(const SnowUnits &snow);

@@ -111,4 +111,21 @@ namespace anticrack::coupling
     file.comment.push_back("collapse, the lock-up modulus and the energy densities times S, the lock-up strain unchanged.");
     return file;
   }
+
+  fem::MaterialFile with_grain_diameter(const fem::MaterialFile &snow_units, double from, double to,
+                                        const std::string &why)
+  {
+    using fem::material_file_number;
+    if (!(from > 0) || !(to > 0))
+      throw InputError("grain diameters must be > 0 to rescale a material's lengths (are " + material_file_number(from) +
+                       " m and " + material_file_number(to) + " m)");
+    fem::MaterialFile file = snow_units;
+    file.material.reference_thickness *= to / from;
+    file.comment.push_back("");
+    file.comment.push_back("For grains of " + material_file_number(to) + " m (" + why + "), not " +
+                           material_file_number(from) + " m: the reference thickness times");
+    file.comment.push_back(material_file_number(to / from) + ", " + material_file_number(file.material.reference_thickness) +
+                           " m (lengths scale with the grains; stresses and strains do not).");
+    return file;
+  }
 } // namespace anticrack::coupling

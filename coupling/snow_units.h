@@ -76,4 +76,11 @@ namespace anticrack::coupling
   /// campaign was not run at the snow's Ē/σ̄_c (to 1e-9): its response would not be the snow's.
   fem::MaterialFile in_snow_units(const fem::MaterialFile &dem_units, const params::MicrostructureCalibration &c,
                                   const SnowUnits &snow);
+
+  /// `snow_units` (a material file in snow units for grains of diameter `from` [m]) for grains of
+  /// diameter `to`: its only length, the reference thickness, times to / from (the grains' size is a
+  /// unit, above), the rest unchanged; the comment says so. A pit's own grain size under a weak
+  /// layer calibrated once per class (coupling/profile_specimen.h).
+  fem::MaterialFile with_grain_diameter(const fem::MaterialFile &snow_units, double from, double to,
+                                        const std::string &why);
 } // namespace anticrack::coupling

@@ -16,7 +16,8 @@ import os
 import re
 import sys
 
-from scene_study import ROOT, check_scenes, fit_template_to_test, template, write_pipeline, write_refused
+from scene_study import (ROOT, check_scenes, fit_template_to_test, template, write_own_weak_layer_pipeline,
+                         write_pipeline, write_refused)
 
 FIELD = os.path.join(ROOT, "scenes", "field")
 DATA = os.path.join(ROOT, "data", "field_psts")
@@ -62,7 +63,25 @@ def main():
 #   anticrack run scenes/field/field_psts.prm -o out/field --material-cache out/material_cache &&
 #     scripts/field_score.py out/field
 """, kept)
-    print(f"{len(kept)} scenes, {len(refused)} refused (scenes/field/refused.md); scenes/field/field_psts.prm")
+    own, own_refused = write_own_weak_layer_pipeline(
+        anticrack, os.path.join(FIELD, "field_psts_own_weak_layer.prm"),
+        lambda n: f"""# The field study with each pit's own weak layer: the scenes of scenes/field/field_psts.prm whose
+# pit gives its failed layer's density and grain size and whose class the weak layer scene can sample
+# ({n} of {len(kept)}; scenes/field/refused_own_weak_layer.md says why the others not), each weak layer
+# sampled at its pit's density and thickness in grains (Pipeline/Weak layer specimen = profile,
+# docs/pipeline.md), one calibration per class. Written by scripts/field_scenes.py.
+#
+#   anticrack run scenes/field/field_psts_own_weak_layer.prm -o out/field_own --material-cache out/material_cache &&
+#     scripts/field_score.py out/field_own
+""", kept)
+    with open(os.path.join(FIELD, "refused_own_weak_layer.md"), "w") as f:
+        f.write("# Field PSTs without their own weak layer\n\nWritten by scripts/field_scenes.py: the scenes of "
+                "scenes/field/field_psts.prm that scenes/field/field_psts_own_weak_layer.prm leaves out, with the "
+                "reason `anticrack check` gives.\n\n| test | observed | reason |\n|---|---|---|\n")
+        for name, reason in own_refused:
+            f.write(f"| {name[:-4]} | {observed[name]} | {reason.replace('|', '/')} |\n")
+    print(f"{len(kept)} scenes, {len(refused)} refused (scenes/field/refused.md); scenes/field/field_psts.prm; "
+          f"{len(own)} with their own weak layer (scenes/field/field_psts_own_weak_layer.prm)")
 
 
 if __name__ == "__main__":

@@ -69,14 +69,21 @@ def fmt(value, digits=3):
     return "—" if value is None else f"{value:.{digits}g}"
 
 
-def weak_layer_section(run_dir, summary):
-    weak = os.path.join(run_dir, "weak_layer")
+def calibration_stages(summary):
+    """The weak layers' stages: one, or one per class of the pits' weak layers (Pipeline/Weak layer
+    specimen = profile)."""
+    return [s for s in summary["stages"] if s["kind"] == "calibration"]
+
+
+def weak_layer_section(run_dir, summary, stage):
+    weak = os.path.join(run_dir, stage["directory"])
     snow = material_entries(os.path.join(weak, "material_snow.prm"))
     dem = material_entries(os.path.join(weak, "material.prm"))
     calibration = json.load(open(os.path.join(weak, "summary.json")))["calibration"]
     confidence = float(snow.get("Confidence", 0.95))
-    lines = ["## Weak layer", "",
-             f"From `{summary['stages'][0]['scene']}`: material `weak_layer/material_snow.prm` "
+    several = len(calibration_stages(summary)) > 1
+    lines = [f"## Weak layer{': ' + stage['name'][len('weak layer '):] if several else ''}", "",
+             f"From `{stage['scene']}`: material `{stage['directory']}/material_snow.prm` "
              f"(snow units; `material.prm` is the same in the DEM's units). Intervals: "
              f"{100 * confidence:g} % (surface: covariance of its fit; elasticity and softening: over the "
              f"realizations).", "",
@@ -248,12 +255,10 @@ def failed_layer_against_model(run_dir, summary, stages):
     """The failed layer of each pit (grain form, size, density) beside what the model's weak layer
     has: the calibrated material's density and the snow units' grain diameter."""
     units = summary.get("snow_units") or {}
-    material = os.path.join(run_dir, "weak_layer", "material_snow.prm")
-    snow = material_entries(material) if os.path.exists(material) else {}
-    model_density = float(snow["Density [kg/m^3]"]) if "Density [kg/m^3]" in snow else None
-    model_grain = units.get("grain_diameter_m")
+    weak_directory = {s["name"]: s["directory"] for s in calibration_stages(summary)}
     lines = ["", "The failed layer against the model's weak layer (density: the calibrated material's, "
-             "the DEM's solid fraction times the grains'; grain size: the pipeline's Snow units/Grain diameter [m]):",
+             "the DEM's solid fraction times the grains'; grain size: the pit's where the weak layer is the "
+             "pit's own (Pipeline/Weak layer specimen = profile), else the pipeline's Snow units/Grain diameter [m]):",
              "", "| stage | failed layer | grain size [mm]: pit | model | density [kg/m³]: pit | model |",
              "|---|---|---|---|---|---|"]
     for stage in stages:
@@ -262,6 +267,11 @@ def failed_layer_against_model(run_dir, summary, stages):
         weak = next((l for l in profile.get("layers", []) if l.get("role") == "weak"), None)
         if weak is None:
             continue
+        own = stage.get("weak_layer", {})
+        material = os.path.join(run_dir, weak_directory.get(own.get("stage"), "weak_layer"), "material_snow.prm")
+        snow = material_entries(material) if os.path.exists(material) else {}
+        model_density = float(snow["Density [kg/m^3]"]) if "Density [kg/m^3]" in snow else None
+        model_grain = own["from_profile"]["grain_size_m"] if "from_profile" in own else units.get("grain_diameter_m")
         density = weak.get("density_kg_m3")
         pit_density = (f"{fmt(density['value'])} ({'measured' if density['measured'] else 'inferred'})"
                        if density else f"— ({weak.get('density_note', 'not recorded')})")
@@ -295,12 +305,16 @@ def plane(ax, points, fits, x, y, scale, title, xlabel, ylabel):
 
 def plot(run_dir, summary, scale, path):
     fig, axes = plt.subplots(2, 2, figsize=(13, 10))
-    with h5py.File(os.path.join(run_dir, "weak_layer", "calibration.h5"), "r") as f:
+    # The first weak layer's surface (of several, the others' are in their folders' plots).
+    first = calibration_stages(summary)[0]
+    several = "" if len(calibration_stages(summary)) == 1 else f" ({first['name']})"
+    with h5py.File(os.path.join(run_dir, first["directory"], "calibration.h5"), "r") as f:
         m = f["microstructures/m0"]
         plane(axes[0, 0], m["points"], m["fits/p_q_path"], "p_path", "q_path", scale,
-              "(p, q) of the FE point on the tests' paths: the FE's surface", "p [kPa] (compression +)", "q [kPa]")
+              "(p, q) of the FE point on the tests' paths: the FE's surface" + several, "p [kPa] (compression +)",
+              "q [kPa]")
         plane(axes[0, 1], m["points"], m["fits/sigma_tau"], "sigma", "tau", scale,
-              "(σ, τ) base stresses (Ritter et al. 2020)", "σ [kPa] (compression +)", "τ [kPa]")
+              "(σ, τ) base stresses (Ritter et al. 2020)" + several, "σ [kPa] (compression +)", "τ [kPa]")
     ax = axes[1, 0]
     for k, s in enumerate(snowpack_stages(summary)):
         # A critical-cut search's series is that of its shortest ending trial.
@@ -336,12 +350,16 @@ def main():
     args = parser.parse_args()
     run_dir = args.directory
     summary = json.load(open(os.path.join(run_dir, "summary.json")))
-    weak_lines, scale = weak_layer_section(run_dir, summary)
+    weak_lines, scales = [], []
+    for stage in calibration_stages(summary):
+        section, scale = weak_layer_section(run_dir, summary, stage)
+        weak_lines += section + [""]
+        scales.append(scale)
     lines = [f"# Pipeline report: `{summary['scene']['file']}`", "",
              f"Status: {summary['status']}; {len(summary['stages'])} stages; outputs in `{run_dir}`.", "",
-             "![report](report.png)", ""] + weak_lines + [""] + stage_section(run_dir, summary)
+             "![report](report.png)", ""] + weak_lines + stage_section(run_dir, summary)
     write_text(os.path.join(run_dir, "report.md"), "\n".join(lines) + "\n")
-    plot(run_dir, summary, scale, os.path.join(run_dir, "report.png"))
+    plot(run_dir, summary, scales[0], os.path.join(run_dir, "report.png"))
     print(f"wrote {os.path.join(run_dir, 'report.md')} and report.png")
     return 0
 

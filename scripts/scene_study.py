@@ -41,10 +41,11 @@ def write_refused(directory, what, writer, rows):
             f.write(f"| {name} | {observed} | {reason.replace('|', '/')} |\n")
 
 
-def write_pipeline(path, header, scenes):
+def write_pipeline(path, header, scenes, specimen="scene"):
     """The study of `scenes` (names relative to the pipeline's folder): the default pipeline's weak
-    layer and conversion to snow, calibrated once, then every scene at the default pipeline's mesh,
-    without sensitivity runs. `header`: the comment block that says what the study is."""
+    layer and conversion to snow, calibrated once (specimen "scene"), or once per class of the pits'
+    weak layers (specimen "profile": Pipeline/Weak layer specimen), then every scene at the default
+    pipeline's mesh, without sensitivity runs. `header`: the comment block that says what the study is."""
     default = open(os.path.join(ROOT, "scenes", "pipeline.prm")).read()
     changes = re.search(r"set Snowpack scene changes = (.*)", default).group(1).strip()
     snow = default[default.index("subsection Snow units"):]
@@ -59,9 +60,41 @@ subsection Pipeline
   set Snowpack scenes  = {listing}
   set Snowpack scene changes = {changes}
   set Uncertainty      = none
+  set Weak layer specimen = {specimen}
 end
 
 {snow}""")
+
+
+def write_own_weak_layer_pipeline(anticrack, path, header_of, scenes):
+    """write_pipeline with each pit's own weak layer (specimen "profile"), keeping the scenes whose pit
+    the pipeline accepts: `anticrack check` names a refused pit (no density, no grain size) or the
+    pits of a class the weak layer scene cannot sample; those are left out and the check repeated.
+    header_of(n): the comment block for n kept scenes. Returns (kept, [(scene, reason)])."""
+    kept, refused = list(scenes), []
+    while True:
+        write_pipeline(path, header_of(len(kept)), kept, "profile")
+        check = subprocess.run([anticrack, "check", path], capture_output=True, text=True)
+        if check.returncode == 0:
+            return kept, refused
+        message = check.stderr or check.stdout
+        problems = [p for p in re.split(r"\n  - ", message)[1:]]
+        dropped = []
+        for problem in problems:
+            text = " ".join(problem.split()).replace(ROOT + "/", "")
+            named = re.findall(r"snowpack scene \S*?([^/\s]+\.prm):", problem)
+            named += [n for group in re.findall(r"\(the weak layers of ([^)]*)\)", problem) for n in group.split(", ")]
+            text = re.sub(r"\s*-{5,}\s*$", "", text)
+            if not named and refused and refused[-1][0] in dropped:
+                # A class's reason, listed by the weak layer scene's reader on the lines after it.
+                refused[-1] = (refused[-1][0], refused[-1][1] + ": " + text)
+            for name in named:
+                if name in kept and name not in dropped:
+                    dropped.append(name)
+                    refused.append((name, text))
+        if not dropped:
+            raise RuntimeError(f"{path}: `anticrack check` refuses the pipeline for a reason that names no scene:\n{message}")
+        kept = [n for n in kept if n not in dropped]
 
 
 # The template's illustrative weak layer collapses by 3 mm of its 2 cm (a strain of 0.15); in a study

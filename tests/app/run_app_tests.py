@@ -468,7 +468,8 @@ def threads(work):
 @case
 def check_and_params(work):
     """`check` accepts every scenes/*.prm and the field and published studies' pipelines
-    (scenes/field/field_psts.prm, scenes/published/published_psts.prm, which name their scenes) and
+    (scenes/field/field_psts.prm, its pits' own weak layers scenes/field/field_psts_own_weak_layer.prm,
+    scenes/published/published_psts.prm, which name their scenes) and
     writes nothing; `params --format prm` is a valid scene."""
     names = sorted(n for n in os.listdir(os.path.join(SOURCE, "scenes")) if n.endswith(".prm"))
     check({"uniaxial_compression.prm", "mixed_mode_clump.prm"} <= set(names), f"scenes/ holds {names}")
@@ -476,6 +477,7 @@ def check_and_params(work):
     # pipeline checks each of its scenes.
     scenes = [os.path.join(SOURCE, "scenes", n) for n in names] + [
         os.path.join(SOURCE, "scenes", "field", "field_psts.prm"),
+        os.path.join(SOURCE, "scenes", "field", "field_psts_own_weak_layer.prm"),
         os.path.join(SOURCE, "scenes", "published", "published_psts.prm")]
     cwd = os.path.join(work, "cwd")
     os.makedirs(cwd)
@@ -2306,6 +2308,83 @@ def pipeline_files(work):
         "  set Weak layer scene changes = Calibration/Bootstrap resamples = 0", "end",
         *SNOW_UNITS]) + "\n")
     return pipeline, weak, flat, steep
+
+
+@case
+def pipeline_profile_specimen(work):
+    """Pipeline/Weak layer specimen = profile (coupling/profile_specimen.h): each pit's weak layer sampled
+    at its own density and thickness in grains, one calibration per class. Three field pits of the
+    shared data (their failed layers: FC 264 kg/m^3 of 1 mm grains, DH 276 kg/m^3 of 4 mm, FC 250
+    kg/m^3 of 1.5 mm; data/field_psts) under the tiny campaign, in two classes of 25 kg/m^3 (275 and
+    250) and one thickness class (8 grains; cubes, lateral extent 1, to keep the tiny specimens as
+    well fitted as the tiny pipeline's). Checked against the conversion's own arithmetic, written
+    out here: the sample's phi = class / 917, its box 8 d on a side with d the weak-layer scene's sphere
+    diameter, N = 6 phi 8^3 / pi; the material's density the class's; a pit's material its class's
+    with the reference thickness times its grain size over Snow units/Grain diameter [m] (so the DH
+    pit's is 4x the FC pit's of the same class), and each stage records its pit's layer and class.
+    A pit whose weak layer has no density (surface hoar, which Geldsetzer & Jamieson (2000) do not
+    cover) is refused, naming the pit and the layer, and so is the uncertainty stage over several pits."""
+    weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
+                 "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
+    pits = ["19602_pst1", "50993_pst1", "35548_pst1"]
+    for pit in pits + ["17844_pst1"]:
+        text = open(os.path.join(SOURCE, "scenes", "field", f"pit_{pit}.prm")).read()
+        write(os.path.join(work, f"pit_{pit}.prm"), text.replace("../../data/", os.path.join(SOURCE, "data") + "/"))
+    pipeline_text = lambda names, uncertainty: "\n".join([
+        "set Scene = pipeline", "subsection Pipeline", "  set Weak layer scene = weak.prm",
+        "  set Snowpack scenes = " + ", ".join(f"pit_{p}.prm" for p in names),
+        "  set Snowpack scene changes = Mesh/Element length [m] = 0.05, Mesh/Weak layer elements = 1, "
+        "Analysis/Explicit/End time [s] = 0.05",
+        f"  set Uncertainty = {uncertainty}", "  set Weak layer specimen = profile",
+        "  subsection Profile specimen", "    set Thickness classes [grains] = 8",
+        "    set Lateral extent [thicknesses] = 1", "  end", "end", *SNOW_UNITS]) + "\n"
+    pipeline = write(os.path.join(work, "pipeline.prm"), pipeline_text(pits, "none"))
+    stdout, _ = anticrack("check", pipeline)
+    check("weak layer 275 kg/m^3, 8 grains" in stdout and "weak layer 250 kg/m^3, 8 grains" in stdout,
+          f"`check` does not list the classes:\n{stdout}")
+    out = os.path.join(work, "out")
+    anticrack("run", pipeline, "-o", out, "--threads", "2")
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    check(summary["status"] == "completed", f"pipeline status {summary['status']}")
+    names = [s["name"] for s in summary["stages"]]
+    check(names == ["weak layer 275 kg/m^3, 8 grains", "weak layer 250 kg/m^3, 8 grains",
+                    *(f"pit_{p}" for p in pits), "uncertainty"], f"stages {names}")
+    diameter = 2 * (0.3 * 0.005 ** 3 / (256 * 4 / 3 * math.pi)) ** (1 / 3)  # the tiny campaign's spheres
+    for density, directory in ((275, "weak_layer_275kgm3_8grains"), (250, "weak_layer_250kgm3_8grains")):
+        phi = density / 917
+        with open(os.path.join(out, directory, "campaign", "tests", "m0_r0_psi000.0", "summary.json")) as f:
+            sample = json.load(f)["dem"]["sample"]
+        check(abs(sample["volume_fraction"] - phi) < 1e-12, f"{directory}: phi {sample['volume_fraction']}")
+        count = round(6 * phi * 8 ** 3 / math.pi)
+        box = 8 * diameter
+        check(np.allclose(sample["box_lengths_m"], [box] * 3, rtol=1e-9), f"{directory}: box {sample['box_lengths_m']}")
+        scene = open(os.path.join(out, directory, "scene.prm")).read()
+        check(f"set DEM/Sample/Particle count = {count}" in scene or re.search(rf"Particle count\s*=\s*{count}\b", scene),
+              f"{directory}: no particle count {count} in its scene")
+        material = read_material(os.path.join(out, directory, "material_snow.prm"))
+        check(abs(float(material["Density [kg/m^3]"]) - density) < 1e-6 * density,
+              f"{directory}: density {material['Density [kg/m^3]']}")
+    grains = {"19602_pst1": 1e-3, "50993_pst1": 4e-3, "35548_pst1": 1.5e-3}
+    classes = {"19602_pst1": "weak_layer_275kgm3_8grains", "50993_pst1": "weak_layer_275kgm3_8grains",
+               "35548_pst1": "weak_layer_250kgm3_8grains"}
+    for stage in summary["stages"][2:5]:
+        pit = stage["name"][len("pit_"):]
+        own = stage["weak_layer"]["from_profile"]
+        check(own["grain_size_m"] == grains[pit] and own["specimen"]["thickness_in_grains"] == 8 and
+              os.path.basename(own["profile"]) == f"snowpits-{pit.split('_')[0]}-caaml.xml", f"{pit}: {own}")
+        check(stage["weak_layer"]["stage"] == names[0 if classes[pit].startswith("weak_layer_275") else 1], f"{pit}: {stage}")
+        text = open(os.path.join(out, stage["directory"], "scene.prm")).read()
+        pit_material = os.path.join(out, stage["directory"], "pit_material_snow.prm")
+        check(f"set Material file = {pit_material}" in text, f"{pit}: scene.prm names no pit material")
+        ratio = (float(read_material(pit_material)["Reference thickness [m]"]) /
+                 float(read_material(os.path.join(out, classes[pit], "material_snow.prm"))["Reference thickness [m]"]))
+        check(abs(ratio - grains[pit] / 6.54e-4) < 1e-5 * ratio, f"{pit}: reference thickness x {ratio}")
+        check(fem_summary(os.path.join(out, stage["directory"]))["status"] == "completed", f"{pit} did not complete")
+    check(os.path.getsize(os.path.join(out, "report.md")) > 1000, "report.md missing")
+    expect_bad_input(work, write(os.path.join(work, "surface_hoar.prm"), pipeline_text(["17844_pst1"], "none")),
+                     "pit_17844_pst1.prm", "layer 4 of", "snowpits-17844-caaml.xml", "has no density")
+    expect_bad_input(work, write(os.path.join(work, "uncertain.prm"), pipeline_text(pits, "sensitivities")),
+                     "Pipeline/Uncertainty = none")
 
 
 @case
