@@ -90,52 +90,65 @@ namespace anticrack::profile
 
   double sigrist_tensile_strength(double rho) { return 240e3 * std::pow(rho / rho_ice, 2.44); }
 
-  LayerProperties layer_properties(const SnowProfile &p, std::size_t k, const ModulusLaw &law, double poisson_ratio)
+  namespace
   {
-    const ProfileLayer &l = p.layers.at(k);
-    const std::string where = p.file + ": layer " + std::to_string(k + 1) + " (top at " +
-                              format_number(100 * l.depth_top_m, 4) + " cm)";
-    LayerProperties props;
-    if (l.density_kg_m3)
-      props.density = {*l.density_kg_m3, true, "measured (the layer's density)"};
-    else
+    /// Layer k's density: measured in it; else the density samples of the profile that overlap it,
+    /// weighted by their overlap, counting only a sample with more than `inside` of its height in
+    /// the layer (any overlap for inside = 0); else inferred from hand hardness and grain form (Geldsetzer & Jamieson 2000).
+    Sourced layer_density(const SnowProfile &p, std::size_t k, double inside)
     {
-      // The density samples that overlap the layer, each weighted by its overlap.
+      const ProfileLayer &l = p.layers.at(k);
+      const std::string where = p.file + ": layer " + std::to_string(k + 1) + " (top at " +
+                                format_number(100 * l.depth_top_m, 4) + " cm)";
+      if (l.density_kg_m3)
+        return {*l.density_kg_m3, true, "measured (the layer's density)"};
       double weight = 0, sum = 0;
-      int count = 0;
+      int count = 0, left_out = 0;
       for (const DensitySample &s : p.density_samples)
       {
         const double overlap =
           std::min(s.depth_top_m + s.thickness_m, l.depth_bottom_m()) - std::max(s.depth_top_m, l.depth_top_m);
-        if (overlap > 0)
+        // (1 um: depths are given to the mm, and half a sample must not count by round-off.)
+        if (overlap > inside * s.thickness_m + 1e-6)
           weight += overlap, sum += overlap * s.density_kg_m3, ++count;
+        else if (overlap > 0)
+          ++left_out;
       }
       if (count > 0)
-        props.density = {sum / weight, true,
-                         "measured (" + std::to_string(count) + " density sample(s) of the profile over the layer, "
-                         "weighted by their overlap)"};
-      else
+        return {sum / weight, true,
+                "measured (" + std::to_string(count) + " density sample(s) of the profile over the layer, "
+                "weighted by their overlap)"};
+      if (!l.hardness)
+        throw ProfileError(where + ": no density (measured or from the density profile) and no hand hardness to "
+                           "infer it from; give its density");
+      std::string why;
+      const auto top = geldsetzer_jamieson_density(l.grain_form, l.hardness->index, &why);
+      if (!top)
+        throw ProfileError(where + ": no density measured in it" +
+                           (left_out > 0 ? " (its " + std::to_string(left_out) + " overlapping density sample(s) lie "
+                                           "mostly outside it)" : std::string()) +
+                           ", and it cannot be inferred: " + why + "; give its density (a layer table's density_kg_m3)");
+      double rho = *top;
+      std::string hardness = l.hardness->text;
+      if (l.hardness_bottom)
       {
-        if (!l.hardness)
-          throw ProfileError(where + ": no density (measured or from the density profile) and no hand hardness to "
-                             "infer it from; give its density");
-        std::string why;
-        const auto top = geldsetzer_jamieson_density(l.grain_form, l.hardness->index, &why);
-        if (!top)
-          throw ProfileError(where + ": no density measured in it, and it cannot be inferred: " + why +
-                             "; give its density (a layer table's density_kg_m3)");
-        double rho = *top;
-        std::string hardness = l.hardness->text;
-        if (l.hardness_bottom)
-        {
-          rho = 0.5 * (rho + *geldsetzer_jamieson_density(l.grain_form, l.hardness_bottom->index));
-          hardness += " (top) and " + l.hardness_bottom->text + " (bottom), mean of both";
-        }
-        props.density = {rho, false,
-                         "Geldsetzer & Jamieson (2000), class " + geldsetzer_jamieson_class(l.grain_form) + " (" +
-                           l.grain_form + "), hand hardness " + hardness};
+        rho = 0.5 * (rho + *geldsetzer_jamieson_density(l.grain_form, l.hardness_bottom->index));
+        hardness += " (top) and " + l.hardness_bottom->text + " (bottom), mean of both";
       }
+      return {rho, false,
+              "Geldsetzer & Jamieson (2000), class " + geldsetzer_jamieson_class(l.grain_form) + " (" + l.grain_form +
+                "), hand hardness " + hardness +
+                (left_out > 0 ? " (its " + std::to_string(left_out) + " overlapping density sample(s) lie mostly "
+                                "outside it: they measure its neighbours)" : std::string())};
     }
+  } // namespace
+
+  Sourced weak_layer_density(const SnowProfile &p, std::size_t k) { return layer_density(p, k, 0.5); }
+
+  LayerProperties layer_properties(const SnowProfile &p, std::size_t k, const ModulusLaw &law, double poisson_ratio)
+  {
+    LayerProperties props;
+    props.density = layer_density(p, k, 0);
     props.youngs_modulus = {law.modulus(props.density.value), false, law.citation};
     props.poisson_ratio = {poisson_ratio, false, "given (Slab Poisson's ratio)"};
     props.tensile_strength = {sigrist_tensile_strength(props.density.value), false,

@@ -56,4 +56,12 @@ namespace anticrack::profile
   /// Sigrist (2006). Throws ProfileError naming the file, the layer and what is missing when no
   /// density can be had.
   LayerProperties layer_properties(const SnowProfile &profile, std::size_t k, const ModulusLaw &law, double poisson_ratio);
+
+  /// The density of weak layer `k` [kg/m^3]: as layer_properties', except that a density sample of
+  /// the profile counts only if more than half its height lies in the layer. A weak layer is often
+  /// thinner than the cutter (a 100 cm^3 cutter is 4 cm tall): a sample mostly outside it measures
+  /// its neighbours (pit 65798's 5 cm of facets between an ice crust and denser rounds got 460 kg/m^3
+  /// from two such samples, where Geldsetzer & Jamieson give 204). Throws ProfileError as
+  /// layer_properties does.
+  Sourced weak_layer_density(const SnowProfile &profile, std::size_t k);
 } // namespace anticrack::profile

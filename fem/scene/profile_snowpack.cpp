@@ -171,13 +171,15 @@ namespace anticrack::fem
                                     {"role", static_cast<int>(k) < weak ? "slab" : static_cast<int>(k) == weak ? "weak" : "below"}};
       if (l.grain_size_mm)
         record["grain_size_m"] = 1e-3 * *l.grain_size_mm;
-      // The weak layer's own density, beside the calibrated material's (the report compares them):
-      // measured or inferred as a slab layer's, or why it cannot be had (e.g. surface hoar).
+      // The weak layer's own density, beside the calibrated material's (the report compares them) and
+      // the DEM specimen's solid fraction (coupling/profile_specimen.h): measured in it (a density
+      // sample counts if it lies mostly in the layer, profile::weak_layer_density) or inferred, or
+      // why it cannot be had (e.g. surface hoar).
       if (static_cast<int>(k) == weak)
       {
         try
         {
-          record["density_kg_m3"] = sourced(profile::layer_properties(p, k, law, nu).density);
+          record["density_kg_m3"] = sourced(profile::weak_layer_density(p, k));
         }
         catch (const profile::ProfileError &e)
         {

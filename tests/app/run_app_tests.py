@@ -2314,19 +2314,19 @@ def pipeline_files(work):
 def pipeline_profile_specimen(work):
     """Pipeline/Weak layer specimen = profile (coupling/profile_specimen.h): each pit's weak layer sampled
     at its own density and thickness in grains, one calibration per class. Three field pits of the
-    shared data (their failed layers: FC 264 kg/m^3 of 1 mm grains, DH 276 kg/m^3 of 4 mm, FC 250
-    kg/m^3 of 1.5 mm; data/field_psts) under the tiny campaign, in two classes of 25 kg/m^3 (275 and
-    250) and one thickness class (8 grains; cubes, lateral extent 1, to keep the tiny specimens as
+    shared data (their failed layers: FC 253 kg/m^3 of 2 mm grains, DH 276 kg/m^3 of 4 mm, FC 250
+    kg/m^3 of 1.5 mm; data/field_psts) under the tiny campaign, in two classes of 25 kg/m^3 (250 and
+    275) and one thickness class (8 grains; cubes, lateral extent 1, to keep the tiny specimens as
     well fitted as the tiny pipeline's). Checked against the conversion's own arithmetic, written
     out here: the sample's phi = class / 917, its box 8 d on a side with d the weak-layer scene's sphere
     diameter, N = 6 phi 8^3 / pi; the material's density the class's; a pit's material its class's
-    with the reference thickness times its grain size over Snow units/Grain diameter [m] (so the DH
-    pit's is 4x the FC pit's of the same class), and each stage records its pit's layer and class.
+    with the reference thickness times its grain size over Snow units/Grain diameter [m] (so the 2 mm
+    pit's is 4/3 of the 1.5 mm pit's of the same class), and each stage records its pit's layer and class.
     A pit whose weak layer has no density (surface hoar, which Geldsetzer & Jamieson (2000) do not
     cover) is refused, naming the pit and the layer, and so is the uncertainty stage over several pits."""
     weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
                  "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
-    pits = ["19602_pst1", "50993_pst1", "35548_pst1"]
+    pits = ["45238_pst1", "50993_pst1", "35548_pst1"]
     for pit in pits + ["17844_pst1"]:
         text = open(os.path.join(SOURCE, "scenes", "field", f"pit_{pit}.prm")).read()
         write(os.path.join(work, f"pit_{pit}.prm"), text.replace("../../data/", os.path.join(SOURCE, "data") + "/"))
@@ -2347,7 +2347,7 @@ def pipeline_profile_specimen(work):
     summary = json.load(open(os.path.join(out, "summary.json")))
     check(summary["status"] == "completed", f"pipeline status {summary['status']}")
     names = [s["name"] for s in summary["stages"]]
-    check(names == ["weak layer 275 kg/m^3, 8 grains", "weak layer 250 kg/m^3, 8 grains",
+    check(names == ["weak layer 250 kg/m^3, 8 grains", "weak layer 275 kg/m^3, 8 grains",
                     *(f"pit_{p}" for p in pits), "uncertainty"], f"stages {names}")
     diameter = 2 * (0.3 * 0.005 ** 3 / (256 * 4 / 3 * math.pi)) ** (1 / 3)  # the tiny campaign's spheres
     for density, directory in ((275, "weak_layer_275kgm3_8grains"), (250, "weak_layer_250kgm3_8grains")):
@@ -2364,15 +2364,15 @@ def pipeline_profile_specimen(work):
         material = read_material(os.path.join(out, directory, "material_snow.prm"))
         check(abs(float(material["Density [kg/m^3]"]) - density) < 1e-6 * density,
               f"{directory}: density {material['Density [kg/m^3]']}")
-    grains = {"19602_pst1": 1e-3, "50993_pst1": 4e-3, "35548_pst1": 1.5e-3}
-    classes = {"19602_pst1": "weak_layer_275kgm3_8grains", "50993_pst1": "weak_layer_275kgm3_8grains",
+    grains = {"45238_pst1": 2e-3, "50993_pst1": 4e-3, "35548_pst1": 1.5e-3}
+    classes = {"45238_pst1": "weak_layer_250kgm3_8grains", "50993_pst1": "weak_layer_275kgm3_8grains",
                "35548_pst1": "weak_layer_250kgm3_8grains"}
     for stage in summary["stages"][2:5]:
         pit = stage["name"][len("pit_"):]
         own = stage["weak_layer"]["from_profile"]
         check(own["grain_size_m"] == grains[pit] and own["specimen"]["thickness_in_grains"] == 8 and
               os.path.basename(own["profile"]) == f"snowpits-{pit.split('_')[0]}-caaml.xml", f"{pit}: {own}")
-        check(stage["weak_layer"]["stage"] == names[0 if classes[pit].startswith("weak_layer_275") else 1], f"{pit}: {stage}")
+        check(stage["weak_layer"]["stage"] == names[0 if classes[pit].startswith("weak_layer_250") else 1], f"{pit}: {stage}")
         text = open(os.path.join(out, stage["directory"], "scene.prm")).read()
         pit_material = os.path.join(out, stage["directory"], "pit_material_snow.prm")
         check(f"set Material file = {pit_material}" in text, f"{pit}: scene.prm names no pit material")

@@ -197,6 +197,35 @@ TEST(ProfileReader, OnePitAsItsFileSays)
   }
 }
 
+// snowpits-65798, by hand: its failed layer 8 (FC, 4F, 40-45 cm) lies between density samples
+// (37-41 cm, 400) and (43-47 cm, 490), across the ice crust at 45 cm. As a slab layer its density is
+// the overlap-weighted mean, (400 x 1 + 490 x 2) / 3 = 460; as a weak layer neither sample lies
+// mostly in it (1 and 2 of their 4 cm), so Geldsetzer & Jamieson's FC at 4F gives it 112 + 46 x 2
+// = 204. snowpits-19602: layer 4 (MFcr, 28-30 cm) only touches the sample at 30-34 cm, which
+// measures none of it (it once counted by round-off): a melt form without a measurement is refused.
+TEST(ProfileReader, WeakLayerDensityOnlyFromSamplesMostlyInIt)
+{
+  const SnowProfile p = read_profile((field_pits / "snowpilot" / "snowpits-65798-caaml.xml").string());
+  ASSERT_NEAR(p.layers[7].depth_top_m, 0.40, 1e-12);
+  ASSERT_NEAR(p.layers[7].thickness_m, 0.05, 1e-12);
+  const LayerProperties slab = layer_properties(p, 7, modulus_laws().front(), 0.25);
+  EXPECT_TRUE(slab.density.measured);
+  EXPECT_NEAR(slab.density.value, 460, 1e-9);
+  const Sourced weak = weak_layer_density(p, 7);
+  EXPECT_FALSE(weak.measured);
+  EXPECT_NEAR(weak.value, 204, 1e-12);
+  EXPECT_NE(weak.source.find("mostly outside"), std::string::npos) << weak.source;
+  // A layer that holds most of a sample keeps it: layer 3 (RG, 14-26 cm) holds 20-24 cm (370) and 1 cm
+  // of 11-15 cm (330): 370 as a weak layer, (330 x 1 + 370 x 4) / 5 = 362 as a slab layer.
+  EXPECT_NEAR(weak_layer_density(p, 2).value, 370, 1e-9);
+  EXPECT_TRUE(weak_layer_density(p, 2).measured);
+  EXPECT_NEAR(layer_properties(p, 2, modulus_laws().front(), 0.25).density.value, 362, 1e-9);
+  const SnowProfile q = read_profile((field_pits / "snowpilot" / "snowpits-19602-caaml.xml").string());
+  ASSERT_NEAR(q.layers[3].depth_top_m, 0.28, 1e-12);
+  EXPECT_THROW(layer_properties(q, 3, modulus_laws().front(), 0.25), ProfileError);
+  EXPECT_THROW(weak_layer_density(q, 3), ProfileError);
+}
+
 TEST(ProfileReader, CaamlRefusals)
 {
   const std::string pit = "snowpits-18288-caaml.xml";
