@@ -3,8 +3,12 @@
 //   DIR/weak_layer/           the calibration scene's run: DIR/weak_layer/campaign/ (the DEM tests),
 //                             material.prm (DEM units), material_snow.prm (snow units), calibration.h5,
 //                             summary.json, plots (coupling/calibrate.h)
+//                             (with Pipeline/Weak layer specimen = profile and pits of several
+//                             classes, one such folder per class: DIR/weak_layer_150kgm3_10grains/,
+//                             coupling/profile_specimen.h)
 //   DIR/<snowpack scene>/     scene.prm (the snowpack scene with the weak layer's Material file set to
-//                             material_snow.prm, so that the stage can be rerun by hand) and its run
+//                             material_snow.prm, or to pit_material_snow.prm, its copy at the pit's
+//                             grain size, so that the stage can be rerun by hand) and its run
 //   DIR/summary.json          the stages, each with the SHA-256 of its inputs, its status, wall
 //                             time and headline results
 //   DIR/report.md, report.png the calibration and the PST answers (scripts/pipeline_report.py); its
