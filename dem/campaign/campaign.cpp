@@ -396,6 +396,233 @@ namespace anticrack::dem
       }
       return scenes;
     }
+    /// The output directory: refused if it is a file, or holds a campaign that is neither resumed nor
+    /// overwritten. A resumed campaign reads the summaries of the tests that ran before: one that is
+    /// not a whole JSON object (cut short by a full disk or a copy; anticrack writes them atomically)
+    /// is refused here, naming it, before any test runs, rather than rerun or misread in a worker.
+    void refuse_unusable_output(const fs::path &directory, const RunOptions &options, const std::vector<CampaignTest> &tests)
+    {
+      std::error_code error;
+      if (fs::exists(directory, error) && !fs::is_directory(directory, error))
+        throw InputError("The output path <" + directory.string() + "> exists and is not a directory.");
+      if (!options.resume && !options.overwrite)
+        for (const char *name : {"summary.json", "campaign.h5", "tests"})
+          if (fs::exists(directory / name, error))
+            throw InputError("The output directory <" + directory.string() + "> already holds a campaign (" +
+                             name + "). Use --resume to run only the tests that have not completed, "
+                             "--overwrite to start again, or another directory.");
+      if (options.resume)
+        for (const CampaignTest &t : tests)
+          if (fs::exists(directory / "tests" / t.id / "summary.json", error))
+            read_json_file((directory / "tests" / t.id / "summary.json").string());
+    }
+
+    /// The scene of campaign test `t` of microstructure scene `micro`: its realization's seed, the
+    /// clump's force along the loading angle (sin psi, 0, -cos psi), the rates over its slowdown, and
+    /// for a friction or compaction test, that lab test's loading.
+    SceneParameters test_scene_of(const SceneParameters &micro, const CampaignTest &t, const parameters::Campaign &c)
+    {
+      SceneParameters test_scene = micro;
+      test_scene.dem.seed += static_cast<std::uint64_t>(t.realization);
+      const double psi = t.angle_deg * M_PI / 180.0;
+      test_scene.dem.boundary.clump_force_direction = Vec3(std::sin(psi), 0.0, -std::cos(psi));
+      test_scene.dem.boundary.clump_force_rate /= t.slowdown;
+      test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
+      test_scene.output.progress_interval = 0;
+      if (t.friction())
+      {
+        // The simple shear of the collapsed layer (dem/lab/simple_shear.h): it collapses under the
+        // normal force's ramp, then slides; it ends at its shear strain, not at a stop strain.
+        auto &loading = test_scene.dem.loading;
+        loading.test = &lab_test("simple shear");
+        loading.adaptive = false;
+        loading.stop_strain = 0;
+        loading.normal_stress = c.friction_normal_stress;
+        loading.shear_velocity = c.friction_shear_velocity / t.slowdown;
+        loading.consolidation_time = c.friction_consolidation_time * t.slowdown;
+        loading.final_shear_strain = c.friction_final_shear_strain;
+      }
+      if (t.compaction())
+      {
+        // The displacement-controlled compaction test (dem/lab/compaction_test.h) of this sample.
+        auto &loading = test_scene.dem.loading;
+        loading.test = &lab_test("compaction");
+        loading.adaptive = false; // a force ramp's; the compaction test's rate is constant
+        loading.compaction_strain_rate = c.compaction_strain_rate / t.slowdown;
+        loading.stop_strain = c.compaction_final_strain;
+        loading.curve_strain_interval = c.compaction_curve_strain_interval;
+      }
+      return test_scene;
+    }
+
+    /// How campaign test `t` runs (DIRECTORY/tests/<id>/, quiet, its progress labelled `label`), and
+    /// the labels its summary.json carries (which --resume compares).
+    RunOptions test_run_options(const SceneParameters &test_scene, const CampaignTest &t, const fs::path &directory,
+                                const std::string &label, int threads, const RunOptions &options)
+    {
+      RunOptions o;
+      o.output_directory = (directory / "tests" / t.id).string();
+      o.overwrite = true;
+      o.quiet = true;
+      o.progress_label = label;
+      o.threads = threads;
+      o.command_line = options.command_line;
+      o.labels = {{"campaign_test", t.id},
+                  {"microstructure", t.microstructure},
+                  {"realization", t.realization},
+                  {"loading_angle_deg", t.angle_deg},
+                  {"seed", test_scene.dem.seed},
+                  {"rate_divisor", t.slowdown},
+                  {"reference_for", t.reference_for}};
+      if (t.friction())
+      {
+        o.labels["friction_normal_stress_Pa"] = test_scene.dem.loading.normal_stress;
+        o.labels["friction_shear_velocity_m_per_s"] = test_scene.dem.loading.shear_velocity;
+        o.labels["friction_consolidation_time_s"] = test_scene.dem.loading.consolidation_time;
+        o.labels["friction_final_shear_strain"] = test_scene.dem.loading.final_shear_strain;
+      }
+      if (t.compaction())
+      {
+        o.labels["compaction_strain_rate_per_s"] = test_scene.dem.loading.compaction_strain_rate;
+        o.labels["compaction_final_strain"] = test_scene.dem.loading.stop_strain;
+        o.labels["compaction_curve_strain_interval"] = test_scene.dem.loading.curve_strain_interval;
+      }
+      return o;
+    }
+
+    /// campaign.h5: every test's history and status, the microstructures' materials, the
+    /// failure-point tables of the loading, compaction and friction tests and the quasi-static check.
+    void write_campaign_file(const fs::path &campaign_file, const SceneParameters &scene,
+                             const std::vector<SceneParameters> &microstructure_scenes,
+                             const std::vector<CampaignTest> &tests, std::map<std::string, TestOutcome> &outcomes)
+    {
+      const auto &c = scene.campaign;
+      const fs::path directory = campaign_file.parent_path();
+      std::error_code error;
+      hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
+        hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
+        // 3: love_stress, p and q are the specimen's between its platens (docs/physics.md §1.5).
+        // 5: the friction tests and their steady_* columns.
+        hdf5::write_string_attribute(f.id, "format_version", "5");
+        hdf5::write_string_attribute(f.id, "scene_file", scene.file);
+        hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
+        hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
+        hdf5::write_string_attribute(f.id, "microstructures", c.microstructures_text);
+        hdf5::write_string_attribute(f.id, "anticrack_version", version_info()["anticrack"].get<std::string>());
+        hdf5::write_string_attribute(
+          f.id, "conventions",
+          "stresses tension positive except sigma (base normal stress) and p, compression positive; "
+          "loading angle psi: clump force direction (sin psi, 0, -cos psi)");
+
+        const Handle all(H5Gcreate2(f.id, "tests", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /tests");
+        for (const auto &t : tests)
+        {
+          const fs::path history = directory / "tests" / t.id / "history.h5";
+          const Handle group(H5Gcreate2(all.id, t.id.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                             "create /tests/" + t.id);
+          hdf5::write_string_attribute(group.id, "status", outcomes[t.id].row.status);
+          hdf5::write_string_attribute(group.id, "loading_angle_deg", format_angle(t.angle_deg));
+          hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
+          hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
+          hdf5::write_string_attribute(group.id, "rate_divisor", format_angle(t.slowdown));
+          hdf5::write_string_attribute(group.id, "loading", t.loading_name());
+          if (fs::exists(history, error))
+            copy_history(history, group.id, "history");
+        }
+
+        // What a calibration needs to know of each microstructure's material (params/ reads it).
+        {
+          const Handle g = hdf5::create_group(f.id, "microstructures");
+          std::vector<std::string> labels;
+          std::vector<double> contact_modulus, bond_modulus, particle_modulus, tensile, cohesion, density, periodic;
+          for (std::size_t m = 0; m < microstructure_scenes.size(); ++m)
+          {
+            const auto &d = microstructure_scenes[m].dem;
+            std::string label = c.microstructures.empty() ? "scene sample" : "";
+            if (!c.microstructures.empty())
+              for (const auto &[entry, value] : c.microstructures[m])
+                label += (label.empty() ? "" : ", ") + entry + " = " + value;
+            labels.push_back(label);
+            contact_modulus.push_back(d.material.contact.contact_modulus);
+            bond_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : nan);
+            particle_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : d.material.contact.contact_modulus);
+            tensile.push_back(d.bond.bond.enabled ? d.bond.bond.tensile_strength : nan);
+            cohesion.push_back(d.bond.bond.enabled ? d.bond.bond.cohesion : nan);
+            density.push_back(d.material.density);
+            periodic.push_back(d.domain.periodic[0] && d.domain.periodic[1] ? 1.0 : 0.0);
+          }
+          hdf5::write_strings(g.id, "label", labels, "the microstructure variant (Campaign/Microstructures)");
+          hdf5::write_doubles(g.id, "contact_modulus", contact_modulus, "Pa", "E_c of the linear contact law");
+          hdf5::write_doubles(g.id, "bond_modulus", bond_modulus, "Pa", "E_bar of the parallel bonds (NaN: no bonds)");
+          hdf5::write_doubles(g.id, "particle_modulus", particle_modulus, "Pa",
+                              "the micro modulus of Bobillier et al.'s (2020) E_macro(E_particle): the bond modulus of bonded "
+                              "samples, else the contact modulus");
+          hdf5::write_doubles(g.id, "bond_tensile_strength", tensile, "Pa", "sigma_bar_c of the parallel bonds");
+          hdf5::write_doubles(g.id, "bond_cohesion", cohesion, "Pa", "c_bar of the parallel bonds");
+          hdf5::write_doubles(g.id, "particle_density", density, "kg/m^3", "density of the sphere material");
+          hdf5::write_doubles(g.id, "laterally_periodic", periodic, "-",
+                              "1: periodic along x and y (laterally confined, uniaxial strain at psi = 0); 0: open sides");
+        }
+
+        // The failure-point table: one row per test of the campaign proper (references apart).
+        std::vector<const CampaignTest *> main_tests, compaction_tests, friction_tests, references;
+        for (const auto &t : tests)
+          (!t.reference_for.empty() ? references :
+           t.compaction()           ? compaction_tests :
+           t.friction()             ? friction_tests :
+                                      main_tests)
+            .push_back(&t);
+        auto table = [&](hid_t group, const std::vector<const CampaignTest *> &tests_of_table) {
+          std::vector<FailurePointRow> rows;
+          for (const auto *t : tests_of_table)
+            rows.push_back(outcomes[t->id].row);
+          write_failure_point_table(group, rows);
+        };
+        {
+          const Handle g(H5Gcreate2(f.id, failure_points_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                         "create /" + std::string(failure_points_group));
+          table(g.id, main_tests);
+        }
+        if (!compaction_tests.empty())
+        {
+          // The compaction tests: their failure point is the first peak (dem/scene/failure_analysis.h);
+          // the calibration reads their curves from /tests/<id>/history.
+          const Handle g = hdf5::create_group(f.id, compaction_tests_group);
+          table(g.id, compaction_tests);
+          hdf5::write_doubles(g.id, "strain_rate", std::vector<double>(compaction_tests.size(), c.compaction_strain_rate),
+                              "1/s", "the platen's speed over the specimen height (Campaign/Compaction strain rate)");
+        }
+        if (!friction_tests.empty())
+        {
+          // The friction tests: their steady sliding (the steady_* columns) gives the failed layer's
+          // friction coefficient; the calibration reads it from this table.
+          const Handle g = hdf5::create_group(f.id, friction_tests_group);
+          table(g.id, friction_tests);
+          hdf5::write_doubles(g.id, "normal_stress", std::vector<double>(friction_tests.size(), c.friction_normal_stress),
+                              "Pa", "the constant normal stress of the simple shear (Campaign/Friction normal stress)");
+        }
+        if (!references.empty())
+        {
+          const Handle g(H5Gcreate2(f.id, "quasi_static_check", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                         "create /quasi_static_check");
+          table(g.id, references);
+          std::vector<std::string> checked;
+          std::vector<double> difference, base_difference;
+          for (const auto *r : references)
+          {
+            checked.push_back(r->reference_for);
+            difference.push_back(relative_difference(outcomes[r->reference_for], outcomes[r->id]));
+            base_difference.push_back(base_relative_difference(outcomes[r->reference_for], outcomes[r->id]));
+          }
+          hdf5::write_strings(g.id, "checks", checked, "the campaign test this slower run is the reference of");
+          hdf5::write_doubles(g.id, "relative_difference", difference, "-",
+                        "|s - s_ref| / |s_ref| of the failure point s = (p, q) (the checked measure)");
+          hdf5::write_doubles(g.id, "base_relative_difference", base_difference, "-",
+                        "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
+        }
+      });
+    }
+
   } // namespace
 
   void describe_campaign(std::ostream &out, const SceneParameters &scene)
@@ -442,23 +669,8 @@ namespace anticrack::dem
     const std::vector<SceneParameters> microstructure_scenes = microstructure_scenes_of(scene);
     const std::vector<CampaignTest> tests = enumerate_tests(c, static_cast<Index>(microstructure_scenes.size()));
 
+    refuse_unusable_output(directory, options, tests);
     std::error_code error;
-    if (fs::exists(directory, error) && !fs::is_directory(directory, error))
-      throw InputError("The output path <" + directory.string() + "> exists and is not a directory.");
-    if (!options.resume && !options.overwrite)
-      for (const char *name : {"summary.json", "campaign.h5", "tests"})
-        if (fs::exists(directory / name, error))
-          throw InputError("The output directory <" + directory.string() + "> already holds a campaign (" +
-                           name + "). Use --resume to run only the tests that have not completed, "
-                           "--overwrite to start again, or another directory.");
-
-    // A resumed campaign reads the summaries of the tests that ran before: one that is not a whole
-    // JSON object (cut short by a full disk or a copy; anticrack writes them atomically) is refused
-    // here, naming it, before any test runs, rather than rerun or misread in a worker.
-    if (options.resume)
-      for (const CampaignTest &t : tests)
-        if (fs::exists(directory / "tests" / t.id / "summary.json", error))
-          read_json_file((directory / "tests" / t.id / "summary.json").string());
 
     const MpiSession &mpi = MpiSession::get();
     const bool root = mpi.rank() == 0;
@@ -550,65 +762,9 @@ namespace anticrack::dem
       for (std::size_t k = next(); k < tests.size(); k = next())
       {
         const CampaignTest &t = tests[k];
-        SceneParameters test_scene = microstructure_scenes[t.microstructure];
-        test_scene.dem.seed += static_cast<std::uint64_t>(t.realization);
-        const double psi = t.angle_deg * M_PI / 180.0;
-        const Vec3 direction(std::sin(psi), 0.0, -std::cos(psi));
-        test_scene.dem.boundary.clump_force_direction = direction;
-        test_scene.dem.boundary.clump_force_rate /= t.slowdown;
-        test_scene.dem.loading.ramp.fast_rate /= t.slowdown;
-        test_scene.output.progress_interval = 0;
-        if (t.friction())
-        {
-          // The simple shear of the collapsed layer (dem/lab/simple_shear.h): it collapses under the
-          // normal force's ramp, then slides; it ends at its shear strain, not at a stop strain.
-          auto &loading = test_scene.dem.loading;
-          loading.test = &lab_test("simple shear");
-          loading.adaptive = false;
-          loading.stop_strain = 0;
-          loading.normal_stress = c.friction_normal_stress;
-          loading.shear_velocity = c.friction_shear_velocity / t.slowdown;
-          loading.consolidation_time = c.friction_consolidation_time * t.slowdown;
-          loading.final_shear_strain = c.friction_final_shear_strain;
-        }
-        if (t.compaction())
-        {
-          // The displacement-controlled compaction test (dem/lab/compaction_test.h) of this sample.
-          auto &loading = test_scene.dem.loading;
-          loading.test = &lab_test("compaction");
-          loading.adaptive = false; // a force ramp's; the compaction test's rate is constant
-          loading.compaction_strain_rate = c.compaction_strain_rate / t.slowdown;
-          loading.stop_strain = c.compaction_final_strain;
-          loading.curve_strain_interval = c.compaction_curve_strain_interval;
-        }
-
-        RunOptions o;
-        o.output_directory = (directory / "tests" / t.id).string();
-        o.overwrite = true;
-        o.quiet = true;
-        o.progress_label = who + " " + t.id;
-        o.threads = threads;
-        o.command_line = options.command_line;
-        o.labels = {{"campaign_test", t.id},
-                    {"microstructure", t.microstructure},
-                    {"realization", t.realization},
-                    {"loading_angle_deg", t.angle_deg},
-                    {"seed", test_scene.dem.seed},
-                    {"rate_divisor", t.slowdown},
-                    {"reference_for", t.reference_for}};
-        if (t.friction())
-        {
-          o.labels["friction_normal_stress_Pa"] = test_scene.dem.loading.normal_stress;
-          o.labels["friction_shear_velocity_m_per_s"] = test_scene.dem.loading.shear_velocity;
-          o.labels["friction_consolidation_time_s"] = test_scene.dem.loading.consolidation_time;
-          o.labels["friction_final_shear_strain"] = test_scene.dem.loading.final_shear_strain;
-        }
-        if (t.compaction())
-        {
-          o.labels["compaction_strain_rate_per_s"] = test_scene.dem.loading.compaction_strain_rate;
-          o.labels["compaction_final_strain"] = test_scene.dem.loading.stop_strain;
-          o.labels["compaction_curve_strain_interval"] = test_scene.dem.loading.curve_strain_interval;
-        }
+        const SceneParameters test_scene = test_scene_of(microstructure_scenes[t.microstructure], t, c);
+        const Vec3 direction = test_scene.dem.boundary.clump_force_direction;
+        RunOptions o = test_run_options(test_scene, t, directory, who + " " + t.id, threads, options);
         if (options.resume && completed(o.output_directory, o.labels))
         {
           std::cout << who << " " << t.id << ": completed earlier, skipped\n" << std::flush;
@@ -766,129 +922,7 @@ namespace anticrack::dem
       if (!outcomes.count(t.id))
         outcomes[t.id] = read_outcome(t, directory / "tests" / t.id);
 
-    const fs::path campaign_file = directory / "campaign.h5";
-    hdf5::write_file_atomically(campaign_file.string(), [&](const Handle &f) {
-      hdf5::write_string_attribute(f.id, "format", "anticrack-campaign");
-      // 3: love_stress, p and q are the specimen's between its platens (docs/physics.md §1.5).
-      // 5: the friction tests and their steady_* columns.
-      hdf5::write_string_attribute(f.id, "format_version", "5");
-      hdf5::write_string_attribute(f.id, "scene_file", scene.file);
-      hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
-      hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
-      hdf5::write_string_attribute(f.id, "microstructures", c.microstructures_text);
-      hdf5::write_string_attribute(f.id, "anticrack_version", version_info()["anticrack"].get<std::string>());
-      hdf5::write_string_attribute(
-        f.id, "conventions",
-        "stresses tension positive except sigma (base normal stress) and p, compression positive; "
-        "loading angle psi: clump force direction (sin psi, 0, -cos psi)");
-
-      const Handle all(H5Gcreate2(f.id, "tests", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /tests");
-      for (const auto &t : tests)
-      {
-        const fs::path history = directory / "tests" / t.id / "history.h5";
-        const Handle group(H5Gcreate2(all.id, t.id.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                           "create /tests/" + t.id);
-        hdf5::write_string_attribute(group.id, "status", outcomes[t.id].row.status);
-        hdf5::write_string_attribute(group.id, "loading_angle_deg", format_angle(t.angle_deg));
-        hdf5::write_string_attribute(group.id, "microstructure", std::to_string(t.microstructure));
-        hdf5::write_string_attribute(group.id, "realization", std::to_string(t.realization));
-        hdf5::write_string_attribute(group.id, "rate_divisor", format_angle(t.slowdown));
-        hdf5::write_string_attribute(group.id, "loading", t.loading_name());
-        if (fs::exists(history, error))
-          copy_history(history, group.id, "history");
-      }
-
-      // What a calibration needs to know of each microstructure's material (params/ reads it).
-      {
-        const Handle g = hdf5::create_group(f.id, "microstructures");
-        std::vector<std::string> labels;
-        std::vector<double> contact_modulus, bond_modulus, particle_modulus, tensile, cohesion, density, periodic;
-        for (std::size_t m = 0; m < microstructure_scenes.size(); ++m)
-        {
-          const auto &d = microstructure_scenes[m].dem;
-          std::string label = c.microstructures.empty() ? "scene sample" : "";
-          if (!c.microstructures.empty())
-            for (const auto &[entry, value] : c.microstructures[m])
-              label += (label.empty() ? "" : ", ") + entry + " = " + value;
-          labels.push_back(label);
-          contact_modulus.push_back(d.material.contact.contact_modulus);
-          bond_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : nan);
-          particle_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : d.material.contact.contact_modulus);
-          tensile.push_back(d.bond.bond.enabled ? d.bond.bond.tensile_strength : nan);
-          cohesion.push_back(d.bond.bond.enabled ? d.bond.bond.cohesion : nan);
-          density.push_back(d.material.density);
-          periodic.push_back(d.domain.periodic[0] && d.domain.periodic[1] ? 1.0 : 0.0);
-        }
-        hdf5::write_strings(g.id, "label", labels, "the microstructure variant (Campaign/Microstructures)");
-        hdf5::write_doubles(g.id, "contact_modulus", contact_modulus, "Pa", "E_c of the linear contact law");
-        hdf5::write_doubles(g.id, "bond_modulus", bond_modulus, "Pa", "E_bar of the parallel bonds (NaN: no bonds)");
-        hdf5::write_doubles(g.id, "particle_modulus", particle_modulus, "Pa",
-                            "the micro modulus of Bobillier et al.'s (2020) E_macro(E_particle): the bond modulus of bonded "
-                            "samples, else the contact modulus");
-        hdf5::write_doubles(g.id, "bond_tensile_strength", tensile, "Pa", "sigma_bar_c of the parallel bonds");
-        hdf5::write_doubles(g.id, "bond_cohesion", cohesion, "Pa", "c_bar of the parallel bonds");
-        hdf5::write_doubles(g.id, "particle_density", density, "kg/m^3", "density of the sphere material");
-        hdf5::write_doubles(g.id, "laterally_periodic", periodic, "-",
-                            "1: periodic along x and y (laterally confined, uniaxial strain at psi = 0); 0: open sides");
-      }
-
-      // The failure-point table: one row per test of the campaign proper (references apart).
-      std::vector<const CampaignTest *> main_tests, compaction_tests, friction_tests, references;
-      for (const auto &t : tests)
-        (!t.reference_for.empty() ? references :
-         t.compaction()           ? compaction_tests :
-         t.friction()             ? friction_tests :
-                                    main_tests)
-          .push_back(&t);
-      auto table = [&](hid_t group, const std::vector<const CampaignTest *> &tests_of_table) {
-        std::vector<FailurePointRow> rows;
-        for (const auto *t : tests_of_table)
-          rows.push_back(outcomes[t->id].row);
-        write_failure_point_table(group, rows);
-      };
-      {
-        const Handle g(H5Gcreate2(f.id, failure_points_group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                       "create /" + std::string(failure_points_group));
-        table(g.id, main_tests);
-      }
-      if (!compaction_tests.empty())
-      {
-        // The compaction tests: their failure point is the first peak (dem/scene/failure_analysis.h);
-        // the calibration reads their curves from /tests/<id>/history.
-        const Handle g = hdf5::create_group(f.id, compaction_tests_group);
-        table(g.id, compaction_tests);
-        hdf5::write_doubles(g.id, "strain_rate", std::vector<double>(compaction_tests.size(), c.compaction_strain_rate),
-                            "1/s", "the platen's speed over the specimen height (Campaign/Compaction strain rate)");
-      }
-      if (!friction_tests.empty())
-      {
-        // The friction tests: their steady sliding (the steady_* columns) gives the failed layer's
-        // friction coefficient; the calibration reads it from this table.
-        const Handle g = hdf5::create_group(f.id, friction_tests_group);
-        table(g.id, friction_tests);
-        hdf5::write_doubles(g.id, "normal_stress", std::vector<double>(friction_tests.size(), c.friction_normal_stress),
-                            "Pa", "the constant normal stress of the simple shear (Campaign/Friction normal stress)");
-      }
-      if (!references.empty())
-      {
-        const Handle g(H5Gcreate2(f.id, "quasi_static_check", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                       "create /quasi_static_check");
-        table(g.id, references);
-        std::vector<std::string> checked;
-        std::vector<double> difference, base_difference;
-        for (const auto *r : references)
-        {
-          checked.push_back(r->reference_for);
-          difference.push_back(relative_difference(outcomes[r->reference_for], outcomes[r->id]));
-          base_difference.push_back(base_relative_difference(outcomes[r->reference_for], outcomes[r->id]));
-        }
-        hdf5::write_strings(g.id, "checks", checked, "the campaign test this slower run is the reference of");
-        hdf5::write_doubles(g.id, "relative_difference", difference, "-",
-                      "|s - s_ref| / |s_ref| of the failure point s = (p, q) (the checked measure)");
-        hdf5::write_doubles(g.id, "base_relative_difference", base_difference, "-",
-                      "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
-      }
-    });
+    write_campaign_file(directory / "campaign.h5", scene, microstructure_scenes, tests, outcomes);
 
     // summary.json
     Json s;
