@@ -82,6 +82,29 @@ namespace anticrack::coupling
                                                  std::pow(s.thickness_in_grains, 3) / M_PI));
   }
 
+  double compaction_final_strain(const ProfileSpecimen &specimen, const dem::SceneParameters &scene, double diameter,
+                                 const std::string &where)
+  {
+    // The rigid base and actuator layers (mean radii) do not compact; the layer between them does,
+    // under uniaxial strain (periodic sides), so its solid fraction after a strain e is phi / (1 - e).
+    const auto &b = scene.dem.boundary;
+    const double rigid = (b.base_thickness.value_or(0) + b.actuator_thickness.value_or(0)) * 0.5 * diameter;
+    const double scene_height = scene.dem.sample.box_edge, height = specimen.thickness_in_grains * diameter;
+    const double scene_layer = scene_height - rigid, layer = height - rigid;
+    if (!(layer > 0))
+      throw InputError(where + ": a specimen of " + format_number(specimen.thickness_in_grains) +
+                       " grains has no layer between its base and actuator (DEM/Boundary particles/Base and Actuator "
+                       "thickness [mean radii]): raise Pipeline/Profile specimen/Thickness classes [grains]");
+    const double scene_final = scene.campaign.compaction_final_strain * scene_height / scene_layer;
+    const double final_fraction = scene.dem.sample.volume_fraction / (1 - scene_final);
+    const double final_strain = 1 - specimen.solid_fraction / final_fraction;
+    if (!(final_strain > 0 && final_strain < 1))
+      throw InputError(where + ": the class's solid fraction " + format_number(specimen.solid_fraction) +
+                       " is at or above the final solid fraction " + format_number(final_fraction) +
+                       " of the scene's compaction test (Campaign/Compaction final strain)");
+    return final_strain * layer / height;
+  }
+
   std::vector<std::pair<std::string, std::string>> specimen_changes(const ProfileSpecimen &specimen,
                                                                     const dem::SceneParameters &scene,
                                                                     const std::string &where)
@@ -116,6 +139,9 @@ namespace anticrack::coupling
     if (scene.campaign.friction_shear_velocity > 0)
       changes.emplace_back("Campaign/Friction shear velocity [m/s]",
                            text(scene.campaign.friction_shear_velocity * height / scene_height));
+    if (scene.campaign.compaction_final_strain > 0)
+      changes.emplace_back("Campaign/Compaction final strain",
+                           text(compaction_final_strain(specimen, scene, diameter, where)));
     return changes;
   }
 

@@ -20,6 +20,10 @@
 //     (the same stress rate), the friction test's shear velocity with the thickness (the same strain
 //     rate), the Monte Carlo sweeps with N over the scene's N (a larger box levels off later,
 //     docs/work_precision.md);
+//   - the compaction test compacts the class's layer to the scene's final solid fraction: between
+//     the rigid base and actuator the layer is in uniaxial strain, so a strain e takes phi to
+//     phi / (1 - e); a lighter layer needs more strain to lock up (at phi = 0.218 the scene's 0.35
+//     left a 10-grain layer short of its lock-up, measured);
 //   - the grain size d is the snow units' length for the pit: the material's only length, its
 //     reference thickness, scales by d over Snow units/Grain diameter [m] (coupling/snow_units.h:
 //     the grains' size is a unit, so pits that differ only in it share a campaign).
@@ -84,11 +88,18 @@ namespace anticrack::coupling
 
   /// The entries that make the weak-layer scene `dem` (a sticky-hard-sphere sample, loaded along z)
   /// sample and test `specimen` with the scene's sphere diameter: volume fraction, particle count,
-  /// box edge and aspect ratios, sweeps, the clump's force rate and the friction test's shear
-  /// velocity (the header says why each). Throws InputError (naming `where`) for another sample type.
+  /// box edge and aspect ratios, sweeps, the clump's force rate, the friction test's shear velocity
+  /// and the compaction test's final strain (the header says why each). Throws InputError (naming `where`) for another sample type.
   std::vector<std::pair<std::string, std::string>> specimen_changes(const ProfileSpecimen &specimen,
                                                                     const dem::SceneParameters &dem,
                                                                     const std::string &where);
+
+  /// Campaign/Compaction final strain of `specimen` (spheres of `diameter`) under the weak-layer scene
+  /// `dem`: the strain (over the whole box, as the entry's) that takes its layer between the rigid
+  /// base and actuator to the final solid fraction of the scene's compaction test. Throws InputError
+  /// (naming `where`) when the class is too dense or too thin for it.
+  double compaction_final_strain(const ProfileSpecimen &specimen, const dem::SceneParameters &dem, double diameter,
+                                 const std::string &where);
 
   /// Its record for summary.json: the layer, its class and the specimen.
   nlohmann::ordered_json specimen_record(const ProfileWeakLayer &layer, const ProfileSpecimen &specimen);

@@ -49,6 +49,9 @@ namespace
     scene.dem.sample.sweeps = 20000;
     scene.dem.boundary.clump_force_rate = 400;
     scene.campaign.friction_shear_velocity = 0.05;
+    scene.campaign.compaction_final_strain = 0.35;
+    scene.dem.boundary.base_thickness = 3;
+    scene.dem.boundary.actuator_thickness = 3;
     return scene;
   }
 } // namespace
@@ -110,6 +113,12 @@ TEST(ProfileSpecimen, ChangesMakeTheScenesSampleThatBox)
   EXPECT_NEAR(std::stod(changes.at("DEM/Boundary particles/Clump force rate [N/s]")),
               400 * (2.8 * h) * (2.8 * h) / 1e-4, 1e-9);
   EXPECT_NEAR(std::stod(changes.at("Campaign/Friction shear velocity [m/s]")), 0.05 * h / 0.01, 1e-15);
+  // The compaction test: the layer between base and actuator (3 + 3 radii = 3 d) compacted to the
+  // scene's final solid fraction, 0.3 / (1 - 0.35 x 0.01 / (0.01 - 3 d)), under uniaxial strain; the
+  // entry is over the whole box, 10 d, of which 7 d compact.
+  const double scene_final_fraction = 0.3 / (1 - 0.35 * 0.01 / (0.01 - 3 * d));
+  const double layer_strain = 1 - (150.0 / 917) / scene_final_fraction;
+  EXPECT_NEAR(std::stod(changes.at("Campaign/Compaction final strain")), layer_strain * 0.7, 1e-12);
   // The sphere count N at this phi and box gives back the scene's diameter (radius from Box edge).
   const double phi = 150.0 / 917, volume = (2.8 * h) * (2.8 * h) * h;
   EXPECT_NEAR(2 * std::cbrt(phi * volume / (count * 4.0 / 3.0 * M_PI)), d, 1e-3 * d);
