@@ -426,8 +426,11 @@ namespace anticrack::coupling
         prepare_directory();
         plan_stages();
         record_the_scene();
+        // One weak layer: its failure ends the pipeline. Several (classes of pits): a class whose
+        // campaign or calibration fails takes only its own pits down, the others go on.
         for (std::size_t k = 0; k < scene_.weak_layers.size(); ++k)
-          if (const int code = run_weak_layer(k); code != exit_success)
+          if (const int code = run_weak_layer(k);
+              code == exit_interrupted || (code != exit_success && scene_.weak_layers.size() == 1))
             return code;
         run_snowpack_stages();
         run_uncertainty();
@@ -449,7 +452,7 @@ namespace anticrack::coupling
       std::vector<std::string> names_;
       std::vector<Stage> stages_; ///< the weak layers, the snowpack scenes, the uncertainty
       Json summary_;
-      std::vector<fs::path> materials_;         ///< each weak layer's material in snow units
+      std::vector<fs::path> materials_;         ///< each weak layer's material in snow units (empty: it failed)
       std::vector<std::string> material_sha256s_;
       bool interrupted_ = false, failed_ = false;
 
@@ -639,12 +642,29 @@ namespace anticrack::coupling
           calibration.command_line = options_.command_line;
           calibration.snow = scene_.snow;
           const auto stage_start = Clock::now();
-          const int code = run_calibration(calibration);
+          int code = exit_numerical_failure;
+          try
+          {
+            code = run_calibration(calibration);
+          }
+          catch (const InputError &e)
+          {
+            // A class's sample or fit that the DEM or the calibration refuses (a sample that does
+            // not percolate, a surface no cohesive Cam-Clay fits): with one weak layer the pipeline's
+            // bad input; of several, that class's failure, recorded, the others' pits still run.
+            if (scene_.weak_layers.size() == 1)
+              throw;
+            w.results = {{"error", e.what()}};
+            std::cerr << "anticrack: " << stage << " failed; its pits are not run:\n" << e.what() << "\n";
+          }
           w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
           barrier();
           w.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
           if (code != exit_success)
           {
+            note(w);
+            materials_.emplace_back();
+            material_sha256s_.emplace_back();
             write_summary(w.status);
             return code;
           }
@@ -711,6 +731,12 @@ namespace anticrack::coupling
         {
           Stage &s = stages_[k];
           const std::size_t w = weak_layer_of(k).variant;
+          if (materials_[w].empty())
+          {
+            s.status = "not run";
+            s.results = {{"error", "its weak layer, " + stages_[w].name + ", failed"}};
+            continue;
+          }
           const fs::path material = stage_material(k, materials_[w], s.directory);
           const std::string text = snowpack_scene_text(scene_, snowpack_scene_of(k), material.string());
           s.inputs_sha256 = util::sha256_hex(text + "\nmaterial " + util::sha256_of_file(material.string()));

@@ -70,9 +70,10 @@ def fmt(value, digits=3):
 
 
 def calibration_stages(summary):
-    """The weak layers' stages: one, or one per class of the pits' weak layers (Pipeline/Weak layer
-    specimen = profile)."""
-    return [s for s in summary["stages"] if s["kind"] == "calibration"]
+    """The weak layers' stages that calibrated: one, or one per class of the pits' weak layers
+    (Pipeline/Weak layer specimen = profile; a class whose campaign or fit failed has no material)."""
+    return [s for s in summary["stages"]
+            if s["kind"] == "calibration" and s["status"] in ("completed", "completed earlier")]
 
 
 def weak_layer_section(run_dir, summary, stage):
@@ -359,7 +360,8 @@ def main():
              f"Status: {summary['status']}; {len(summary['stages'])} stages; outputs in `{run_dir}`.", "",
              "![report](report.png)", ""] + weak_lines + stage_section(run_dir, summary)
     write_text(os.path.join(run_dir, "report.md"), "\n".join(lines) + "\n")
-    plot(run_dir, summary, scales[0], os.path.join(run_dir, "report.png"))
+    if scales:  # no weak layer calibrated: nothing to plot
+        plot(run_dir, summary, scales[0], os.path.join(run_dir, "report.png"))
     print(f"wrote {os.path.join(run_dir, 'report.md')} and report.png")
     return 0
 

@@ -2322,12 +2322,16 @@ def pipeline_profile_specimen(work):
     diameter, N = 6 phi 8^3 / pi; the material's density the class's; a pit's material its class's
     with the reference thickness times its grain size over Snow units/Grain diameter [m] (so the 2 mm
     pit's is 4/3 of the 1.5 mm pit's of the same class), and each stage records its pit's layer and class.
-    A pit whose weak layer has no density (surface hoar, which Geldsetzer & Jamieson (2000) do not
-    cover) is refused, naming the pit and the layer, and so is the uncertainty stage over several pits."""
+    A fourth pit (FC 158 kg/m^3, 2 mm) makes a class, 150 kg/m^3, whose 160-sphere sample has no load
+    path (its bonds do not join base and clump): that class fails, recorded with the calibration's
+    reason, its pit is not run, and the
+    others' pits are (exit 1, the pipeline failed). A pit whose weak layer has no density (surface
+    hoar, which Geldsetzer & Jamieson (2000) do not cover) is refused, naming the pit and the layer,
+    and so is the uncertainty stage over several pits."""
     weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
                  "subsection Calibration\n  set Bootstrap resamples = 0\n  set Plots = false\nend\n")
     pits = ["45238_pst1", "50993_pst1", "35548_pst1"]
-    for pit in pits + ["17844_pst1"]:
+    for pit in pits + ["18288_pst1", "17844_pst1"]:
         text = open(os.path.join(SOURCE, "scenes", "field", f"pit_{pit}.prm")).read()
         write(os.path.join(work, f"pit_{pit}.prm"), text.replace("../../data/", os.path.join(SOURCE, "data") + "/"))
     pipeline_text = lambda names, uncertainty: "\n".join([
@@ -2338,17 +2342,23 @@ def pipeline_profile_specimen(work):
         f"  set Uncertainty = {uncertainty}", "  set Weak layer specimen = profile",
         "  subsection Profile specimen", "    set Thickness classes [grains] = 8",
         "    set Lateral extent [thicknesses] = 1", "  end", "end", *SNOW_UNITS]) + "\n"
-    pipeline = write(os.path.join(work, "pipeline.prm"), pipeline_text(pits, "none"))
+    pipeline = write(os.path.join(work, "pipeline.prm"), pipeline_text(pits + ["18288_pst1"], "none"))
     stdout, _ = anticrack("check", pipeline)
     check("weak layer 275 kg/m^3, 8 grains" in stdout and "weak layer 250 kg/m^3, 8 grains" in stdout,
           f"`check` does not list the classes:\n{stdout}")
     out = os.path.join(work, "out")
-    anticrack("run", pipeline, "-o", out, "--threads", "2")
+    anticrack("run", pipeline, "-o", out, "--threads", "2", expect=1)
     summary = json.load(open(os.path.join(out, "summary.json")))
-    check(summary["status"] == "completed", f"pipeline status {summary['status']}")
+    check(summary["status"] == "failed", f"pipeline status {summary['status']}")
     names = [s["name"] for s in summary["stages"]]
     check(names == ["weak layer 250 kg/m^3, 8 grains", "weak layer 275 kg/m^3, 8 grains",
-                    *(f"pit_{p}" for p in pits), "uncertainty"], f"stages {names}")
+                    "weak layer 150 kg/m^3, 8 grains", *(f"pit_{p}" for p in pits), "pit_18288_pst1",
+                    "uncertainty"], f"stages {names}")
+    failed, skipped = summary["stages"][2], summary["stages"][6]
+    check(failed["status"] == "failed" and "no load path" in failed["results"]["error"], f"class 150: {failed}")
+    check(skipped["status"] == "not run" and "weak layer 150" in skipped["results"]["error"], f"pit 18288: {skipped}")
+    check(all(s["status"] == "completed" for s in summary["stages"][:2] + summary["stages"][3:6]),
+          f"the other classes and pits: {summary['stages']}")
     diameter = 2 * (0.3 * 0.005 ** 3 / (256 * 4 / 3 * math.pi)) ** (1 / 3)  # the tiny campaign's spheres
     for density, directory in ((275, "weak_layer_275kgm3_8grains"), (250, "weak_layer_250kgm3_8grains")):
         phi = density / 917
@@ -2367,7 +2377,7 @@ def pipeline_profile_specimen(work):
     grains = {"45238_pst1": 2e-3, "50993_pst1": 4e-3, "35548_pst1": 1.5e-3}
     classes = {"45238_pst1": "weak_layer_250kgm3_8grains", "50993_pst1": "weak_layer_275kgm3_8grains",
                "35548_pst1": "weak_layer_250kgm3_8grains"}
-    for stage in summary["stages"][2:5]:
+    for stage in summary["stages"][3:6]:
         pit = stage["name"][len("pit_"):]
         own = stage["weak_layer"]["from_profile"]
         check(own["grain_size_m"] == grains[pit] and own["specimen"]["thickness_in_grains"] == 8 and
