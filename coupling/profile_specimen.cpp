@@ -121,9 +121,7 @@ namespace anticrack::coupling
       throw InputError(where + ": Pipeline/Weak layer specimen = profile needs the weak layer scene's sample sized by "
                                "DEM/Sample/Box edge [m] (it is 0: sized by Radius [m])");
     const double scene_area = scene_height * scene_height * a[0] * a[1] / (a[2] * a[2]);
-    const double scene_volume = scene_area * scene_height;
-    const double diameter = 2 * std::cbrt(sample.volume_fraction * scene_volume /
-                                          (static_cast<double>(sample.particle_count) * 4.0 / 3.0 * M_PI));
+    const double diameter = 2 * sample.sticky_sphere_radius();
     const double height = specimen.thickness_in_grains * diameter;
     const double area = std::pow(specimen.lateral_extent * height, 2);
     const std::size_t count = specimen_particle_count(specimen);

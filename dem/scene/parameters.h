@@ -157,6 +157,16 @@ namespace anticrack::dem
       double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
       double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N
       Vec3 box_aspect_ratios = Vec3::Ones(); ///< L_x : L_y : L_z of the sticky-hard-sphere box
+      /// The sticky-hard-sphere radius: from Box edge [m] (L_z; the box's volume L_z^3 a_x a_y / a_z^2
+      /// holds N spheres at phi) when it is set, else Radius [m].
+      [[nodiscard]] double sticky_sphere_radius() const
+      {
+        if (!(box_edge > 0))
+          return radius;
+        const Vec3 &a = box_aspect_ratios;
+        return std::cbrt(volume_fraction * box_edge * box_edge * box_edge * a[0] * a[1] / (a[2] * a[2]) /
+                         (static_cast<double>(particle_count) * 4.0 / 3.0 * M_PI));
+      }
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
       double radius_half_width = 0;     ///< [m]

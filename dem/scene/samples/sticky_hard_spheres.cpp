@@ -142,13 +142,8 @@ namespace anticrack::dem
       spec.volume_fraction = d.sample.volume_fraction;
       spec.stickiness = d.sample.stickiness;
       spec.target_coordination = d.sample.target_coordination;
-      // Box edge [m] is L_z; the box's volume L_z^3 a_x a_y / a_z^2 holds N spheres at phi.
-      const Vec3 &aspect = d.sample.box_aspect_ratios;
-      spec.aspect_ratios = aspect;
-      spec.radius = d.sample.box_edge > 0 ?
-                      std::cbrt(d.sample.volume_fraction * std::pow(d.sample.box_edge, 3) * aspect[0] * aspect[1] /
-                                (aspect[2] * aspect[2]) / (d.sample.particle_count * dem::sphere_volume(1.0))) :
-                      d.sample.radius;
+      spec.aspect_ratios = d.sample.box_aspect_ratios;
+      spec.radius = d.sample.sticky_sphere_radius();
       spec.well_width = d.sample.well_width;
       spec.sweeps = d.sample.sweeps;
       spec.cluster_move_fraction = d.sample.cluster_move_fraction;
