@@ -17,6 +17,7 @@
 #include "util/worker_processes.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,8 +28,10 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 namespace anticrack::dem
 {
@@ -455,6 +458,92 @@ namespace anticrack::dem
       return test_scene;
     }
 
+    /// The samples of a campaign, one per (microstructure, realization), each shared by its tests.
+    using SampleKey = std::pair<Index, Index>;
+    struct CampaignSamples
+    {
+      std::map<SampleKey, std::unique_ptr<DemModel>> models;
+      std::map<SampleKey, std::string> without_load_path; ///< the realizations refused, and why
+    };
+
+    /// Builds the samples of `tests` (their (microstructure, realization)s, each once) before any
+    /// test runs, `side_by_side` at a time on one thread each (or one at a time on `threads` when
+    /// side_by_side is 1). A sample can take minutes (the sticky-hard-sphere sampler near its
+    /// critical stickiness) and can be refused (not levelled off, no percolation): built first, a
+    /// refusal costs the samples' time, not that of the tests that ran before it, and leaves nothing
+    /// written. A sample is the same bits on any number of threads, so the results do not depend on
+    /// the order. A realization whose bonds do not connect base and clump is recorded, not thrown;
+    /// any other refusal is rethrown, the first in (microstructure, realization) order.
+    CampaignSamples build_samples(const std::vector<SceneParameters> &microstructure_scenes,
+                                  const std::vector<const CampaignTest *> &tests, const parameters::Campaign &c,
+                                  int side_by_side, int threads)
+    {
+      std::vector<std::pair<SampleKey, const CampaignTest *>> wanted; // the first test of each sample
+      for (const CampaignTest *t : tests)
+      {
+        const SampleKey key{t->microstructure, t->realization};
+        if (std::none_of(wanted.begin(), wanted.end(), [&](const auto &w) { return w.first == key; }))
+          wanted.emplace_back(key, t);
+      }
+      std::sort(wanted.begin(), wanted.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
+      side_by_side = std::max(1, std::min(side_by_side, static_cast<int>(wanted.size())));
+      if (wanted.size() > 1 || side_by_side > 1)
+        root_console() << "  " << wanted.size() << " sample(s) first, " << side_by_side << " side by side\n"
+                       << std::flush;
+
+      std::vector<std::unique_ptr<DemModel>> models(wanted.size());
+      std::vector<std::string> no_load_path(wanted.size());
+      std::vector<std::exception_ptr> refused(wanted.size());
+      std::atomic<std::size_t> next{0};
+      std::mutex console;
+      const auto builder = [&] {
+        for (std::size_t k = next++; k < wanted.size(); k = next++)
+        {
+          const CampaignTest &t = *wanted[k].second;
+          try
+          {
+            models[k] = build_dem_model(test_scene_of(microstructure_scenes[t.microstructure], t, c),
+                                        side_by_side > 1 ? 1 : threads);
+            models[k]->system.clumps[models[k]->clump].applied_force = {}; // each test sets its own
+            const std::lock_guard<std::mutex> lock(console);
+            std::cout << "  sample m" << t.microstructure << "_r" << t.realization << " built in "
+                      << format_duration(models[k]->build_seconds) << "\n"
+                      << std::flush;
+          }
+          catch (const SpecimenWithoutLoadPath &e)
+          {
+            no_load_path[k] = e.what();
+          }
+          catch (...)
+          {
+            refused[k] = std::current_exception();
+          }
+        }
+      };
+      if (side_by_side == 1)
+        builder();
+      else
+      {
+        // Plain threads, not an OpenMP team: each builder is an initial thread of its own, whose
+        // one-thread DEM set-up starts no OpenMP pool (the worker processes fork after these end).
+        std::vector<std::thread> team;
+        for (int k = 0; k < side_by_side; ++k)
+          team.emplace_back(builder);
+        for (std::thread &member : team)
+          member.join();
+      }
+      for (const std::exception_ptr &e : refused)
+        if (e)
+          std::rethrow_exception(e);
+      CampaignSamples samples;
+      for (std::size_t k = 0; k < wanted.size(); ++k)
+        if (models[k])
+          samples.models[wanted[k].first] = std::move(models[k]);
+        else
+          samples.without_load_path[wanted[k].first] = no_load_path[k];
+      return samples;
+    }
+
     /// How campaign test `t` runs (DIRECTORY/tests/<id>/, quiet, its progress labelled `label`), and
     /// the labels its summary.json carries (which --resume compares).
     RunOptions test_run_options(const SceneParameters &test_scene, const CampaignTest &t, const fs::path &directory,
@@ -679,8 +768,9 @@ namespace anticrack::dem
     mpi.barrier();
     PhaseTimer timer; // rank 0's phases: its own tests, then campaign.h5 and summary.json
     // Bad input that only building a sample finds (a sticky-hard-sphere sample that does not
-    // percolate) comes after the folders are made: until the first test has run, such an error
-    // removes what this run created, so that "nothing was written" holds.
+    // percolate or level off) comes after the folders are made, and every sample is built before
+    // the first test runs: such an error removes what this run created, so that "nothing was
+    // written" holds.
     struct RemoveCreatedOnBadInput
     {
       std::vector<fs::path> created;
@@ -742,7 +832,26 @@ namespace anticrack::dem
                 << " thread(s)\n"
                 << std::flush;
 
-    // --- the tests of one member; one sample per (microstructure, realization), copied for each angle
+    // --- the samples, before any test: those of the tests still to run (this rank's block under mpirun)
+    std::vector<const CampaignTest *> to_run;
+    {
+      const auto [first, last] = workers ? std::pair<std::size_t, std::size_t>(0, tests.size())
+                                         : block_of(tests, c, mpi.rank(), members);
+      for (std::size_t k = first; k < last; ++k)
+      {
+        const CampaignTest &t = tests[k];
+        const RunOptions o =
+          test_run_options(test_scene_of(microstructure_scenes[t.microstructure], t, c), t, directory, "", threads, options);
+        if (!(options.resume && completed(o.output_directory, o.labels)))
+          to_run.push_back(&t);
+      }
+    }
+    const CampaignSamples samples = [&] {
+      const auto phase = timer.scope("samples");
+      return build_samples(microstructure_scenes, to_run, c, workers ? members : threads, threads);
+    }();
+
+    // --- the tests of one member, each on a copy of its sample
     struct Share
     {
       bool any_failed = false;
@@ -754,9 +863,6 @@ namespace anticrack::dem
     const auto run_share = [&](const std::string &who, const std::function<std::size_t()> &next,
                                const std::function<double()> &left) {
       Share share;
-      // Each sample (microstructure, realization) this member needs, built once and kept.
-      std::map<std::pair<Index, Index>, std::unique_ptr<DemModel>> samples;
-      std::map<std::pair<Index, Index>, std::string> without_load_path; // the samples refused, and why
       const auto share_start = std::chrono::steady_clock::now();
       std::size_t run_in_share = 0; // tests this member ran (not those completed earlier)
       for (std::size_t k = next(); k < tests.size(); k = next())
@@ -771,26 +877,14 @@ namespace anticrack::dem
           share.outcomes[t.id] = read_outcome(t, o.output_directory);
           continue;
         }
-        std::unique_ptr<DemModel> &sample = samples[{t.microstructure, t.realization}];
-        const bool build = !sample && !without_load_path.count({t.microstructure, t.realization});
-        if (build)
-        {
-          try
-          {
-            sample = build_dem_model(test_scene, threads);
-          }
-          catch (const SpecimenWithoutLoadPath &e)
-          {
-            without_load_path[{t.microstructure, t.realization}] = e.what();
-          }
-        }
-        if (!sample)
+        const auto sample = samples.models.find({t.microstructure, t.realization});
+        if (sample == samples.models.end())
         {
           // This realization's bonds do not connect base and clump: its tests are recorded as such
           // (the calibration leaves them out and names them) and the campaign goes on.
           Json summary;
           summary["status"] = status_no_load_path;
-          summary["message"] = without_load_path.at({t.microstructure, t.realization});
+          summary["message"] = samples.without_load_path.at({t.microstructure, t.realization});
           summary["command"] = options.command_line;
           summary["labels"] = o.labels;
           summary["scene"] = scene_info(test_scene);
@@ -805,12 +899,10 @@ namespace anticrack::dem
                     << std::flush;
           continue;
         }
-        auto model = std::make_unique<DemModel>(*sample);
-        if (!build)
-          model->build_seconds = 0; // the sample was built (and timed) for an earlier test
+        auto model = std::make_unique<DemModel>(*sample->second);
+        model->build_seconds = 0; // built (and timed) in the campaign's "samples" phase
         model->system.clumps[model->clump].applied_force =
           dem::ForceHistory::ramp(test_scene.dem.boundary.clump_force_rate, direction);
-        timer.add("samples", model->build_seconds);
         const DemRunRecord run = [&] {
           const auto phase = timer.scope("tests");
           return run_dem_model(test_scene, std::move(model), o);
@@ -849,8 +941,7 @@ namespace anticrack::dem
     std::map<std::string, TestOutcome> outcomes; // this process's tests; the others' are read from their files
     if (workers)
     {
-      // Each worker reports its phase times; the parent's phases are their means, so that they
-      // still add up to no more than the campaign's wall time.
+      // The parent's "tests" phase is its wait for the workers.
       const auto wait_start = std::chrono::steady_clock::now();
       // The workers pull tests from one queue as they become free, the longest first (the compaction
       // tests, then the others in the order of their samples, which keeps each worker on few samples):
@@ -870,7 +961,6 @@ namespace anticrack::dem
         {
           const Share share = run_share("[worker " + std::to_string(member) + "]", next,
                                         [] { return std::numeric_limits<double>::quiet_NaN(); });
-          report = std::to_string(timer.seconds("samples"));
           return static_cast<int>(share.interrupted ? exit_interrupted : share.any_failed ? exit_numerical_failure : exit_success);
         }
         catch (const InputError &e)
@@ -882,7 +972,6 @@ namespace anticrack::dem
       for (const WorkerExit &exit : exits)
         if (exit.exit_code == exit_bad_input)
           throw InputError(exit.report);
-      double samples = 0;
       for (std::size_t k = 0; k < exits.size(); ++k)
       {
         interrupted = interrupted || exits[k].exit_code == exit_interrupted;
@@ -892,11 +981,9 @@ namespace anticrack::dem
           std::cerr << "anticrack campaign: " << describe_worker_exit(static_cast<int>(k), exits[k])
                     << "; its tests are read back as their files left them\n";
         }
-        samples += exits[k].report.empty() ? 0.0 : std::stod(exits[k].report) / static_cast<double>(exits.size());
       }
       const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - wait_start).count();
-      timer.add("samples", std::min(samples, waited));
-      timer.add("tests", std::max(0.0, waited - samples));
+      timer.add("tests", waited);
     }
     else
     {

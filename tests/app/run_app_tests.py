@@ -1360,6 +1360,22 @@ def campaign_without_load_path(work):
     expect_bad_input(work, single, "DEM/Random seed = 3", "do not connect the fixed base")
 
 
+@case
+def campaign_samples_before_tests(work):
+    """Every sample is built before any test runs: a campaign whose second microstructure's sample
+    is refused (1024 spheres at 2000 sweeps, not levelled off, as in tests/bad_input) stops before
+    the first microstructure's test, on one thread too, where that test used to run first; exit 2,
+    nothing written. Both samples are announced, the refused one named."""
+    scene = write(os.path.join(work, "campaign.prm"),
+                  campaign_scene("0", microstructures="Sweeps = 2000; Particle count = 1024, Sweeps = 2000"))
+    out = os.path.join(work, "not_created", "run")
+    stdout, stderr = anticrack("run", scene, "-o", out, "--threads", "1", expect=2)
+    check("has not levelled off after 2000 sweeps" in stderr, f"the refusal does not say why:\n{stderr}")
+    check("2 sample(s) first" in stdout and "sample m0_r0 built" in stdout, f"the samples are not announced:\n{stdout}")
+    check(" test 1/" not in stdout, f"a test ran before the samples were all built:\n{stdout}")
+    check(not os.path.exists(os.path.dirname(out)), f"{os.path.dirname(out)} was created for bad input")
+
+
 # ----------------------------------------------------------------------------------- calibration
 # A synthetic campaign.h5 (format 2, the layout dem/campaign/campaign.cpp writes) whose answers are known:
 # failure points on cohesive Cam-Clay ellipses in both planes with 2 % radial noise, associative
