@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -107,6 +109,22 @@ namespace anticrack::dem::shs
             cells_[a] = 1; // one cell across: every pair along it is a candidate (minimum image keeps it unique)
         }
         members_.resize(cells_[0] * cells_[1] * cells_[2]);
+        // Each cell's neighbourhood, in the order the walk visits it (z, y, x from -1 to 1; the one
+        // cell across an axis that has one), so that the walk needs no modulo.
+        const auto reach = [&](int a) { return cells_[a] == 1 ? Index(0) : Index(1); };
+        neighbourhood_size_ = (2 * reach(0) + 1) * (2 * reach(1) + 1) * (2 * reach(2) + 1);
+        neighbourhoods_.reserve(members_.size() * neighbourhood_size_);
+        for (Index cz0 = 0; cz0 < cells_[2]; ++cz0)
+          for (Index cy0 = 0; cy0 < cells_[1]; ++cy0)
+            for (Index cx0 = 0; cx0 < cells_[0]; ++cx0)
+              for (Index dz = -reach(2); dz <= reach(2); ++dz)
+                for (Index dy = -reach(1); dy <= reach(1); ++dy)
+                  for (Index dx = -reach(0); dx <= reach(0); ++dx)
+                  {
+                    const Index cx = (cx0 + dx + cells_[0]) % cells_[0], cy = (cy0 + dy + cells_[1]) % cells_[1],
+                                cz = (cz0 + dz + cells_[2]) % cells_[2];
+                    neighbourhoods_.push_back(static_cast<std::int32_t>(cx + cells_[0] * (cy + cells_[1] * cz)));
+                  }
         cell_of_.resize(x.size());
         slot_.resize(x.size());
         for (std::size_t p = 0; p < x.size(); ++p)
@@ -127,22 +145,21 @@ namespace anticrack::dem::shs
         insert(p, c);
       }
 
-      /// Calls visit(j) for every particle in the cells around x.
+      /// Calls visit(j) for every particle in the cells around x; a visit that returns true stops
+      /// the walk (a hard-core overlap decides a trial move at once).
       template <class Visit>
       void for_each_near(const Vec3 &x, Visit &&visit) const
       {
-        const std::array<Index, 3> c = coordinates(x);
-        // the neighbouring cells along an axis, or the one cell across it
-        const auto reach = [&](int a) { return cells_[a] == 1 ? Index(0) : Index(1); };
-        for (Index dz = -reach(2); dz <= reach(2); ++dz)
-          for (Index dy = -reach(1); dy <= reach(1); ++dy)
-            for (Index dx = -reach(0); dx <= reach(0); ++dx)
+        const std::int32_t *near = neighbourhoods_.data() + cell(x) * neighbourhood_size_;
+        for (Index k = 0; k < neighbourhood_size_; ++k)
+          for (const Index j : members_[near[k]])
+            if constexpr (std::is_same_v<decltype(visit(j)), bool>)
             {
-              const Index cx = (c[0] + dx + cells_[0]) % cells_[0], cy = (c[1] + dy + cells_[1]) % cells_[1],
-                          cz = (c[2] + dz + cells_[2]) % cells_[2];
-              for (const Index j : members_[cx + cells_[0] * (cy + cells_[1] * cz)])
-                visit(j);
+              if (visit(j))
+                return;
             }
+            else
+              visit(j);
       }
 
     private:
@@ -168,13 +185,23 @@ namespace anticrack::dem::shs
       Vec3 box_;
       std::array<Index, 3> cells_{};
       std::vector<std::vector<Index>> members_;
+      Index neighbourhood_size_ = 0;               ///< cells around a cell, itself included
+      std::vector<std::int32_t> neighbourhoods_;   ///< per cell, its neighbourhood's cell indices
       std::vector<Index> cell_of_, slot_;
     };
 
+    /// The nearest image of d, the difference of two positions inside the box (|d_a| < L_a): one
+    /// shift by a whole edge at most, the same as d_a - L_a nearbyint(d_a / L_a) without its
+    /// division and rounding call (the sampler's innermost operation).
     Vec3 minimum_image(Vec3 d, const Vec3 &box)
     {
       for (int a = 0; a < 3; ++a)
-        d[a] -= box[a] * std::nearbyint(d[a] / box[a]);
+      {
+        if (d[a] > 0.5 * box[a])
+          d[a] -= box[a];
+        else if (d[a] < -0.5 * box[a])
+          d[a] += box[a];
+      }
       return d;
     }
 
@@ -342,13 +369,14 @@ namespace anticrack::dem::shs
       Index count = 0;
       bool overlap = false;
       cells.for_each_near(y, [&](Index j) {
-        if (j == self || overlap)
-          return;
+        if (j == self)
+          return false;
         const double d2 = minimum_image(x[j] - y, box).squaredNorm();
         if (d2 < sigma * sigma)
           overlap = true;
         else if (d2 < range * range)
           ++count;
+        return overlap;
       });
       return overlap ? Index(-1) : count;
     };
