@@ -50,7 +50,7 @@ def run_and_kill(arguments, point, cwd, timeout):
     environment = dict(os.environ)
     if point.writing:
         environment["ANTICRACK_KILL_WHILE_WRITING"] = point.writing
-    process = subprocess.Popen([app.ANTICRACK, *arguments], cwd=cwd, env=environment, text=True,
+    process = subprocess.Popen([app.PATHS.anticrack, *arguments], cwd=cwd, env=environment, text=True,
                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True)
     output, seen, killed = [], 0, False
     try:
@@ -86,7 +86,7 @@ def resume_through(arguments, points, cwd, timeout=300, before_each=None, after_
         check(killed, f"kill point `{point.name}` was never reached (exit {code}):\n{output[-3000:]}")
         if after_each:
             after_each(point, output, state)
-    result = subprocess.run([app.ANTICRACK, *arguments, "--resume"], cwd=cwd, capture_output=True, text=True,
+    result = subprocess.run([app.PATHS.anticrack, *arguments, "--resume"], cwd=cwd, capture_output=True, text=True,
                             timeout=timeout)
     check(result.returncode == 0, f"the last --resume exited with {result.returncode}:\n"
           f"{result.stdout[-4000:]}\n{result.stderr[-4000:]}")
@@ -273,7 +273,7 @@ def study_killed(work):
     again while a variant's record is written, then resumed: study.json's lines (values, errors,
     orders; not the cheapest settings, chosen by wall time) equal to an uninterrupted run's, the
     completed variants not run again."""
-    scene = os.path.join(app.SOURCE, "scenes", "studies", "err_flat_mesh.prm")
+    scene = os.path.join(app.PATHS.source, "scenes", "studies", "err_flat_mesh.prm")
     reference = os.path.join(work, "reference")
     app.anticrack("run", scene, "-o", reference)
     out = os.path.join(work, "killed")
@@ -291,7 +291,7 @@ def study_killed(work):
 # ------------------------------------------------------------------------ files that cannot be used
 def expect_unusable(arguments, file, cwd, *needles):
     """anticrack refuses (exit 2) naming `file`, with what to do, and no library's text."""
-    result = subprocess.run([app.ANTICRACK, *arguments], cwd=cwd, capture_output=True, text=True, timeout=300)
+    result = subprocess.run([app.PATHS.anticrack, *arguments], cwd=cwd, capture_output=True, text=True, timeout=300)
     message = result.stdout + result.stderr
     check(result.returncode == 2, f"`{' '.join(arguments)}` with {file} damaged exited {result.returncode}, not 2:\n{message[-3000:]}")
     check(file in message, f"the message does not name {file}:\n{message}")
@@ -389,7 +389,7 @@ def unusable_files(work):
     restore()
 
     # A study variant's record.
-    study_scene = os.path.join(app.SOURCE, "scenes", "studies", "err_flat_mesh.prm")
+    study_scene = os.path.join(app.PATHS.source, "scenes", "studies", "err_flat_mesh.prm")
     study = os.path.join(work, "study")
     app.anticrack("run", study_scene, "-o", study)
     path = os.path.join(study, "variants", "v001", "variant.json")
@@ -405,7 +405,7 @@ def default_pipeline_killed(work):
     user would (kill -9 of the group) 150 s in (here: when its campaign has completed 4 tests),
     during its PSTs and during its uncertainty runs, resumed each time; its summary.json results equal
     to an uninterrupted run's bit for bit. About 20 minutes on 2 cores."""
-    scene = os.path.join(app.SOURCE, "scenes", "pipeline.prm")
+    scene = os.path.join(app.PATHS.source, "scenes", "pipeline.prm")
     reference = os.path.join(work, "reference")
     app.anticrack("run", scene, "-o", reference, timeout=3600)
     out = os.path.join(work, "killed")
