@@ -9,7 +9,7 @@
 // 453:629; Agnolin & Roux 2007, Phys. Rev. E 76:061302). Measured here (N = 1000, radii +-20 %,
 // p = 1e-4 E_c, seed 1): phi = 0.644 / 0.594 / 0.575 / 0.561 and z* = 6.03 / 4.84 / 4.30 / 4.12 for
 // mu = 0 / 0.2 / 0.5 / 1, in 15300 / 6830 / 17610 / 38550 steps (`anticrack check` on a dense
-// random packing scene prints these statistics; tests/unit/test_dense_packing.cpp checks N = 500).
+// random packing scene prints these statistics; tests/dem/test_dense_packing.cpp checks N = 500).
 //
 // Method (in a scratch DemSystem; the caller's system only receives the result):
 //  1. Radii r_i = f s_i with s_i uniform in [mean - half_width, mean + half_width] and f such that

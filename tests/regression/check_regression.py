@@ -19,7 +19,7 @@ tens of minutes), or one made smaller by a few entry edits so that the
 Numbers, booleans and the remaining strings must be equal; an entry that the expected file has
 and the run lacks is a failure, an entry the run adds is listed but accepted (a new output is
 not a changed result). This is a consistency check across refactorings, not a physics test:
-what each result means is tested against closed forms and published values in tests/unit,
+what each result means is tested against closed forms and published values in tests/dem,
 tests/fem, tests/fem_solver, tests/params and tests/app.
 
 --update rewrites the expected files from the current build (do this only from a tree whose
