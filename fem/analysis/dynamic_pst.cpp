@@ -8,6 +8,7 @@
 #include "util/atomic_file.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
+#include "util/entry_table.h"
 #include "util/enum_table.h"
 #include "util/input_error.h"
 #include "util/problems.h"
@@ -738,6 +739,35 @@ namespace anticrack::fem
     return DynamicPst<dim>(scene, options, comm).run();
   }
 
+  namespace
+  {
+    /// subsection Analysis/Explicit: each entry declared and read from this one table.
+    const std::vector<BoundEntry<Analysis>> &explicit_entries()
+    {
+      static const std::vector<BoundEntry<Analysis>> table = {
+        {"End time [s]", "1", &Analysis::end_time, 0, no_upper_bound,
+         "t_end: simulated time after the saw starts. Units: s."},
+        {"CFL safety factor", "0.5", &Analysis::cfl_safety, 0.01, 1,
+         "C: safety factor of the explicit time step dt = C min(h / c_p). Dimensionless."},
+        {"Linear bulk viscosity", "0.06", &Analysis::linear_bulk_viscosity, 0, 10,
+         "c_1: linear coefficient of the bulk viscosity pressure p_v = rho h (c_2^2 h e_v'^2 - c_1 "
+         "c e_v'). Dimensionless."},
+        {"Quadratic bulk viscosity", "1.2", &Analysis::quadratic_bulk_viscosity, 0, 10,
+         "c_2: quadratic coefficient of the bulk viscosity pressure (acts in compression only). "
+         "Dimensionless."},
+        {"Mass damping [1/s]", "0", &Analysis::mass_damping, 0, no_upper_bound,
+         "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s."},
+        {"Arrest speed [m/s]", "0.5", &Analysis::arrest_speed, 0, no_upper_bound,
+         "v_arr: once the saw has stopped, the crack has arrested (Arr), or never started (no "
+         "propagation), when its tip has advanced less than v_arr t_arr over the last t_arr; the "
+         "run then ends. Units: m/s."},
+        {"Arrest duration [s]", "0.1", &Analysis::arrest_duration, 0, no_upper_bound,
+         "t_arr: the time over which the tip must stay slower than v_arr (see Arrest speed); "
+         "Output/Series interval must be at most t_arr / 10. Units: s."}};
+      return table;
+    }
+  } // namespace
+
   AnalysisType dynamic_pst_analysis()
   {
     return {
@@ -746,37 +776,13 @@ namespace anticrack::fem
       /* yielding_weak_layer = */ true, /* time_integration = */ true,
       [](ParameterHandler &prm) {
         prm.enter_subsection("Explicit");
-        prm.declare_entry("End time [s]", "1", Patterns::Double(0),
-                          "t_end: simulated time after the saw starts. Units: s.");
-        prm.declare_entry("CFL safety factor", "0.5", Patterns::Double(0.01, 1),
-                          "C: safety factor of the explicit time step dt = C min(h / c_p). Dimensionless.");
-        prm.declare_entry("Linear bulk viscosity", "0.06", Patterns::Double(0, 10),
-                          "c_1: linear coefficient of the bulk viscosity pressure p_v = rho h (c_2^2 h e_v'^2 - c_1 "
-                          "c e_v'). Dimensionless.");
-        prm.declare_entry("Quadratic bulk viscosity", "1.2", Patterns::Double(0, 10),
-                          "c_2: quadratic coefficient of the bulk viscosity pressure (acts in compression only). "
-                          "Dimensionless.");
-        prm.declare_entry("Mass damping [1/s]", "0", Patterns::Double(0),
-                          "alpha_M: mass-proportional damping, force -alpha_M M v. Units: 1/s.");
-        prm.declare_entry("Arrest speed [m/s]", "0.5", Patterns::Double(0),
-                          "v_arr: once the saw has stopped, the crack has arrested (Arr), or never started (no "
-                          "propagation), when its tip has advanced less than v_arr t_arr over the last t_arr; the "
-                          "run then ends. Units: m/s.");
-        prm.declare_entry("Arrest duration [s]", "0.1", Patterns::Double(0),
-                          "t_arr: the time over which the tip must stay slower than v_arr (see Arrest speed); "
-                          "Output/Series interval must be at most t_arr / 10. Units: s.");
+        declare_entries(prm, explicit_entries());
         prm.leave_subsection();
       },
       [](ParameterHandler &prm, SnowpackScene &scene) {
         Analysis &analysis = scene.analysis;
         prm.enter_subsection("Explicit");
-        analysis.end_time = prm.get_double("End time [s]");
-        analysis.cfl_safety = prm.get_double("CFL safety factor");
-        analysis.linear_bulk_viscosity = prm.get_double("Linear bulk viscosity");
-        analysis.quadratic_bulk_viscosity = prm.get_double("Quadratic bulk viscosity");
-        analysis.mass_damping = prm.get_double("Mass damping [1/s]");
-        analysis.arrest_speed = prm.get_double("Arrest speed [m/s]");
-        analysis.arrest_duration = prm.get_double("Arrest duration [s]");
+        parse_entries(prm, explicit_entries(), analysis);
         prm.leave_subsection();
       },
       [](const SnowpackScene &scene, Problems &problems) {

@@ -9,6 +9,7 @@
 #include "util/format.h"
 #include "util/input_error.h"
 #include "util/named_rows.h"
+#include "util/entry_table.h"
 #include "util/parameter_files.h"
 #include "util/parameter_input.h"
 #include "util/problems.h"
@@ -298,6 +299,48 @@ namespace anticrack::fem
     return names;
   }
 
+  namespace
+  {
+    /// subsection Mesh: each entry declared and read from this one table.
+    const std::vector<BoundEntry<MeshParameters>> &mesh_entries()
+    {
+      static const std::vector<BoundEntry<MeshParameters>> table = {
+        {"Dimension", "2", &MeshParameters::dimension, 2, 3,
+         "Spatial dimension: 2, plane strain in the slope-normal plane; 3, the whole column. Dimensionless."},
+        {"Polynomial degree", "1", &MeshParameters::polynomial_degree, 1, 2,
+         "p: polynomial degree of the Lagrange elements FE_Q. Dimensionless."},
+        {"Element length [m]", "0.01", &MeshParameters::element_length, 0, no_upper_bound,
+         "dx: element size along the slope (and across in 3D). Units: m."},
+        {"Weak layer elements", "4", &MeshParameters::weak_layer_elements, 1, 64,
+         "n_w: element rows through the weak-layer thickness. The layer deforms as one band "
+         "(its inner nodes follow its faces linearly, docs/fem.md): more rows sample its state "
+         "at more points. Dimensionless."},
+        {"Slab element height [m]", "0.04", &MeshParameters::slab_element_height, 0, no_upper_bound,
+         "h_s: largest element height in the slab layers (each layer gets the fewest rows no "
+         "higher). Units: m."},
+        {"Substratum element height [m]", "0.05", &MeshParameters::substratum_element_height, 0, no_upper_bound,
+         "h_b: largest element height in the substratum (it gets the fewest rows no higher). "
+         "Units: m."}};
+      return table;
+    }
+
+    /// subsection Output: each entry declared and read from this one table.
+    const std::vector<BoundEntry<OutputParameters>> &output_entries()
+    {
+      static const std::vector<BoundEntry<OutputParameters>> table = {
+        {"Field interval [s]", "0.01", &OutputParameters::field_interval, 0, no_upper_bound,
+         "Simulated time between field outputs fields/*.pvtu; 0: none. Units: s."},
+        {"Series interval [s]", "1e-3", &OutputParameters::series_interval, 0, no_upper_bound,
+         "Simulated time between rows of the time series series.h5 (explicit dynamics). Units: s."},
+        {"Progress interval", "1000", &OutputParameters::progress_interval, 0, no_upper_bound,
+         "Steps between progress lines on the console; 0: quiet. Units: steps."},
+        {"Checkpoint interval", "10000", &OutputParameters::checkpoint_interval, 0, no_upper_bound,
+         "Explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
+         "`anticrack run --resume` continues; 0: none. Units: steps."}};
+      return table;
+    }
+  } // namespace
+
   void declare_snowpack_scene(ParameterHandler &prm, const AnalysisType *const type)
   {
     // The analyses whose entries are declared: the scene's, or every one.
@@ -377,23 +420,7 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("Mesh");
-    prm.declare_entry("Dimension", "2", Integer(2, 3),
-                      "Spatial dimension: 2, plane strain in the slope-normal plane; 3, the whole column. "
-                      "Dimensionless.");
-    prm.declare_entry("Polynomial degree", "1", Integer(1, 2),
-                      "p: polynomial degree of the Lagrange elements FE_Q. Dimensionless.");
-    prm.declare_entry("Element length [m]", "0.01", Double(0),
-                      "dx: element size along the slope (and across in 3D). Units: m.");
-    prm.declare_entry("Weak layer elements", "4", Integer(1, 64),
-                      "n_w: element rows through the weak-layer thickness. The layer deforms as one band "
-                      "(its inner nodes follow its faces linearly, docs/fem.md): more rows sample its state "
-                      "at more points. Dimensionless.");
-    prm.declare_entry("Slab element height [m]", "0.04", Double(0),
-                      "h_s: largest element height in the slab layers (each layer gets the fewest rows no "
-                      "higher). Units: m.");
-    prm.declare_entry("Substratum element height [m]", "0.05", Double(0),
-                      "h_b: largest element height in the substratum (it gets the fewest rows no higher). "
-                      "Units: m.");
+    declare_entries(prm, mesh_entries());
     prm.leave_subsection();
 
     prm.enter_subsection("Analysis");
@@ -434,15 +461,7 @@ namespace anticrack::fem
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
-    prm.declare_entry("Field interval [s]", "0.01", Double(0),
-                      "Simulated time between field outputs fields/*.pvtu; 0: none. Units: s.");
-    prm.declare_entry("Series interval [s]", "1e-3", Double(0),
-                      "Simulated time between rows of the time series series.h5 (explicit dynamics). Units: s.");
-    prm.declare_entry("Progress interval", "1000", Integer(0),
-                      "Steps between progress lines on the console; 0: quiet. Units: steps.");
-    prm.declare_entry("Checkpoint interval", "10000", Integer(0),
-                      "Explicit steps between checkpoints (DIR/checkpoint.json and DIR/checkpoint/), from which "
-                      "`anticrack run --resume` continues; 0: none. Units: steps.");
+    declare_entries(prm, output_entries());
     prm.leave_subsection();
   }
 
@@ -584,12 +603,7 @@ namespace anticrack::fem
 
     MeshParameters &mesh = scene.mesh;
     prm.enter_subsection("Mesh");
-    mesh.dimension = prm.get_integer("Dimension");
-    mesh.polynomial_degree = prm.get_integer("Polynomial degree");
-    mesh.element_length = prm.get_double("Element length [m]");
-    mesh.weak_layer_elements = prm.get_integer("Weak layer elements");
-    mesh.slab_element_height = prm.get_double("Slab element height [m]");
-    mesh.substratum_element_height = prm.get_double("Substratum element height [m]");
+    parse_entries(prm, mesh_entries(), mesh);
     prm.leave_subsection();
 
     Analysis &analysis = scene.analysis;
@@ -612,10 +626,7 @@ namespace anticrack::fem
 
     OutputParameters &output = scene.output;
     prm.enter_subsection("Output");
-    output.field_interval = prm.get_double("Field interval [s]");
-    output.series_interval = prm.get_double("Series interval [s]");
-    output.progress_interval = prm.get_integer("Progress interval");
-    output.checkpoint_interval = prm.get_integer("Checkpoint interval");
+    parse_entries(prm, output_entries(), output);
     prm.leave_subsection();
 
     {
