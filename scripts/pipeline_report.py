@@ -240,12 +240,20 @@ def field_section(run_dir, summary):
         lines.append(f"| {s['name']} | PST {seen.get('index')} (failed at {100 * seen['failed_depth_m']:.0f} cm, column "
                      f"{fmt(seen.get('column_length_m'))} m) | {outcome_label(r)} | {seen.get('propagation') or '—'} | "
                      f"{cut_with_bracket(r)} | {fmt(observed_cut)} | {ratio} |")
-    lines += ["", "The slab is the pit's (its layers, densities measured or inferred, and moduli: the stage's "
-              "summary.json, scene/profile). The weak layer is not yet the pit's own: it is the pipeline's DEM "
-              "weak layer (its calibrated material in snow units) at the thickness of the layer the field test "
-              "failed in. Of the failed layer, its grain size enters only as the pipeline's Snow units/Grain "
-              "diameter [m] gives it (the reference thickness above scales with it); its grain form and "
-              "density do not enter the prediction."]
+    slab = ("The slab is the pit's (its layers, densities measured or inferred, and moduli: the stage's "
+            "summary.json, scene/profile).")
+    if all(((s.get("weak_layer") or {}).get("from_profile")) for s, _ in rows):
+        lines += ["", slab + " The weak layer is the pit's own (Pipeline/Weak layer specimen = profile): the DEM "
+                  "specimen of its failed layer's density class and thickness in grains, calibrated and converted "
+                  "to snow, its material rescaled to the pit's grain size, at the thickness of the layer the field "
+                  "test failed in. Its grain form does not enter: the sticky-hard-sphere microstructure stands for "
+                  "every form."]
+    else:
+        lines += ["", slab + " The weak layer is not yet the pit's own: it is the pipeline's DEM "
+                  "weak layer (its calibrated material in snow units) at the thickness of the layer the field test "
+                  "failed in. Of the failed layer, its grain size enters only as the pipeline's Snow units/Grain "
+                  "diameter [m] gives it (the reference thickness above scales with it); its grain form and "
+                  "density do not enter the prediction."]
     lines += failed_layer_against_model(run_dir, summary, [s for s, _ in rows])
     for s, _ in rows:
         lines += profile_layers_table(run_dir, s)

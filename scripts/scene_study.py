@@ -51,13 +51,19 @@ def write_pipeline(path, header, scenes, specimen="scene"):
     snow = default[default.index("subsection Snow units"):]
     # The default's grain size is its pit's; here it is one weak layer for every test.
     snow = re.sub(r"  # d: .*\n(  # .*\n)*", "  # d: the default pipeline's (scenes/pipeline.prm): one weak layer for every test\n", snow)
+    # A class of its own needs the own-weak-layer pipeline's sweeps (a lighter layer levels off later).
+    weak_changes = ""
+    if specimen == "profile":
+        own = open(os.path.join(ROOT, "scenes", "pipeline_own_weak_layer.prm")).read()
+        found = re.search(r"set Weak layer scene changes = (.*)", own)
+        weak_changes = f"  set Weak layer scene changes = {found.group(1).strip()}\n" if found else ""
     listing = ", \\\n                         ".join(scenes)
     with open(path, "w") as f:
         f.write(header + f"""set Scene = pipeline
 
 subsection Pipeline
   set Weak layer scene = ../shs_weak_layer.prm
-  set Snowpack scenes  = {listing}
+{weak_changes}  set Snowpack scenes  = {listing}
   set Snowpack scene changes = {changes}
   set Uncertainty      = none
   set Weak layer specimen = {specimen}

@@ -102,7 +102,9 @@ def pipeline_profile_specimen(work):
                  float(read_material(os.path.join(out, classes[pit], "material_snow.prm"))["Reference thickness [m]"]))
         check(abs(ratio - grains[pit] / 6.54e-4) < 1e-5 * ratio, f"{pit}: reference thickness x {ratio}")
         check(fem_summary(os.path.join(out, stage["directory"]))["status"] == "completed", f"{pit} did not complete")
-    check(os.path.getsize(os.path.join(out, "report.md")) > 1000, "report.md missing")
+    report = open(os.path.join(out, "report.md")).read()
+    check("The weak layer is the pit's own" in report and "not yet the pit's own" not in report,
+          "the report does not say that each weak layer is its pit's own")
     expect_bad_input(work, write(os.path.join(work, "surface_hoar.prm"), pipeline_text(["17844_pst1"], "none")),
                      "pit_17844_pst1.prm", "layer 4 of", "snowpits-17844-caaml.xml", "has no density")
     expect_bad_input(work, write(os.path.join(work, "uncertain.prm"), pipeline_text(pits, "sensitivities")),
