@@ -51,6 +51,25 @@ namespace anticrack::params
       throw CalibrationError(where + ": no friction test completed with a steady sliding" + reasons);
     }
     estimate.friction_coefficient = realization_statistics(ratios, confidence, where + " friction coefficient");
+    // Steady sliding dissipates: the layer's shear stress opposes the sliding, μ > 0. Readings whose
+    // mean is not positive beyond its interval have not shown friction: the tests did not slide
+    // steadily over their window (a thin, wide specimen's base shear swung through zero,
+    // docs/pipeline.md), and a μ near zero would let the FE's failed layer slide freely.
+    const SampleStatistics &mu = estimate.friction_coefficient;
+    const double lowest = mu.n > 1 ? mu.mean_ci.lower : mu.mean;
+    if (!(lowest > 0))
+    {
+      std::string values;
+      for (const FrictionReading &r : estimate.readings)
+        values += (values.empty() ? "" : ", ") + r.test + " " + format_number(r.ratio, 3);
+      throw CalibrationError(where + ": the friction tests do not show sliding friction: their steady shear over "
+                             "normal stress (" + values + ") has a mean of " + format_number(mu.mean, 3) +
+                             (mu.n > 1 ? " whose " + format_number(100 * confidence) + " % interval reaches " +
+                                           format_number(mu.mean_ci.lower, 3)
+                                       : std::string()) +
+                             ", not above 0: the layer did not resist the sliding steadily over the window. Shear "
+                             "further (Campaign/Friction final shear strain) or check the specimen's shape");
+    }
     return estimate;
   }
 } // namespace anticrack::params

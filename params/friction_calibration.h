@@ -39,7 +39,8 @@ namespace anticrack::params
   /// μ of microstructure `m` from campaign.friction_tests (none: an estimate with n = 0). Throws
   /// CalibrationError when a test's steady normal stress does not exceed `compressive_strength` [Pa]
   /// (the layer did not collapse: names Campaign/Friction normal stress [Pa] and the value it must
-  /// exceed), or when friction tests exist but none completed with a steady sliding.
+  /// exceed), when friction tests exist but none completed with a steady sliding, or when the
+  /// readings do not show friction (their mean, or the lower end of its interval, is not above 0).
   FrictionEstimate collapsed_friction(const CampaignData &campaign, int m, double compressive_strength,
                                       double confidence);
 } // namespace anticrack::params

@@ -5,7 +5,9 @@
 //  * another microstructure's tests and a test that did not complete are left out (the latter
 //    named), a campaign without friction tests gives no estimate;
 //  * a test whose normal stress does not exceed the layer's compressive strength is refused,
-//    naming the entry to raise; friction tests none of which slid are refused.
+//    naming the entry to raise; friction tests none of which slid are refused;
+//  * readings that do not show friction are refused: the ratios of pit 65798's own-layer run (0.077,
+//    -0.087, 0.197; mean 0.062, interval [-0.29, 0.42] by hand: s = 0.142, t s / sqrt 3 = 0.353).
 #include "params/calibration_error.h"
 #include "params/friction_calibration.h"
 
@@ -81,6 +83,32 @@ namespace
       EXPECT_NE(what.find("m0_r0_friction"), std::string::npos) << what;
       EXPECT_NE(what.find("10000"), std::string::npos) << what;
     }
+  }
+
+  TEST(FrictionCalibration, ReadingsThatDoNotShowFrictionAreRefused)
+  {
+    const std::vector<CampaignTest> swinging = {friction_test(0, 0, 4.4e4, 0.077 * 4.4e4),
+                                                friction_test(0, 1, 4.4e4, -0.087 * 4.4e4),
+                                                friction_test(0, 2, 4.5e4, 0.197 * 4.5e4)};
+    try
+    {
+      collapsed_friction(campaign_with(swinging), 0, 2e4, 0.95);
+      FAIL() << "readings whose interval reaches below 0 gave a friction coefficient";
+    }
+    catch (const CalibrationError &e)
+    {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("do not show sliding friction"), std::string::npos) << message;
+      EXPECT_NE(message.find("m0_r1_friction -0.087"), std::string::npos) << message;
+      EXPECT_NE(message.find("interval reaches -0.29"), std::string::npos) << message;
+      EXPECT_NE(message.find("Campaign/Friction final shear strain"), std::string::npos) << message;
+    }
+    // One reading at or below zero, with no spread to judge: refused too; one above zero is kept.
+    EXPECT_THROW(collapsed_friction(campaign_with({friction_test(0, 0, 3e4, -0.01 * 3e4)}), 0, 1e4, 0.95),
+                 CalibrationError);
+    EXPECT_NEAR(collapsed_friction(campaign_with({friction_test(0, 0, 3e4, 0.3 * 3e4)}), 0, 1e4, 0.95)
+                  .friction_coefficient.mean,
+                0.3, 1e-12);
   }
 
   TEST(FrictionCalibration, NoSteadySlidingIsRefused)
