@@ -56,8 +56,7 @@ namespace anticrack::params
     // steadily over their window (a thin, wide specimen's base shear swung through zero,
     // docs/pipeline.md), and a μ near zero would let the FE's failed layer slide freely.
     const SampleStatistics &mu = estimate.friction_coefficient;
-    const double lowest = mu.n > 1 ? mu.mean_ci.lower : mu.mean;
-    if (!(lowest > 0))
+    if (!(mu.mean_ci.lower > 0)) // one reading: its interval is the value itself (realization_statistics)
     {
       std::string values;
       for (const FrictionReading &r : estimate.readings)

@@ -164,8 +164,8 @@ namespace anticrack::dem
         if (!(box_edge > 0))
           return radius;
         const Vec3 &a = box_aspect_ratios;
-        return std::cbrt(volume_fraction * box_edge * box_edge * box_edge * a[0] * a[1] / (a[2] * a[2]) /
-                         (static_cast<double>(particle_count) * 4.0 / 3.0 * M_PI));
+        return std::cbrt(volume_fraction * std::pow(box_edge, 3) * a[0] * a[1] / (a[2] * a[2]) /
+                         (static_cast<double>(particle_count) * sphere_volume(1.0)));
       }
       // ballistic deposition (radius = mean radius)
       bool rolling = false;             ///< deposition rule
