@@ -324,6 +324,40 @@ namespace anticrack::fem
       return table;
     }
 
+    /// subsection Analysis/Newton: its numbers, each declared and read from this one table (the
+    /// linear solver, a name, is read on its own).
+    const std::vector<BoundEntry<Analysis>> &newton_entries()
+    {
+      static const std::vector<BoundEntry<Analysis>> table = {
+        {"Tolerance", "1e-8", &Analysis::newton_tolerance, 1e-14, 1e-2,
+         "tol: Newton converges when |residual| / |external force| is below it. Dimensionless."},
+        {"Maximum iterations", "25", &Analysis::newton_max_iterations, 2, 500,
+         "Largest number of Newton iterations per load step. Dimensionless."}};
+      return table;
+    }
+
+    /// subsection Analysis/Newton of the analyses with a yielding weak layer: the gravity ramp.
+    const std::vector<BoundEntry<Analysis>> &gravity_ramp_entries()
+    {
+      static const std::vector<BoundEntry<Analysis>> table = {
+        {"Gravity steps", "4", &Analysis::gravity_steps, 1, 10000,
+         "Initial number of load steps of the gravity ramp (a step that fails is halved). Dimensionless."}};
+      return table;
+    }
+
+    /// subsection Analysis/Crack detection (analyses with a yielding weak layer).
+    const std::vector<BoundEntry<Analysis>> &crack_detection_entries()
+    {
+      static const std::vector<BoundEntry<Analysis>> table = {
+        {"Failure fraction", "0.9", &Analysis::failure_fraction, 0.01, 1,
+         "f_fail: a weak-layer element has failed when its softening has gone this fraction of the way from "
+         "p0 to the residual strength. Dimensionless."},
+        {"Self-propagation lead [m]", "0", &Analysis::self_propagation_lead, 0, no_upper_bound,
+         "d_lead: the crack runs by itself once its tip leads the saw by this much; 0: the slab thickness. "
+         "Units: m."}};
+      return table;
+    }
+
     /// subsection Output: each entry declared and read from this one table.
     const std::vector<BoundEntry<OutputParameters>> &output_entries()
     {
@@ -434,26 +468,16 @@ namespace anticrack::fem
                         "collapse height of the calibrated layer, xi_e = xi h_e / h_ref (crack band, Bažant & Oh "
                         "1983; docs/physics.md §2, mesh-independent); false: over their whole thickness.");
     prm.enter_subsection("Newton");
-    prm.declare_entry("Tolerance", "1e-8", Double(1e-14, 1e-2),
-                      "tol: Newton converges when |residual| / |external force| is below it. Dimensionless.");
-    prm.declare_entry("Maximum iterations", "25", Integer(2, 500),
-                      "Largest number of Newton iterations per load step. Dimensionless.");
+    declare_entries(prm, newton_entries());
     prm.declare_entry("Linear solver", "direct", Selection(linear_solver_names().pattern()),
                       "direct: MUMPS; amg: GMRES with BoomerAMG (large problems).");
     if (yielding)
-      prm.declare_entry("Gravity steps", "4", Integer(1, 10000),
-                        "Initial number of load steps of the gravity ramp (a step that fails is halved). "
-                        "Dimensionless.");
+      declare_entries(prm, gravity_ramp_entries());
     prm.leave_subsection();
     if (yielding)
     {
       prm.enter_subsection("Crack detection");
-      prm.declare_entry("Failure fraction", "0.9", Double(0.01, 1),
-                        "f_fail: a weak-layer element has failed when its softening has gone this fraction of the "
-                        "way from p0 to the residual strength. Dimensionless.");
-      prm.declare_entry("Self-propagation lead [m]", "0", Double(0),
-                        "d_lead: the crack runs by itself once its tip leads the saw by this much; 0: the slab "
-                        "thickness. Units: m.");
+      declare_entries(prm, crack_detection_entries());
       prm.leave_subsection();
     }
     for (const AnalysisType *t : analyses)
@@ -611,14 +635,12 @@ namespace anticrack::fem
     analysis.type = &analysis_type_named(prm.get("Type"));
     analysis.crack_band = prm.get_bool("Crack band regularisation");
     prm.enter_subsection("Newton");
-    analysis.newton_tolerance = prm.get_double("Tolerance");
-    analysis.newton_max_iterations = prm.get_integer("Maximum iterations");
+    parse_entries(prm, newton_entries(), analysis);
     analysis.linear_solver = linear_solver_names().value(prm.get("Linear solver"));
-    analysis.gravity_steps = prm.get_integer("Gravity steps");
+    parse_entries(prm, gravity_ramp_entries(), analysis);
     prm.leave_subsection();
     prm.enter_subsection("Crack detection");
-    analysis.failure_fraction = prm.get_double("Failure fraction");
-    analysis.self_propagation_lead = prm.get_double("Self-propagation lead [m]");
+    parse_entries(prm, crack_detection_entries(), analysis);
     prm.leave_subsection();
     // Entries of the other analyses are declared too (with their defaults); each reads only its own.
     analysis.type->parse_parameters(prm, scene);
