@@ -34,6 +34,8 @@ namespace anticrack::coupling
     constexpr const char *density_class_entry = "Density class width [kg/m^3]";
     constexpr const char *thickness_classes_entry = "Thickness classes [grains]";
     constexpr const char *lateral_extent_entry = "Lateral extent [thicknesses]";
+    constexpr const char *friction_thickness_entry = "Friction thickness [grains]";
+    constexpr const char *friction_lateral_extent_entry = "Friction lateral extent [thicknesses]";
 
     /// The weak layer's DEM scene, read as its kind reads it with `changes` (throws InputError).
     dem::SceneParameters weak_layer_dem_scene(const std::string &file,
@@ -146,6 +148,14 @@ namespace anticrack::coupling
                       "c: the specimen's lateral edges over its thickness (periodic laterally); the strengths "
                       "level off from about 2.8 thicknesses (docs/work_precision.md, the lateral-extent study). "
                       "Dimensionless.");
+    prm.declare_entry(friction_thickness_entry, "15", Patterns::Double(3),
+                      "n_f: the friction tests (Campaign/Friction normal stress) shear a specimen of their own, "
+                      "max(n, n_f) grains thick: a collapsed 10-grain layer sticks and slips with tau/sigma "
+                      "swinging through zero, a 15-grain one slides at a steady ratio (docs/calibration.md, the "
+                      "thickness study). Dimensionless.");
+    prm.declare_entry(friction_lateral_extent_entry, "1", Patterns::Double(1),
+                      "c_f: the friction specimen's lateral edges over its thickness (periodic laterally); a "
+                      "wider box adds slip events at large shear strain (docs/calibration.md). Dimensionless.");
     prm.leave_subsection();
     prm.leave_subsection();
     prm.enter_subsection("Snow units");
@@ -258,6 +268,8 @@ namespace anticrack::coupling
     for (const std::string &c : dealii::Utilities::split_string_list(thickness_classes))
       scene.specimen_rules.thickness_classes.push_back(dealii::Utilities::string_to_double(c));
     scene.specimen_rules.lateral_extent = prm.get_double(lateral_extent_entry);
+    scene.specimen_rules.friction_thickness = prm.get_double(friction_thickness_entry);
+    scene.specimen_rules.friction_lateral_extent = prm.get_double(friction_lateral_extent_entry);
     prm.leave_subsection();
     prm.leave_subsection();
     if (!std::is_sorted(scene.specimen_rules.thickness_classes.begin(), scene.specimen_rules.thickness_classes.end()))

@@ -4,6 +4,7 @@
 #include "util/format.h"
 #include "util/input_error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace anticrack::coupling
@@ -57,7 +58,9 @@ namespace anticrack::coupling
   bool ProfileSpecimen::operator==(const ProfileSpecimen &other) const
   {
     return density == other.density && thickness_in_grains == other.thickness_in_grains &&
-           lateral_extent == other.lateral_extent && solid_fraction == other.solid_fraction;
+           lateral_extent == other.lateral_extent && solid_fraction == other.solid_fraction &&
+           friction_thickness_in_grains == other.friction_thickness_in_grains &&
+           friction_lateral_extent == other.friction_lateral_extent;
   }
 
   ProfileSpecimen profile_specimen(const ProfileWeakLayer &layer, const SpecimenRules &rules, double grain_density)
@@ -73,13 +76,29 @@ namespace anticrack::coupling
       if (c <= n)
         s.thickness_in_grains = c;
     s.lateral_extent = rules.lateral_extent;
+    s.friction_thickness_in_grains = std::max(s.thickness_in_grains, rules.friction_thickness);
+    s.friction_lateral_extent = rules.friction_lateral_extent;
     return s;
   }
 
+  namespace
+  {
+    /// N = 6 φ c² n³ / π, rounded.
+    std::size_t box_particle_count(double solid_fraction, double lateral_extent, double thickness_in_grains)
+    {
+      return static_cast<std::size_t>(
+        std::llround(6 * solid_fraction * lateral_extent * lateral_extent * std::pow(thickness_in_grains, 3) / M_PI));
+    }
+  } // namespace
+
   std::size_t specimen_particle_count(const ProfileSpecimen &s)
   {
-    return static_cast<std::size_t>(std::llround(6 * s.solid_fraction * s.lateral_extent * s.lateral_extent *
-                                                 std::pow(s.thickness_in_grains, 3) / M_PI));
+    return box_particle_count(s.solid_fraction, s.lateral_extent, s.thickness_in_grains);
+  }
+
+  std::size_t friction_specimen_particle_count(const ProfileSpecimen &s)
+  {
+    return box_particle_count(s.solid_fraction, s.friction_lateral_extent, s.friction_thickness_in_grains);
   }
 
   double compaction_final_strain(const ProfileSpecimen &specimen, const dem::SceneParameters &scene, double diameter,
@@ -124,9 +143,13 @@ namespace anticrack::coupling
     const double diameter = 2 * sample.sticky_sphere_radius();
     const double height = specimen.thickness_in_grains * diameter;
     const double area = std::pow(specimen.lateral_extent * height, 2);
+    // A larger box levels off later: the sweeps grow with N over the scene's N, never below the scene's.
+    const auto sweeps_for = [&](std::size_t count) {
+      const double count_ratio = static_cast<double>(count) / static_cast<double>(sample.particle_count);
+      return static_cast<long long>(std::ceil(static_cast<double>(sample.sweeps) * std::max(1.0, count_ratio)));
+    };
     const std::size_t count = specimen_particle_count(specimen);
-    const double count_ratio = static_cast<double>(count) / static_cast<double>(sample.particle_count);
-    const auto sweeps = static_cast<long long>(std::ceil(static_cast<double>(sample.sweeps) * std::max(1.0, count_ratio)));
+    const auto sweeps = sweeps_for(count);
     std::vector<std::pair<std::string, std::string>> changes = {
       {"DEM/Sample/Volume fraction", text(specimen.solid_fraction)},
       {"DEM/Sample/Particle count", std::to_string(count)},
@@ -134,9 +157,18 @@ namespace anticrack::coupling
       {"DEM/Sample/Box aspect ratios", text(specimen.lateral_extent) + ", " + text(specimen.lateral_extent) + ", 1"},
       {"DEM/Sample/Sweeps", std::to_string(sweeps)},
       {"DEM/Boundary particles/Clump force rate [N/s]", text(scene.dem.boundary.clump_force_rate * area / scene_area)}};
-    if (scene.campaign.friction_shear_velocity > 0)
+    if (scene.campaign.has_friction_tests())
+    {
+      const double friction_height = specimen.friction_thickness_in_grains * diameter;
+      const std::size_t friction_count = friction_specimen_particle_count(specimen);
+      const std::string c = text(specimen.friction_lateral_extent);
+      changes.emplace_back("Campaign/Friction sample",
+                           "Particle count = " + std::to_string(friction_count) + ", Box edge [m] = " +
+                             text(friction_height) + ", Box aspect ratios = " + c + ", " + c + ", 1, Sweeps = " +
+                             std::to_string(sweeps_for(friction_count)));
       changes.emplace_back("Campaign/Friction shear velocity [m/s]",
-                           text(scene.campaign.friction_shear_velocity * height / scene_height));
+                           text(scene.campaign.friction_shear_velocity * friction_height / scene_height));
+    }
     if (scene.campaign.compaction_final_strain > 0)
       changes.emplace_back("Campaign/Compaction final strain",
                            text(compaction_final_strain(specimen, scene, diameter, where)));
@@ -158,6 +190,10 @@ namespace anticrack::coupling
                           {"solid_fraction", specimen.solid_fraction},
                           {"thickness_in_grains", specimen.thickness_in_grains},
                           {"lateral_extent_in_thicknesses", specimen.lateral_extent},
-                          {"particle_count", specimen_particle_count(specimen)}}}};
+                          {"particle_count", specimen_particle_count(specimen)},
+                          {"friction_specimen",
+                           {{"thickness_in_grains", specimen.friction_thickness_in_grains},
+                            {"lateral_extent_in_thicknesses", specimen.friction_lateral_extent},
+                            {"particle_count", friction_specimen_particle_count(specimen)}}}}}};
   }
 } // namespace anticrack::coupling

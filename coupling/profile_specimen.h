@@ -16,10 +16,15 @@
 //   - the specimen is a box periodic in its lateral axes, its lateral edges c times its thickness
 //     (the lateral-extent study of docs/work_precision.md: the strengths level off from about 2.8
 //     thicknesses), of N = 6 φ c² n³ / π spheres of the weak-layer scene's sphere diameter;
+//   - the friction tests shear a specimen of their own (Campaign/Friction sample), at least n_f = 15
+//     grains thick and c_f = 1 thickness wide: a collapsed 10-grain layer sticks and slips (τ/σ
+//     swinging through zero), a 15-grain one slides at a steady ratio, and a wider box adds slip
+//     events at large strain (docs/calibration.md, "Friction of the failed layer": the thickness
+//     study);
 //   - what is extensive in the scene follows the box: the clump's force rate with the cross-section
-//     (the same stress rate), the friction test's shear velocity with the thickness (the same strain
-//     rate), the Monte Carlo sweeps with N over the scene's N (a larger box levels off later,
-//     docs/work_precision.md);
+//     (the same stress rate), the friction test's shear velocity with its specimen's thickness (the
+//     same strain rate), the Monte Carlo sweeps with N over the scene's N (a larger box levels off
+//     later, docs/work_precision.md);
 //   - the compaction test compacts the class's layer to the scene's final solid fraction: between
 //     the rigid base and actuator the layer is in uniaxial strain, so a strain e takes phi to
 //     phi / (1 - e); a lighter layer needs more strain to lock up (at phi = 0.218 the scene's 0.35
@@ -66,6 +71,8 @@ namespace anticrack::coupling
     double density_class_width = 0;        ///< Δρ [kg/m³]
     std::vector<double> thickness_classes; ///< in grains, ascending
     double lateral_extent = 0;             ///< c: lateral edges over thickness
+    double friction_thickness = 0;         ///< n_f: the friction tests' specimen is at least this thick, in grains
+    double friction_lateral_extent = 0;    ///< c_f: its lateral edges over its thickness
   };
 
   /// The DEM specimen of one class of weak layers.
@@ -75,6 +82,9 @@ namespace anticrack::coupling
     double solid_fraction = 0;      ///< φ = ρ / ρ_grain
     double thickness_in_grains = 0; ///< n, a thickness class
     double lateral_extent = 0;      ///< c
+    /// The friction tests' own specimen (Campaign/Friction sample): max(n, n_f) grains thick, c_f wide.
+    double friction_thickness_in_grains = 0;
+    double friction_lateral_extent = 0;
     [[nodiscard]] std::string name() const;      ///< "150 kg/m^3, 10 grains"
     [[nodiscard]] std::string directory() const; ///< "weak_layer_150kgm3_10grains"
     [[nodiscard]] bool operator==(const ProfileSpecimen &other) const;
@@ -85,11 +95,13 @@ namespace anticrack::coupling
 
   /// N = 6 φ c² n³ / π, rounded: the spheres of diameter d that fill a box n d thick, c n d wide, at φ.
   std::size_t specimen_particle_count(const ProfileSpecimen &specimen);
+  /// The same for the friction tests' specimen (n_f, c_f).
+  std::size_t friction_specimen_particle_count(const ProfileSpecimen &specimen);
 
   /// The entries that make the weak-layer scene `dem` (a sticky-hard-sphere sample, loaded along z)
   /// sample and test `specimen` with the scene's sphere diameter: volume fraction, particle count,
-  /// box edge and aspect ratios, sweeps, the clump's force rate, the friction test's shear velocity
-  /// and the compaction test's final strain (the header says why each). Throws InputError (naming `where`) for another sample type.
+  /// box edge and aspect ratios, sweeps, the clump's force rate, the friction tests' own sample and
+  /// shear velocity, and the compaction test's final strain (the header says why each). Throws InputError (naming `where`) for another sample type.
   std::vector<std::pair<std::string, std::string>> specimen_changes(const ProfileSpecimen &specimen,
                                                                     const dem::SceneParameters &dem,
                                                                     const std::string &where);

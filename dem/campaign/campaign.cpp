@@ -32,6 +32,7 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 namespace anticrack::dem
 {
@@ -374,29 +375,80 @@ namespace anticrack::dem
 
   namespace
   {
-    /// The scene of every microstructure (the scene itself when Campaign/Microstructures is
-    /// empty), validated; throws InputError naming the variant.
-    std::vector<SceneParameters> microstructure_scenes_of(const SceneParameters &scene)
+    /// A sample of the campaign: its microstructure, its realization, and whether it is the friction
+    /// tests' own (Campaign/Friction sample).
+    using SampleKey = std::tuple<Index, Index, bool>;
+
+    /// The scenes a campaign's samples are built from, validated.
+    struct CampaignScenes
+    {
+      std::vector<SceneParameters> microstructures; ///< the scene itself when Campaign/Microstructures is empty
+      std::vector<SceneParameters> friction;        ///< each microstructure's friction sample; empty: none of its own
+
+      /// The scene whose sample test `t` runs on.
+      [[nodiscard]] const SceneParameters &of(const CampaignTest &t) const
+      {
+        return friction_sample(t) ? friction[t.microstructure] : microstructures[t.microstructure];
+      }
+      [[nodiscard]] SampleKey sample_of(const CampaignTest &t) const
+      {
+        return {t.microstructure, t.realization, friction_sample(t)};
+      }
+
+    private:
+      [[nodiscard]] bool friction_sample(const CampaignTest &t) const { return t.friction() && !friction.empty(); }
+    };
+
+    /// The name of sample `key` in the console: m<M>_r<R>, and " (friction)" for a friction sample.
+    std::string sample_name(const SampleKey &key)
+    {
+      const auto &[m, r, friction] = key;
+      return "m" + std::to_string(m) + "_r" + std::to_string(r) + (friction ? " (friction)" : "");
+    }
+
+    /// Every microstructure's scene (the scene itself when Campaign/Microstructures is empty) and,
+    /// with Campaign/Friction sample, each one's friction sample (its entries set after the
+    /// microstructure's); throws InputError naming the variant.
+    CampaignScenes campaign_scenes_of(const SceneParameters &scene)
     {
       const auto &c = scene.campaign;
-      std::vector<SceneParameters> scenes;
-      if (c.microstructures.empty())
-        scenes.push_back(scene);
-      for (std::size_t m = 0; m < c.microstructures.size(); ++m)
-      {
-        std::vector<std::pair<std::string, std::string>> overrides;
-        for (const auto &[entry, value] : c.microstructures[m])
+      // An entry of a variant without a '/' is of DEM/Sample; one with it, a path below DEM.
+      const auto add_overrides = [](std::vector<std::pair<std::string, std::string>> &overrides,
+                                    const std::vector<std::pair<std::string, std::string>> &entries) {
+        for (const auto &[entry, value] : entries)
           overrides.emplace_back((split_parameter_path(entry).size() == 1 ? "DEM/Sample/" : "DEM/") + entry, value);
+      };
+      const auto read_variant = [&](const std::vector<std::pair<std::string, std::string>> &overrides,
+                                    const std::string &what) {
         try
         {
-          scenes.push_back(read_scene(scene.file, scene.kind, overrides, scene.declare_more));
+          return read_scene(scene.file, scene.kind, overrides, scene.declare_more);
         }
         catch (const InputError &e)
         {
-          throw InputError("Campaign/Microstructures, variant " + std::to_string(m) + " (" +
-                           c.microstructures_text + "): " + e.what());
+          throw InputError(what + ": " + e.what());
         }
+      };
+      CampaignScenes scenes;
+      if (c.microstructures.empty())
+        scenes.microstructures.push_back(scene);
+      for (std::size_t m = 0; m < c.microstructures.size(); ++m)
+      {
+        std::vector<std::pair<std::string, std::string>> overrides;
+        add_overrides(overrides, c.microstructures[m]);
+        scenes.microstructures.push_back(read_variant(
+          overrides, "Campaign/Microstructures, variant " + std::to_string(m) + " (" + c.microstructures_text + ")"));
       }
+      if (!c.friction_sample.empty())
+        for (std::size_t m = 0; m < scenes.microstructures.size(); ++m)
+        {
+          std::vector<std::pair<std::string, std::string>> overrides;
+          if (!c.microstructures.empty())
+            add_overrides(overrides, c.microstructures[m]);
+          add_overrides(overrides, c.friction_sample);
+          scenes.friction.push_back(read_variant(overrides, "Campaign/Friction sample (" + c.friction_sample_text +
+                                                              ") of microstructure " + std::to_string(m)));
+        }
       return scenes;
     }
     /// The output directory: refused if it is a file, or holds a campaign that is neither resumed nor
@@ -458,8 +510,8 @@ namespace anticrack::dem
       return test_scene;
     }
 
-    /// The samples of a campaign, one per (microstructure, realization), each shared by its tests.
-    using SampleKey = std::pair<Index, Index>;
+    /// The samples of a campaign, one per (microstructure, realization) and one more for its friction
+    /// test when it has a sample of its own, each shared by its tests.
     struct CampaignSamples
     {
       std::map<SampleKey, std::unique_ptr<DemModel>> models;
@@ -474,14 +526,13 @@ namespace anticrack::dem
     /// written. A sample is the same bits on any number of threads, so the results do not depend on
     /// the order. A realization whose bonds do not connect base and clump is recorded, not thrown;
     /// any other refusal is rethrown, the first in (microstructure, realization) order.
-    CampaignSamples build_samples(const std::vector<SceneParameters> &microstructure_scenes,
-                                  const std::vector<const CampaignTest *> &tests, const parameters::Campaign &c,
-                                  int side_by_side, int threads)
+    CampaignSamples build_samples(const CampaignScenes &scenes, const std::vector<const CampaignTest *> &tests,
+                                  const parameters::Campaign &c, int side_by_side, int threads)
     {
       std::vector<std::pair<SampleKey, const CampaignTest *>> wanted; // the first test of each sample
       for (const CampaignTest *t : tests)
       {
-        const SampleKey key{t->microstructure, t->realization};
+        const SampleKey key = scenes.sample_of(*t);
         if (std::none_of(wanted.begin(), wanted.end(), [&](const auto &w) { return w.first == key; }))
           wanted.emplace_back(key, t);
       }
@@ -502,11 +553,10 @@ namespace anticrack::dem
           const CampaignTest &t = *wanted[k].second;
           try
           {
-            models[k] = build_dem_model(test_scene_of(microstructure_scenes[t.microstructure], t, c),
-                                        side_by_side > 1 ? 1 : threads);
+            models[k] = build_dem_model(test_scene_of(scenes.of(t), t, c), side_by_side > 1 ? 1 : threads);
             models[k]->system.clumps[models[k]->clump].applied_force = {}; // each test sets its own
             const std::lock_guard<std::mutex> lock(console);
-            std::cout << "  sample m" << t.microstructure << "_r" << t.realization << " built in "
+            std::cout << "  sample " << sample_name(wanted[k].first) << " built in "
                       << format_duration(models[k]->build_seconds) << "\n"
                       << std::flush;
           }
@@ -569,6 +619,7 @@ namespace anticrack::dem
         o.labels["friction_shear_velocity_m_per_s"] = test_scene.dem.loading.shear_velocity;
         o.labels["friction_consolidation_time_s"] = test_scene.dem.loading.consolidation_time;
         o.labels["friction_final_shear_strain"] = test_scene.dem.loading.final_shear_strain;
+        o.labels["friction_sample"] = test_scene.campaign.friction_sample_text;
       }
       if (t.compaction())
       {
@@ -597,6 +648,7 @@ namespace anticrack::dem
         hdf5::write_string_attribute(f.id, "scene_file_sha256", scene.file_sha256);
         hdf5::write_string_attribute(f.id, "parameters_sha256", scene.parameters_sha256);
         hdf5::write_string_attribute(f.id, "microstructures", c.microstructures_text);
+        hdf5::write_string_attribute(f.id, "friction_sample", c.friction_sample_text);
         hdf5::write_string_attribute(f.id, "anticrack_version", version_info()["anticrack"].get<std::string>());
         hdf5::write_string_attribute(
           f.id, "conventions",
@@ -717,15 +769,15 @@ namespace anticrack::dem
   void describe_campaign(std::ostream &out, const SceneParameters &scene)
   {
     const auto &c = scene.campaign;
-    const auto scenes = microstructure_scenes_of(scene);
-    const auto tests = enumerate_tests(c, static_cast<Index>(scenes.size()));
+    const CampaignScenes scenes = campaign_scenes_of(scene);
+    const auto tests = enumerate_tests(c, static_cast<Index>(scenes.microstructures.size()));
     std::ostringstream s;
     s << "\nCampaign (the model above is microstructure 0, realization 0; every test is built like it)\n"
       << "  loading angles      ";
     for (std::size_t k = 0; k < c.loading_angles_deg.size(); ++k)
       s << (k ? ", " : "") << c.loading_angles_deg[k];
     s << " deg\n  realizations        " << c.realizations << " (seeds " << scene.dem.seed << " to "
-      << scene.dem.seed + c.realizations - 1 << ")\n  microstructures     " << scenes.size();
+      << scene.dem.seed + c.realizations - 1 << ")\n  microstructures     " << scenes.microstructures.size();
     for (std::size_t m = 0; m < c.microstructures.size(); ++m)
     {
       s << "\n    " << m << ":";
@@ -742,7 +794,9 @@ namespace anticrack::dem
         << c.compaction_curve_strain_interval << " of strain";
     if (c.has_friction_tests())
       s << "; a friction test per realization: simple shear at " << c.friction_normal_stress << " Pa, "
-        << c.friction_shear_velocity << " m/s, to shear strain " << c.friction_final_shear_strain;
+        << c.friction_shear_velocity << " m/s, to shear strain " << c.friction_final_shear_strain
+        << (c.friction_sample.empty() ? std::string(", on the microstructure's sample") :
+                                        ", on a sample of its own (" + c.friction_sample_text + ")");
     s << ")\n"
       << "  outputs             summary.json, campaign.h5, tests/<id>/{summary.json, history.h5}\n";
     out << s.str();
@@ -755,8 +809,8 @@ namespace anticrack::dem
     const auto start = std::chrono::steady_clock::now();
 
     // --- everything is validated before anything is written
-    const std::vector<SceneParameters> microstructure_scenes = microstructure_scenes_of(scene);
-    const std::vector<CampaignTest> tests = enumerate_tests(c, static_cast<Index>(microstructure_scenes.size()));
+    const CampaignScenes scenes = campaign_scenes_of(scene);
+    const std::vector<CampaignTest> tests = enumerate_tests(c, static_cast<Index>(scenes.microstructures.size()));
 
     refuse_unusable_output(directory, options, tests);
     std::error_code error;
@@ -826,7 +880,7 @@ namespace anticrack::dem
 
     root_console() << "anticrack campaign: " << scene.file << " -> " << directory.string() << "\n  "
                 << c.loading_angles_deg.size() << " loading angles x " << c.realizations << " realizations x "
-                << microstructure_scenes.size() << " microstructures = " << tests.size() << " tests"
+                << scenes.microstructures.size() << " microstructures = " << tests.size() << " tests"
                 << " (compaction and friction tests and quasi-static references included) on " << members
                 << (workers ? " worker process(es)" : " rank(s)") << " x " << dem::DemSystem::threads()
                 << " thread(s)\n"
@@ -841,14 +895,14 @@ namespace anticrack::dem
       {
         const CampaignTest &t = tests[k];
         const RunOptions o =
-          test_run_options(test_scene_of(microstructure_scenes[t.microstructure], t, c), t, directory, "", threads, options);
+          test_run_options(test_scene_of(scenes.of(t), t, c), t, directory, "", threads, options);
         if (!(options.resume && completed(o.output_directory, o.labels)))
           to_run.push_back(&t);
       }
     }
     const CampaignSamples samples = [&] {
       const auto phase = timer.scope("samples");
-      return build_samples(microstructure_scenes, to_run, c, workers ? members : threads, threads);
+      return build_samples(scenes, to_run, c, workers ? members : threads, threads);
     }();
 
     // --- the tests of one member, each on a copy of its sample
@@ -868,7 +922,7 @@ namespace anticrack::dem
       for (std::size_t k = next(); k < tests.size(); k = next())
       {
         const CampaignTest &t = tests[k];
-        const SceneParameters test_scene = test_scene_of(microstructure_scenes[t.microstructure], t, c);
+        const SceneParameters test_scene = test_scene_of(scenes.of(t), t, c);
         const Vec3 direction = test_scene.dem.boundary.clump_force_direction;
         RunOptions o = test_run_options(test_scene, t, directory, who + " " + t.id, threads, options);
         if (options.resume && completed(o.output_directory, o.labels))
@@ -877,14 +931,14 @@ namespace anticrack::dem
           share.outcomes[t.id] = read_outcome(t, o.output_directory);
           continue;
         }
-        const auto sample = samples.models.find({t.microstructure, t.realization});
+        const auto sample = samples.models.find(scenes.sample_of(t));
         if (sample == samples.models.end())
         {
           // This realization's bonds do not connect base and clump: its tests are recorded as such
           // (the calibration leaves them out and names them) and the campaign goes on.
           Json summary;
           summary["status"] = status_no_load_path;
-          summary["message"] = samples.without_load_path.at({t.microstructure, t.realization});
+          summary["message"] = samples.without_load_path.at(scenes.sample_of(t));
           summary["command"] = options.command_line;
           summary["labels"] = o.labels;
           summary["scene"] = scene_info(test_scene);
@@ -1009,7 +1063,7 @@ namespace anticrack::dem
       if (!outcomes.count(t.id))
         outcomes[t.id] = read_outcome(t, directory / "tests" / t.id);
 
-    write_campaign_file(directory / "campaign.h5", scene, microstructure_scenes, tests, outcomes);
+    write_campaign_file(directory / "campaign.h5", scene, scenes.microstructures, tests, outcomes);
 
     // summary.json
     Json s;
@@ -1029,6 +1083,7 @@ namespace anticrack::dem
     spec["friction_shear_velocity_m_per_s"] = c.friction_shear_velocity;
     spec["friction_consolidation_time_s"] = c.friction_consolidation_time;
     spec["friction_final_shear_strain"] = c.friction_final_shear_strain;
+    spec["friction_sample"] = c.friction_sample_text;
     s["campaign"] = spec;
     Json rows = Json::array();
     double test_wall = 0, largest_inertial = 0;

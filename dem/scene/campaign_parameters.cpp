@@ -4,6 +4,7 @@
 // collapsed layer). The campaign itself is dem/campaign/campaign.h.
 #include "dem/scene/lab_tests.h"
 #include "dem/scene/parameters.h"
+#include "util/parameter_files.h"
 #include "util/problems.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -86,6 +87,14 @@ namespace anticrack::dem
       prm.declare_entry("Friction final shear strain", "0", Patterns::Double(0, 10),
                         "The shear strain at which the friction tests end (> 0 when Friction normal stress is "
                         "set); the steady sliding is read over its second half. Dimensionless.");
+      prm.declare_entry("Friction sample", "", Patterns::Anything(),
+                        "Entries of DEM/Sample that the friction tests' sample sets after the microstructure's, "
+                        "as a comma-separated list of `entry = value` (an item without '=' continues the value "
+                        "before it: `Particle count = 1405, Box aspect ratios = 1, 1, 1`). A collapsed layer "
+                        "slides steadily only when it is thick enough: a 10-grain specimen sticks and slips, "
+                        "15 grains slide (docs/calibration.md). The friction tests then have samples of their own, "
+                        "one per microstructure and realization, with the same seeds. Empty: the friction tests "
+                        "shear the microstructure's own sample.");
       prm.leave_subsection();
     }
 
@@ -98,20 +107,18 @@ namespace anticrack::dem
       realizations = prm.get_integer("Realizations");
       microstructures_text = prm.get("Microstructures");
       microstructures.clear();
+      Problems problems("subsection Campaign");
       for (const std::string &variant : dealii::Utilities::split_string_list(microstructures_text, ';'))
-      {
-        std::vector<std::pair<std::string, std::string>> entries;
-        for (const std::string &item : dealii::Utilities::split_string_list(variant, ','))
-        {
-          const auto equal = item.find('=');
-          if (equal == std::string::npos)
-            throw std::invalid_argument("Campaign/Microstructures: '" + item +
-                                        "' is not of the form `entry = value` (entry of DEM/Sample)");
-          entries.emplace_back(dealii::Utilities::trim(item.substr(0, equal)),
-                               dealii::Utilities::trim(item.substr(equal + 1)));
-        }
-        microstructures.push_back(entries);
-      }
+        microstructures.push_back(entry_changes_in_list(variant, "Campaign/Microstructures", problems));
+      friction_sample_text = prm.get("Friction sample");
+      friction_sample = entry_changes_in_list(friction_sample_text, "Campaign/Friction sample", problems);
+      for (const auto &[entry, value] : friction_sample)
+        if (entry.find('/') != std::string::npos)
+          problems.add("Campaign/Friction sample", "`" + entry + "` is not an entry of DEM/Sample (the friction "
+                       "tests' sample differs from the microstructure's in its sample only; write the entry's "
+                       "name without a path)");
+      if (!problems.empty()) // read_scene names the file
+        throw std::invalid_argument(problems.text());
       quasi_static_check = check_names().value(prm.get("Quasi-static check"));
       quasi_static_slowdown = prm.get_double("Quasi-static slowdown");
       quasi_static_tolerance = prm.get_double("Quasi-static tolerance");
@@ -163,6 +170,10 @@ namespace anticrack::dem
         if (!(friction_final_shear_strain > 0))
           problems.add("Campaign/Friction final shear strain", friction_final_shear_strain, why);
       }
+      else if (!friction_sample.empty())
+        problems.add("Campaign/Friction sample", friction_sample_text,
+                     "is the friction tests' sample, and there are none: set Friction normal stress [Pa] > 0, or "
+                     "leave Friction sample empty");
     }
   } // namespace parameters
 

@@ -364,6 +364,11 @@ namespace anticrack::dem
       double friction_shear_velocity = 0;     ///< v of the platen [m/s]
       double friction_consolidation_time = 0; ///< the normal-force ramp [s]
       double friction_final_shear_strain = 0; ///< gamma at which the test ends
+      /// Entries of DEM/Sample (entry, value) that the friction tests' sample sets after the
+      /// microstructure's: a collapsed layer slides steadily only when it is thick enough
+      /// (docs/calibration.md, "Friction of the collapsed layer"). Empty: the microstructure's sample.
+      std::vector<std::pair<std::string, std::string>> friction_sample;
+      std::string friction_sample_text; ///< as written, for messages and records
 
       [[nodiscard]] bool has_friction_tests() const { return friction_normal_stress > 0; }
 

@@ -289,13 +289,16 @@ def campaign_friction(work):
       stress (one realization: the mean itself), the same in the calibration's summary.json;
     - an FE layer that uses the file takes it (its summary.json says so), and a scene that also
       types one is refused.
-    The tiny layer's mu (256 spheres, five grains thick) is printed, not checked: its sliding is a
-    stick-slip of single force chains (the base shear swings between 1 and 46 kPa; measured mu =
-    0.09), its value is measured on the pipeline's 2048-sphere layer (docs/calibration.md)."""
+    - the friction test shears a sample of its own (Campaign/Friction sample: 200 spheres where the
+      loading tests have 256), built beside the others, and campaign.h5 records its entries.
+    The tiny layer's mu (200 spheres, five grains thick) is printed, not checked: its sliding is a
+    stick-slip of single force chains, its value is measured on 15-grain layers (docs/calibration.md)."""
     # This small layer (shs_yield_surface.prm's) fails at about 40 kPa in compression: 120 kPa
     # crushes it.
+    own_sample = "Particle count = 200, Box edge [m] = 0.0046"
     friction = ["set Friction normal stress [Pa] = 1.2e5", "set Friction shear velocity [m/s] = 0.025",
-                "set Friction consolidation time [s] = 0.01", "set Friction final shear strain = 0.2"]
+                "set Friction consolidation time [s] = 0.01", "set Friction final shear strain = 0.2",
+                f"set Friction sample = {own_sample}"]
     text = edit_scene(campaign_scene("0, 45, 90, 135, 180"), {},
                       insert={"Campaign": ["set Compaction strain rate [1/s] = 2",
                                            "set Compaction final strain = 0.35", *friction]})
@@ -303,11 +306,18 @@ def campaign_friction(work):
     stdout, _ = anticrack("check", scene)
     check("a friction test per realization: simple shear at 120000 Pa, 0.025 m/s, to shear strain 0.2" in stdout,
           f"`check` does not describe the friction test:\n{stdout}")
+    check(f"on a sample of its own ({own_sample})" in stdout, f"`check` does not name the friction sample:\n{stdout}")
     out = os.path.join(work, "cal")
-    anticrack("calibrate", scene, "-o", out, "--no-plots", "--bootstrap", "0")
+    stdout, _ = anticrack("calibrate", scene, "-o", out, "--no-plots", "--bootstrap", "0")
+    check("sample m0_r0 (friction) built" in stdout, f"no friction sample was built:\n{stdout}")
     test = json.load(open(os.path.join(out, "campaign", "tests", "m0_r0_friction", "summary.json")))
+    loading_test = json.load(open(os.path.join(out, "campaign", "tests", "m0_r0_psi000.0", "summary.json")))
+    check(test["dem"]["particles"] == 200 and loading_test["dem"]["particles"] == 256,
+          f"the friction test has {test['dem']['particles']} spheres, a loading test "
+          f"{loading_test['dem']['particles']}: not their own samples")
     results = test["dem"]["lab_test"]["results"]
     with h5py.File(os.path.join(out, "campaign", "campaign.h5"), "r") as f:
+        check(f.attrs["friction_sample"] == own_sample, f"campaign.h5 friction_sample = {f.attrs['friction_sample']}")
         table = f["friction_tests"]
         check(list(table["test"].asstr()[()]) == ["m0_r0_friction"], "campaign.h5 has no /friction_tests table")
         ratio = float(table["steady_stress_ratio"][0])

@@ -32,11 +32,13 @@ namespace
     r.density_class_width = 25;
     r.thickness_classes = {5, 10};
     r.lateral_extent = 2.8;
+    r.friction_thickness = 15;
+    r.friction_lateral_extent = 1;
     return r;
   }
 
   /// The default weak layer's scene: 2048 spheres at phi = 0.3 in a 1 cm cube (spheres of 0.654 mm),
-  /// 20 000 sweeps, the clump at 400 N/s, the friction test at 0.05 m/s.
+  /// 20 000 sweeps, the clump at 400 N/s, the friction test at 45 kPa and 0.05 m/s.
   dem::SceneParameters weak_layer_scene()
   {
     dem::SceneParameters scene;
@@ -48,6 +50,7 @@ namespace
     scene.dem.sample.box_edge = 0.01;
     scene.dem.sample.sweeps = 20000;
     scene.dem.boundary.clump_force_rate = 400;
+    scene.campaign.friction_normal_stress = 4.5e4;
     scene.campaign.friction_shear_velocity = 0.05;
     scene.campaign.compaction_final_strain = 0.35;
     scene.dem.boundary.base_thickness = 3;
@@ -67,6 +70,13 @@ TEST(ProfileSpecimen, ClassOfAPitsLayer)
   EXPECT_EQ(a.lateral_extent, 2.8);
   EXPECT_EQ(a.name(), "150 kg/m^3, 10 grains");
   EXPECT_EQ(a.directory(), "weak_layer_150kgm3_10grains");
+  // The friction tests' specimen: max(n, n_f) grains thick (15 over a 10-grain class; a 10-grain
+  // class under n_f = 8 keeps its 10), c_f = 1 wide.
+  EXPECT_EQ(a.friction_thickness_in_grains, 15);
+  EXPECT_EQ(a.friction_lateral_extent, 1);
+  coupling::SpecimenRules thin_friction = rules();
+  thin_friction.friction_thickness = 8;
+  EXPECT_EQ(coupling::profile_specimen(layer(158, 0.16, 2e-3), thin_friction, 917).friction_thickness_in_grains, 10);
   EXPECT_EQ(coupling::profile_specimen(layer(162.7, 0.02, 1e-3), rules(), 917).density, 175);
   EXPECT_EQ(coupling::profile_specimen(layer(460, 0.05, 1e-3), rules(), 917).density, 450);
   EXPECT_EQ(coupling::profile_specimen(layer(200, 0.01, 1.5e-3), rules(), 917).thickness_in_grains, 5);
@@ -112,7 +122,17 @@ TEST(ProfileSpecimen, ChangesMakeTheScenesSampleThatBox)
   EXPECT_EQ(changes.at("DEM/Sample/Sweeps"), std::to_string(static_cast<long long>(std::ceil(20000 * count / 2048))));
   EXPECT_NEAR(std::stod(changes.at("DEM/Boundary particles/Clump force rate [N/s]")),
               400 * (2.8 * h) * (2.8 * h) / 1e-4, 1e-9);
-  EXPECT_NEAR(std::stod(changes.at("Campaign/Friction shear velocity [m/s]")), 0.05 * h / 0.01, 1e-15);
+  // The friction tests' own sample: a cube 15 d thick of 6 phi 15^3 / pi spheres, the scene's sweeps
+  // (fewer spheres than its 2048), sheared at the scene's strain rate: 0.05 m/s x 15 d / 1 cm.
+  const double hf = 15 * d;
+  const long long friction_count = std::llround(6 * (150.0 / 917) * 3375 / M_PI);
+  EXPECT_EQ(static_cast<long long>(coupling::friction_specimen_particle_count(s)), friction_count);
+  const std::string friction_sample = changes.at("Campaign/Friction sample");
+  EXPECT_EQ(friction_sample.substr(0, friction_sample.find(',')), "Particle count = " + std::to_string(friction_count));
+  const auto edge_at = friction_sample.find("Box edge [m] = ") + std::string("Box edge [m] = ").size();
+  EXPECT_NEAR(std::stod(friction_sample.substr(edge_at)), hf, 1e-15);
+  EXPECT_NE(friction_sample.find("Box aspect ratios = 1, 1, 1, Sweeps = 20000"), std::string::npos) << friction_sample;
+  EXPECT_NEAR(std::stod(changes.at("Campaign/Friction shear velocity [m/s]")), 0.05 * hf / 0.01, 1e-15);
   // The compaction test: the layer between base and actuator (3 + 3 radii = 3 d) compacted to the
   // scene's final solid fraction, 0.3 / (1 - 0.35 x 0.01 / (0.01 - 3 d)), under uniaxial strain; the
   // entry is over the whole box, 10 d, of which 7 d compact.
