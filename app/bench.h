@@ -6,7 +6,7 @@
 // one JSON line goes to stdout and nothing else.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 namespace anticrack::app
 {

@@ -15,7 +15,7 @@
 #include "app/bench.h"
 #include "app/scenes.h"
 #include "coupling/calibrate.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 #include "util/input_error.h"
 #include "util/mpi_session.h"
 #include "util/output_lock.h"

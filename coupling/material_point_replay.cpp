@@ -1,7 +1,7 @@
 #include "coupling/material_point_replay.h"
 
 #include "fem/material/cohesive_cam_clay.h"
-#include "fem/model/crack_band.h"
+#include "fem/scene/crack_band.h"
 
 #include <Eigen/Dense>
 

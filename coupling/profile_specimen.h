@@ -12,7 +12,7 @@
 //     the largest of the thickness classes at or below n (the smallest for a thinner layer): the
 //     collapse of a thick layer localises in a compaction band (Ritter et al. 2020, Fig. 1B;
 //     Barraclough et al. 2017), the strength is the bulk's, and the FE crack band carries the
-//     softening from the specimen's thickness to the element rows (fem/model/crack_band.h);
+//     softening from the specimen's thickness to the element rows (fem/scene/crack_band.h);
 //   - the specimen is a box periodic in its lateral axes, its lateral edges c times its thickness
 //     (the lateral-extent study of docs/work_precision.md: the strengths level off from about 2.8
 //     thicknesses), of N = 6 φ c² n³ / π spheres of the weak-layer scene's sphere diameter;

@@ -20,7 +20,7 @@
 //     strain as it was (forces scale by L², areas too): the grains' size is a unit. L = d_snow /
 //     d_DEM. The continuum's only length, the softening's reference thickness h_ref (the DEM layer's
 //     thickness), scales by L; the FE's crack band scales ξ from it to its own element rows
-//     (fem/model/crack_band.h), so the energy dissipated per unit area scales by L too;
+//     (fem/scene/crack_band.h), so the energy dissipated per unit area scales by L too;
 //   - density: the grains' density sets only the time scale of a quasi-static test, so the layer's
 //     density is φ ρ_snow with the campaign's solid fraction φ and the snow's grain density.
 // What is not exact: the tests are quasi-static to within the campaign's quasi-static check (the

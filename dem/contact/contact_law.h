@@ -12,7 +12,7 @@
 #include "dem/contact/frictional_contact.h"
 #include "dem/contact/hertz_mindlin_contact.h"
 #include "dem/contact/linear_contact.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <array>
 #include <string>

@@ -6,7 +6,7 @@
 
 #include "dem/contact/contact_parameters.h"
 #include "dem/contact/pair_kinematics.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "dem/contact/contact_parameters.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <algorithm>
 #include <cmath>

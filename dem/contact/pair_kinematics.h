@@ -5,7 +5,7 @@
 // exactly, whatever the gap, which is what keeps the incremental laws objective.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <cmath>
 

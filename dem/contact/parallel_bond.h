@@ -9,7 +9,7 @@
 // The bond breaks for good when sigma >= sigma_c or tau >= c - sigma tan(phi).
 #pragma once
 
-#include "dem/core/interactions.h"
+#include "dem/common/interactions.h"
 #include "dem/contact/pair_kinematics.h"
 
 #include <cmath>

@@ -4,7 +4,7 @@
 // list is rebuilt, so that the shifts stored with contacts and bonds stay valid in between.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <array>
 #include <cmath>

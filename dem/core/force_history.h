@@ -3,7 +3,7 @@
 // extended linearly: set `extrapolate_linearly`.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <vector>
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "dem/core/domain.h"
-#include "dem/core/interactions.h"
+#include "dem/common/interactions.h"
 #include "dem/core/particles.h"
 
 #include <vector>

@@ -7,7 +7,7 @@
 // arrays' pointers in registers); others call thread_independent_sum.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <algorithm>
 #include <array>

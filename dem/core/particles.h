@@ -2,7 +2,7 @@
 // particle's position in the store (its id). Clump members are ordinary particles with a clump id.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <cmath>
 #include <vector>

@@ -15,7 +15,7 @@
 #include "dem/core/clumps.h"
 #include "dem/core/domain.h"
 #include "dem/core/energy.h"
-#include "dem/core/interactions.h"
+#include "dem/common/interactions.h"
 #include "dem/core/materials.h"
 #include "dem/core/neighbor_list.h"
 #include "dem/core/particles.h"

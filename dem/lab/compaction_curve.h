@@ -50,7 +50,7 @@
 // positive.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <nlohmann/json.hpp>
 

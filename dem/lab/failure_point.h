@@ -13,7 +13,7 @@
 
 #include "dem/lab/compaction_curve.h"
 #include "dem/lab/stress_invariants.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <optional>
 #include <vector>

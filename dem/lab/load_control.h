@@ -20,7 +20,7 @@
 
 #include "dem/core/clumps.h"
 #include "dem/lab/lab_protocol.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <algorithm>
 #include <cmath>

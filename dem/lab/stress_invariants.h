@@ -2,7 +2,7 @@
 // Mises stress q = sqrt(3/2 s:s) with the deviator s = sigma + p I; sigma tension positive.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 #include "dem/sample/sticky_hard_spheres.h"
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <algorithm>
 #include <array>

@@ -7,7 +7,7 @@
 // resumed campaign reads it back.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 #include "dem/lab/failure_point.h"
 #include "util/time_series.h"
 

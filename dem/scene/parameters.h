@@ -16,7 +16,7 @@
 #include "dem/lab/load_control.h"
 #include "dem/core/materials.h"
 #include "dem/core/system.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 #include "dem/core/walls.h"
 #include "dem/scene/lab_tests.h"
 #include "dem/scene/sample_types.h"

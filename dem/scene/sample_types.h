@@ -4,7 +4,7 @@
 // dem/scene/parameters.cpp and dem/scene/model.cpp only iterate over the table.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 #include "dem/scene/variant.h"
 
 #include <nlohmann/json_fwd.hpp>

@@ -3,7 +3,7 @@
 // writing values into messages. Only these scene files include deal.II.
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 #include "dem/scene/variant.h"
 
 #include <deal.II/base/parameter_handler.h>

@@ -3,7 +3,7 @@
 #include "fem/analysis/critical_cut_search.h"
 
 #include "fem/analysis/outputs.h"
-#include "fem/model/layers.h"
+#include "fem/scene/layers.h"
 #include "util/atomic_file.h"
 #include "util/format.h"
 #include "util/input_error.h"

@@ -4,7 +4,7 @@
 #include "fem/analysis/outputs.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/model/checkpoint.h"
-#include "fem/model/layers.h"
+#include "fem/scene/layers.h"
 #include "util/atomic_file.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"

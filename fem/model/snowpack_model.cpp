@@ -3,7 +3,7 @@
 #include "fem/model/snowpack_model.h"
 
 #include "fem/model/checkpoint.h"
-#include "fem/model/crack_band.h"
+#include "fem/scene/crack_band.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>

@@ -6,7 +6,7 @@
 // Mesh: parallel::distributed::Triangulation (p4est) built as one structured, graded coarse mesh
 // (GridGenerator::subdivided_hyper_rectangle with step sizes): uniform element length along the
 // slope, `Weak layer elements` through the weak layer, slab and substratum elements of the target
-// heights (fem/model/layers.h). Cell material ids are layer ids (layer_substratum, layer_weak, then
+// heights (fem/scene/layers.h). Cell material ids are layer ids (layer_substratum, layer_weak, then
 // slab layers from the bottom). Displacements are FE_Q^dim; plane strain in 2D with the full 3D stress at every
 // quadrature point (docs/physics.md §0); the base (normal coordinate 0) is fixed.
 //
@@ -19,7 +19,7 @@
 // layer's own parameters hold in every row: the lock-up strain h_c / H closes a collapsed column by
 // its collapse height h_c, and ξ_H = ξ H / h_ref gives the softening the plastic closure
 // H Δα of the calibrated specimen (h_ref Δα_ref), hence its dissipation per unit area
-// (fem/model/crack_band.h), whatever the rows and the element length.
+// (fem/scene/crack_band.h), whatever the rows and the element length.
 // Other cohesive Cam-Clay layers (slab, substratum) soften in a crack band of one element row:
 // ξ_e = ξ h_e / h_ref, so a band one element high dissipates per unit area h_e ∫ p0 dα over
 // Δα = asinh(p0/K)/ξ_e, which does not depend on h_e (Bažant & Oh 1983).
@@ -32,7 +32,7 @@
 
 #include "fem/material/layer_point.h"
 #include "fem/model/failure_site.h"
-#include "fem/model/layers.h"
+#include "fem/scene/layers.h"
 #include "fem/scene/snowpack_scene.h"
 #include "util/phase_timer.h"
 

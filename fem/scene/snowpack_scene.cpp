@@ -4,8 +4,8 @@
 
 #include "fem/material/collapsed_layer_friction.h"
 #include "fem/material/column_collapse.h"
-#include "fem/model/crack_band.h"
-#include "fem/model/layers.h"
+#include "fem/scene/crack_band.h"
+#include "fem/scene/layers.h"
 #include "util/format.h"
 #include "util/input_error.h"
 #include "util/named_rows.h"
@@ -199,7 +199,7 @@ namespace anticrack::fem
                      "must be able to close by the collapse height: it must be < 0.9 band heights, " +
                        format_number(0.9 * band_height) + " m (is " + format_number(layer.collapse_height) + ")");
       // The crack band scales ξ by the band height over the thickness the softening was measured
-      // over (fem/model/crack_band.h): without that thickness, ξ would be a mesh parameter.
+      // over (fem/scene/crack_band.h): without that thickness, ξ would be a mesh parameter.
       if (layer.model == Layer::Model::cohesive_cam_clay && !(layer.material.reference_thickness > 0))
         problems.add(section + (layer.material_file.empty() ? "/Reference thickness [m]" : "/Material file"),
                      "the reference thickness must be > 0 (is " + format_number(layer.material.reference_thickness) +

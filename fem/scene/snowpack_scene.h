@@ -143,7 +143,7 @@ namespace anticrack::fem
     /// Values of an analysis that no solver reads, as its parse_parameters stores them (the
     /// analyses of fem/analysis/ keep theirs in the fields below, which the solvers read).
     std::any settings;
-    /// Crack band regularisation of softening layers (fem/model/crack_band.h); false: the local
+    /// Crack band regularisation of softening layers (fem/scene/crack_band.h); false: the local
     /// model, softening and collapse spread over the layer thickness in every element (for showing
     /// the mesh dependence the regularisation removes).
     bool crack_band = true;

@@ -2,7 +2,7 @@
 // values of docs/physics.md §1.4 and against their own inverse.
 
 #include "dem/sample/sticky_hard_spheres.h"
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-// fem/model/layers.h: layer ids <-> the scene's layers (slab layers listed top first, ids from the
+// fem/scene/layers.h: layer ids <-> the scene's layers (slab layers listed top first, ids from the
 // bottom up), which layer an element row belongs to, and the element rows of each layer.
-#include "fem/model/crack_band.h"
-#include "fem/model/layers.h"
+#include "fem/scene/crack_band.h"
+#include "fem/scene/layers.h"
 
 #include <gtest/gtest.h>
 

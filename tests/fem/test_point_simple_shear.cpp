@@ -15,7 +15,7 @@
 #include "cam_clay_test_support.h"
 #include "fem/material/material_file.h"
 #include "fem/material/point_simple_shear.h"
-#include "fem/model/crack_band.h"
+#include "fem/scene/crack_band.h"
 
 #include <gtest/gtest.h>
 
@@ -212,7 +212,7 @@ namespace
   TEST(PointSimpleShear, RepeatsTheDemsIntactShear)
   {
     // The calibrated weak layer in DEM units, at the DEM specimen's own height (no crack-band
-    // scaling of ξ) with its lock-up and μ, as the FE layer takes them (fem/model/crack_band.h).
+    // scaling of ξ) with its lock-up and μ, as the FE layer takes them (fem/scene/crack_band.h).
     const std::string data = std::string(ANTICRACK_SOURCE_DIR) + "/data/dem_simple_shear/";
     const MaterialFile file = read_whole_material_file(data + "material.prm");
     Layer layer;

@@ -7,7 +7,7 @@
 #include "fem/closed_forms.h"
 #include "fem/solver/explicit_dynamics.h"
 #include "fem/solver/quasi_static.h"
-#include "fem/model/crack_band.h"
+#include "fem/scene/crack_band.h"
 #include "fem/model/snowpack_model.h"
 #include "fem/analysis/snowpack_run.h"
 #include "fem/scene/snowpack_scene.h"
@@ -707,7 +707,7 @@ namespace
   // closes the layer by more than the onset of the densification: by h = h_d + H p_d / K_d of
   // collapse_height_under_the_slab(), the residual's confined flow and the spring in static
   // equilibrium with the slab. Reference: the weak layer's own material point (the band's
-  // parameters, fem/model/crack_band.h) compacted in uniaxial strain through its collapse, where its
+  // parameters, fem/scene/crack_band.h) compacted in uniaxial strain through its collapse, where its
   // layer-normal stress carries the overburden again; 0.1 % (the compaction steps are 1e-5, 0.06 %
   // of the closure), which the onset h_d alone (13 % short) fails.
   // The explicit run's closure overshoots it: the slab falls onto a soft spring and swings

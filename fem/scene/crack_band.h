@@ -19,7 +19,7 @@ namespace anticrack::fem
   /// result is out of range, e.g. a band thinner than the collapse height.
   CamClayParameters cam_clay_parameters(const Layer &layer, double band_height);
 
-  /// The band height cam_clay_parameters() gets for layer `layer_id` (fem/model/layers.h): the
+  /// The band height cam_clay_parameters() gets for layer `layer_id` (fem/scene/layers.h): the
   /// weak layer's thickness; for the others their element height with the crack band, their
   /// thickness without [m].
   double band_height(const SnowpackScene &scene, unsigned int layer_id);

@@ -1,6 +1,6 @@
-#include "fem/model/crack_band.h"
+#include "fem/scene/crack_band.h"
 
-#include "fem/model/layers.h"
+#include "fem/scene/layers.h"
 
 namespace anticrack::fem
 {

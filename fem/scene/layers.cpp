@@ -1,4 +1,4 @@
-#include "fem/model/layers.h"
+#include "fem/scene/layers.h"
 
 #include <algorithm>
 #include <cmath>

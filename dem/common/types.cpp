@@ -1,4 +1,4 @@
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <sstream>
 

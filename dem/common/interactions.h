@@ -4,7 +4,7 @@
 // which makes the result independent of the number of threads (no racy accumulation).
 #pragma once
 
-#include "dem/core/types.h"
+#include "dem/common/types.h"
 
 #include <cmath>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "dem/core/interactions.h"
+#include "dem/common/interactions.h"
 
 #include <algorithm>
 #include <cmath>
