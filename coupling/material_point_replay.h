@@ -4,7 +4,7 @@
 // fem/material/cohesive_cam_clay.h), not the calibration's formulas, so it checks that the surface
 // means the same on both sides of the hand-off.
 //
-// The path (params/test_path.h): the layer-plane traction σ_zz = −λ σ̂, σ_xz = λ τ̂ grows along the
+// The path (params/stress_path.h): the layer-plane traction σ_zz = −λ σ̂, σ_xz = λ τ̂ grows along the
 // direction (σ̂, τ̂) of the DEM's failure point, with σ_yz = 0; laterally periodic specimens keep
 // ε_xx = ε_yy = ε_xy = 0, open-sided ones σ_xx = σ_yy = σ_xy = 0. The strain that holds this mixed
 // control is solved by Newton with the material's own tangent. The first yield λ_y, the largest λ at

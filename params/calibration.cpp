@@ -123,7 +123,7 @@ namespace anticrack::params
     }
 
     /// Why no isotropic surface on the tests' paths follows the failure points, or "" (calibration.h:
-    /// the chord test of test_path.h on the (σ, τ) fit's strengths, then path_misfit_factor).
+    /// the chord test of stress_path.h on the (σ, τ) fit's strengths, then path_misfit_factor).
     std::string isotropic_misfit(const MicrostructureCalibration &c)
     {
       const double base_rmse = c.base_plane.cam_clay().rmse, path_rmse = c.path_plane.cam_clay().rmse;
@@ -144,7 +144,7 @@ namespace anticrack::params
         why << "; its peak shear strength over half its compressive-tensile range, M/sqrt(1 + 2 beta) = "
             << shear_ratio << ", is at most " << least << " = (1 - k)/sqrt(3), the least any cohesive Cam-Clay "
             << "surface of the invariants has on these paths (a uniaxial load there already carries q = (1 - k) "
-            << "sigma; params/test_path.h)";
+            << "sigma; params/stress_path.h)";
       if (deficit > 0)
         why << "; on the paths the shear point lies " << 100 * deficit << " % below the chord between the "
             << "uniaxial points, so no convex surface reaches it (the layer is weaker in shear than an "
@@ -308,7 +308,7 @@ namespace anticrack::params
       c.grain_diameter = mean_of(c.tests, &CampaignTest::particle_diameter); // NaN before format 4
       c.density = c.solid_fraction * c.material.particle_density;
 
-      // The FE elasticity first: it sets the lateral stresses of the tests' paths (test_path.h).
+      // The FE elasticity first: it sets the lateral stresses of the tests' paths (stress_path.h).
       c.elastic = elastic_constants(campaign, c.index, options.confidence, options.poisson_ratio);
       c.path = TestPath{c.material.laterally_periodic, c.elastic.continuum_poisson_ratio};
       c.lateral_stress_ratio_at_failure = lateral_stress_ratio_at_failure(c.tests, options.confidence, where);

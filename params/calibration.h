@@ -11,7 +11,7 @@
 // when the campaign varies the particle modulus or the bond strength.
 //
 // Which surface the FE solver gets: the invariant-plane (p, q) fit of the failure points as the FE
-// material point sees them on each test's own path (params/test_path.h): the base stresses (σ, τ)
+// material point sees them on each test's own path (params/stress_path.h): the base stresses (σ, τ)
 // are the layer-plane traction, the lateral stresses those of the FE elasticity under the test's
 // lateral condition (periodic sides: no lateral strain; open sides: none). Fitted so, the FE point
 // driven along every DEM test's path fails where the DEM failed, in the fit's own residual measure.
@@ -21,7 +21,7 @@
 // does not have; laterally confined tests reach only a narrow fan of q/p there, so its tips are
 // often undetermined). The material surface is refused, with the reason, when no convex isotropic
 // surface can pass through the (σ, τ) fit's compressive, shear and tensile strengths on the paths
-// (the chord test of params/test_path.h), when it misses the DEM's failure points by more than the
+// (the chord test of params/stress_path.h), when it misses the DEM's failure points by more than the
 // (σ, τ) fit does, or when its tips are extrapolated far beyond the data or its covariance is singular.
 #pragma once
 
@@ -32,7 +32,7 @@
 #include "params/envelope_fit.h"
 #include "params/flow_rule.h"
 #include "params/regression.h"
-#include "params/test_path.h"
+#include "params/stress_path.h"
 #include "params/yield_envelopes.h"
 
 #include <cstdint>
@@ -184,7 +184,7 @@ namespace anticrack::params
   /// How much worse than the (σ, τ) fit the surface on the tests' paths may fit the same failure
   /// points: RMSE_path <= path_misfit_factor RMSE_(σ,τ) + path_misfit_margin. The two are fits of
   /// the same points along the same rays with 3-parameter families of ellipses symmetric about the
-  /// normal axis (the FE surface's image in the (σ, τ) plane is one, by Eq. (P1) of test_path.h), so
+  /// normal axis (the FE surface's image in the (σ, τ) plane is one, by Eq. (P1) of stress_path.h), so
   /// where one family reaches the other's shape their minima coincide (the SHS campaign: equal to
   /// four digits, docs/calibration.md); a clearly larger RMSE means the isotropic surface cannot
   /// follow the DEM. The margin (1 % relative error) keeps near-perfect fits from tripping it: the

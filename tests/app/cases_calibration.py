@@ -201,7 +201,7 @@ def calibrate_scaling_laws(work):
     the scaling plot. A test whose clump did not move after its failure (no flow angle: NaN) is
     left out of the flow rule, by name, and nothing else. In a second campaign, a microstructure
     with M = 0.3 is weaker in shear than any isotropic invariant-plane surface can be on the tests'
-    paths (M/sqrt(1 + 2 beta) below (1 - k)/sqrt(3), params/test_path.h): it gets no material file,
+    paths (M/sqrt(1 + 2 beta) below (1 - k)/sqrt(3), params/stress_path.h): it gets no material file,
     summary.json names it and why, and it still enters the laws; its neighbour gets its file."""
     h, kappa, k, lam = 2.81e-3, 3.59, 1.38e-3, 3.09      # Eqs. 2-3 of Ritter et al. (2020)
     beta0, beta1 = 7.3e4, 0.014                          # Eq. 7 of Bobillier et al. (2020)

@@ -1,4 +1,4 @@
-#include "params/test_path.h"
+#include "params/stress_path.h"
 
 #include <cmath>
 

@@ -1,8 +1,8 @@
-// The FE point on a DEM test's path (params/test_path.h): Eq. (P1) against the stress tensor built
+// The FE point on a DEM test's path (params/stress_path.h): Eq. (P1) against the stress tensor built
 // from Hooke's law under each lateral condition, the ray property the fit relies on, and the chord
 // test on the measured strengths of the ballistic layer.
 #include "params/envelope_fit.h"
-#include "params/test_path.h"
+#include "params/stress_path.h"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -134,7 +134,7 @@ TEST(TestPath, TheImageOfAnInvariantSurfaceIsNeverFlatterThanTheLeastShearRatio)
 {
   // The image of (p0, beta, M) in the (sigma, tau) plane on the confined path, traced ray by ray by
   // bisection of the yield function of the tensor from Hooke's law: its tau semi-axis over its
-  // sigma semi-axis is sqrt(A/D) of test_path.h, which exceeds (1 - k)/sqrt(3) however small M is.
+  // sigma semi-axis is sqrt(A/D) of stress_path.h, which exceeds (1 - k)/sqrt(3) however small M is.
   const double nu = 0.15, p0 = 1e4;
   const TestPath path{true, nu};
   const double k = path.lateral_stress_ratio(), c = (1 + 2 * k) / 3;
