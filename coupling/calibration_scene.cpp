@@ -2,7 +2,7 @@
 
 #include "dem/campaign/campaign.h"
 #include "dem/scene/parameters.h"
-#include "dem/scene/run.h"
+#include "dem/scene/dem_run.h"
 #include "util/parameter_files.h"
 #include "util/parameter_input.h"
 #include "util/input_error.h"

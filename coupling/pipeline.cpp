@@ -6,7 +6,7 @@
 #include "coupling/pipeline_scene.h"
 #include "coupling/pipeline_uncertainty.h"
 #include "coupling/python_script.h"
-#include "fem/analysis/run.h"
+#include "fem/analysis/snowpack_command.h"
 #include "fem/material/material_file.h"
 #include "fem/scene/analysis_type.h"
 #include "fem/scene/snowpack_scene.h"

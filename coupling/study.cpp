@@ -3,7 +3,7 @@
 #include "coupling/python_script.h"
 #include "coupling/study_analysis.h"
 #include "coupling/study_scene.h"
-#include "fem/analysis/run.h"
+#include "fem/analysis/snowpack_command.h"
 #include "util/atomic_file.h"
 #include "util/format.h"
 #include "util/input_error.h"

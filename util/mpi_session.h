@@ -3,7 +3,7 @@
 // initialises it (MPI_THREAD_FUNNELED: OpenMP threads inside a rank, MPI calls from the main
 // thread only) and it is finalized when the process exits.
 //
-// Compatible with deal.II's Utilities::MPI::MPI_InitFinalize (the FE analysis, fem/analysis/run.cpp):
+// Compatible with deal.II's Utilities::MPI::MPI_InitFinalize (the FE analysis, fem/analysis/snowpack_command.cpp):
 // the session never initialises MPI that is already initialised, and never finalizes MPI that it
 // did not initialise or that is already finalized. (The converse does not hold: MPI_InitFinalize
 // initialises unconditionally, so a process that has started the session cannot afterwards start

@@ -11,7 +11,7 @@
 // initialises MPI, util/mpi_session.h), and the workers use one thread each.
 //
 // Signals: SIGINT and SIGTERM to the parent are passed on to the workers (which stop between
-// chunks of steps, dem/scene/run.cpp); the parent keeps waiting until every worker has exited.
+// chunks of steps, dem/scene/dem_run.cpp); the parent keeps waiting until every worker has exited.
 #pragma once
 
 #include <functional>

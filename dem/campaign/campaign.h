@@ -22,7 +22,7 @@
 // summary.json once every rank has finished.
 #pragma once
 
-#include "dem/scene/run.h"
+#include "dem/scene/dem_run.h"
 
 #include <iosfwd>
 

@@ -1,7 +1,7 @@
 // The names of the history.h5 columns that are read back: by the run's failure analysis
 // (dem/scene/failure_analysis.cpp), by the campaign (dem/campaign/campaign.cpp, which copies each
 // test's history into campaign.h5 /tests/<id>/history) and by the calibration
-// (params/campaign_data.cpp). The run declares them (dem/scene/run.cpp, with units and
+// (params/campaign_data.cpp). The run declares them (dem/scene/dem_run.cpp, with units and
 // descriptions); a column only the run writes keeps its name there.
 #pragma once
 

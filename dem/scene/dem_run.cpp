@@ -1,4 +1,4 @@
-#include "dem/scene/run.h"
+#include "dem/scene/dem_run.h"
 
 #include "dem/io/state_hdf5.h"
 #include "dem/io/state_vtp.h"

@@ -1,4 +1,4 @@
-#include "fem/analysis/run.h"
+#include "fem/analysis/snowpack_command.h"
 
 #include "fem/analysis/snowpack_run.h"
 #include "fem/model/snowpack_model.h"
