@@ -3,6 +3,7 @@
 #include "coupling/calibrate.h"
 #include "params/regression.h"
 #include "util/atomic_file.h"
+#include "util/format.h"
 #include "util/input_error.h"
 #include "util/run_summary.h"
 
@@ -248,9 +249,6 @@ namespace anticrack::coupling
       }
       const Eigen::VectorXd sigma_g = u.covariance * g;
       const double variance = g.dot(sigma_g), sd = std::sqrt(std::max(variance, 0.0));
-      a["status"] = "linearised";
-      a["standard_deviation"] = sd;
-      a["interval"] = {y0 - z * sd, y0 + z * sd};
       Json shares = Json::object();
       std::string dominant;
       double largest = -1;
@@ -262,8 +260,21 @@ namespace anticrack::coupling
         if (std::abs(change) > largest)
           largest = std::abs(change), dominant = u.names[static_cast<std::size_t>(k)];
       }
+      a["standard_deviation"] = sd;
       a["parameters"] = shares;
       a["dominant_parameter"] = variance > 0 ? dominant : "none (no parameter moves it)";
+      // Every answer is a positive length or speed: a first-order interval that reaches 0 says
+      // that the answer is far from linear over it (a standard error moves it by a large part of
+      // itself), not that it could vanish; such an interval is not reported.
+      if (y0 - z * sd <= 0)
+        a["status"] = "not linear: the first-order interval reaches 0 or below (" + dominant +
+                      " + 1 standard error moves it by " + format_number(100 * largest / std::abs(y0), 2) +
+                      " % of its value)";
+      else
+      {
+        a["status"] = "linearised";
+        a["interval"] = {y0 - z * sd, y0 + z * sd};
+      }
       out["answers"][key] = a;
     }
     return out;

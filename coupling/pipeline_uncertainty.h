@@ -20,7 +20,9 @@
 // negative where a correlated parameter's change cancels part of its own). Linearisation: one-sided differences of one standard error, justified where y varies
 // smoothly over ±1 standard error; a perturbed run whose answer is missing (the crack did not run,
 // or arrested where the base run reached the end) makes the answer's interval "not linear", which
-// the report says instead of a number. The mesh resolves y to about one element length: a
+// the report says instead of a number; so does an interval that reaches 0 or below, which a
+// positive answer (a length, a speed) cannot (pit 65798's own layer: one standard error of p0 took its
+// speed from 23 to 4.5 m/s, and the first-order interval read −45 to 92 m/s). The mesh resolves y to about one element length: a
 // sensitivity below (element length)/h_i is not resolved, and the report gives the element length.
 #pragma once
 

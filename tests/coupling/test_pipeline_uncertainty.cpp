@@ -1,7 +1,7 @@
 // The pipeline's first-order intervals (coupling/pipeline_uncertainty.h) on answers that are exactly
 // linear in the parameters: the sensitivities, the standard deviation sqrt(g^T Sigma g) with the
 // correlations, the variance shares, the dominant parameter, and "not linear" when a perturbed run
-// changes the outcome.
+// changes the outcome or the interval of a positive answer reaches 0.
 #include "coupling/pipeline_uncertainty.h"
 
 #include <gtest/gtest.h>
@@ -97,6 +97,33 @@ TEST(PipelineUncertainty, AChangedOutcomeIsNotLinearisedAndAnUnmovedAnswerHasNoD
   EXPECT_EQ(flat["answers"]["propagation_speed_m_per_s"]["dominant_parameter"].get<std::string>().rfind("none", 0), 0u);
 }
 
+// A positive answer whose first-order interval reaches 0 is not linear over it: y = a . theta + 1 with
+// a = (0.01, 1, -0.025) is 0.6 at the calibrated theta, Var = a^T Sigma a = 0.244 (sd 0.49), so the
+// interval's lower end 0.6 - 1.96 sd lies below 0; M's standard error moves y most (0.5 against
+// 0.02 and 0.075). The status says so and names M, and no interval is given.
+TEST(PipelineUncertainty, AnIntervalReachingZeroIsNotLinear)
+{
+  const coupling::UncertainParameters u = three_parameters();
+  const Eigen::Vector3d a(0.01, 1, -0.025);
+  std::vector<Json> perturbed;
+  for (int k = 0; k < 3; ++k)
+  {
+    Eigen::Vector3d theta = u.value;
+    theta(k) += std::sqrt(u.covariance(k, k));
+    perturbed.push_back(linear_results(a, theta));
+  }
+  const Json base = linear_results(a, u.value);
+  const Json out = coupling::linearised_intervals(u, base, perturbed, 0.01);
+  const Json &cut = out["answers"]["critical_cut_length_m"];
+  const double y0 = cut["value"].get<double>(), sd = cut["standard_deviation"].get<double>();
+  ASSERT_LT(y0 - 1.959963984540054 * sd, 0) << "the case must reach below 0";
+  const std::string status = cut["status"];
+  EXPECT_EQ(status.rfind("not linear: the first-order interval reaches 0", 0), 0u) << status;
+  EXPECT_NE(status.find("M + 1 standard error"), std::string::npos) << status;
+  EXPECT_FALSE(cut.contains("interval"));
+  EXPECT_EQ(cut["dominant_parameter"], "M");
+}
+
 TEST(PipelineUncertainty, AnElasticStagesCutCombinesGcsMappedIntervalWithEsLinearisedOneInQuadrature)
 {
   // The energy release rate is rerun for E alone: its restriction keeps E's variance and drops the
@@ -114,8 +141,8 @@ TEST(PipelineUncertainty, AnElasticStagesCutCombinesGcsMappedIntervalWithEsLinea
   Eigen::Vector3d raised = u.value;
   raised(2) += 3;
   Json base = linear_results(a, u.value), perturbed = linear_results(a, raised);
-  for (Json *r : {&base, &perturbed})
-    (*r)["critical_cut_length_m"] = (*r)["critical_cut_length_m"].get<double>() - 1 + 0.3;
+  base["critical_cut_length_m"] = 0.3;
+  perturbed["critical_cut_length_m"] = 0.3 - 0.01;
   const Json linearised = coupling::linearised_intervals(only_E, base, {perturbed}, 0.01);
   const Json mapped = {{"critical_cut_length_m", {0.2, 0.5}}, {"carries", "G_c"}};
   const Json c = coupling::combined_critical_cut_interval(mapped, linearised["answers"]["critical_cut_length_m"], 0.3);
