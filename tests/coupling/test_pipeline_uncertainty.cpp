@@ -41,19 +41,26 @@ namespace
       r[answer.key] = a.dot(theta) + 1;
     return r;
   }
+
+  /// The runs with each parameter of `u` raised by one standard error, of the answer y = a . theta + 1.
+  std::vector<Json> raised_runs(const coupling::UncertainParameters &u, const Eigen::Vector3d &a)
+  {
+    std::vector<Json> runs;
+    for (int k = 0; k < 3; ++k)
+    {
+      Eigen::Vector3d theta = u.value;
+      theta(k) += std::sqrt(u.covariance(k, k));
+      runs.push_back(linear_results(a, theta));
+    }
+    return runs;
+  }
 } // namespace
 
 TEST(PipelineUncertainty, LinearAnswersGetTheirExactStandardDeviationSharesAndDominantParameter)
 {
   const coupling::UncertainParameters u = three_parameters();
   const Eigen::Vector3d a(0.01, 0.3, -0.002);
-  std::vector<Json> perturbed;
-  for (int k = 0; k < 3; ++k)
-  {
-    Eigen::Vector3d theta = u.value;
-    theta(k) += std::sqrt(u.covariance(k, k));
-    perturbed.push_back(linear_results(a, theta));
-  }
+  const std::vector<Json> perturbed = raised_runs(u, a);
   const Json out = coupling::linearised_intervals(u, linear_results(a, u.value), perturbed, 0.01);
   // Var = a^T Sigma a by hand (Sigma_12 = -0.6 x 2 x 0.5).
   const double variance = 0.01 * 0.01 * 4 + 0.3 * 0.3 * 0.25 + 0.002 * 0.002 * 9 + 2 * 0.01 * 0.3 * (-0.6);
@@ -105,13 +112,7 @@ TEST(PipelineUncertainty, AnIntervalReachingZeroIsNotLinear)
 {
   const coupling::UncertainParameters u = three_parameters();
   const Eigen::Vector3d a(0.01, 1, -0.025);
-  std::vector<Json> perturbed;
-  for (int k = 0; k < 3; ++k)
-  {
-    Eigen::Vector3d theta = u.value;
-    theta(k) += std::sqrt(u.covariance(k, k));
-    perturbed.push_back(linear_results(a, theta));
-  }
+  const std::vector<Json> perturbed = raised_runs(u, a);
   const Json base = linear_results(a, u.value);
   const Json out = coupling::linearised_intervals(u, base, perturbed, 0.01);
   const Json &cut = out["answers"]["critical_cut_length_m"];
