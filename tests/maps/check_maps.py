@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The maps match the tree: every source unit of fem/, coupling/ and params/ has a line in its
-module's README table, and the root README's layout block names every test folder, every document
-of docs/ and every unit of dem/sample/. A unit without a line, or a line for a unit that is gone,
+module's README table, and the root README's layout block names every source folder (each module,
+each folder of dem/ and fem/), every test folder, every document of docs/ and every unit of
+dem/sample/. A unit without a line, or a line for a unit that is gone,
 fails with the file and the name to add or remove.
 
     check_maps.py SOURCE_DIR
@@ -73,6 +74,13 @@ def main():
     for name in sorted(samples):
         if name.replace("_", " ") not in sample_line.replace("_", " "):
             problems.append(f"README.md layout block: dem/sample/{name} is not named in the dem/sample/ line")
+    # Every source folder (a module, and each folder of dem/ and fem/) has its place in the block.
+    for module in ("util", "profile", "dem", "params", "fem", "coupling", "app"):
+        folders = [module] + [f"{module}/{d}" for d in sorted(os.listdir(os.path.join(source, module)))
+                              if os.path.isdir(os.path.join(source, module, d))]
+        for folder in folders:
+            if units(os.path.join(source, folder), False) and f"{folder}/" not in block:
+                problems.append(f"README.md layout block: {folder}/ holds source units and is not named")
     for p in problems:
         print(p)
     print(f"{len(problems)} problem(s)")
