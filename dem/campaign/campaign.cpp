@@ -598,101 +598,11 @@ namespace anticrack::dem
 
     write_campaign_file(directory / "campaign.h5", scene, scenes.microstructures, tests, outcomes);
 
-    // summary.json
-    Json s;
-    s["status"] = any_failed ? "failed" : "completed";
-    s["command"] = options.command_line;
-    s["scene"] = scene_info(scene);
-    Json spec;
-    spec["loading_angles_deg"] = c.loading_angles_deg;
-    spec["realizations"] = c.realizations;
-    spec["microstructures"] = c.microstructures_text;
-    spec["quasi_static_slowdown"] = c.quasi_static_slowdown;
-    spec["quasi_static_tolerance"] = c.quasi_static_tolerance;
-    spec["compaction_strain_rate_per_s"] = c.compaction_strain_rate;
-    spec["compaction_final_strain"] = c.compaction_final_strain;
-    spec["compaction_curve_strain_interval"] = c.compaction_curve_strain_interval;
-    spec["friction_normal_stress_Pa"] = c.friction_normal_stress;
-    spec["friction_shear_velocity_m_per_s"] = c.friction_shear_velocity;
-    spec["friction_consolidation_time_s"] = c.friction_consolidation_time;
-    spec["friction_final_shear_strain"] = c.friction_final_shear_strain;
-    spec["friction_sample"] = c.friction_sample_text;
-    s["campaign"] = spec;
-    Json rows = Json::array();
-    double test_wall = 0, largest_inertial = 0;
-    for (const auto &t : tests)
-    {
-      const TestOutcome &o = outcomes[t.id];
-      Json r;
-      r["test"] = t.id;
-      r["status"] = o.row.status;
-      r["loading_angle_deg"] = t.angle_deg;
-      r["microstructure"] = t.microstructure;
-      r["realization"] = t.realization;
-      r["rate_divisor"] = t.slowdown;
-      r["loading"] = t.loading_name();
-      auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
-      r["sigma_Pa"] = finite(o.row.sigma);
-      r["tau_Pa"] = finite(o.row.tau);
-      r["p_Pa"] = finite(o.row.p);
-      r["q_Pa"] = finite(o.row.q);
-      r["flow_angle_deg"] = finite(o.row.flow_angle_deg);
-      r["max_inertial_number"] = finite(o.row.max_inertial_number);
-      r["steps"] = finite(o.steps);
-      r["wall_s"] = finite(o.wall_s);
-      if (!o.analysis_error.empty())
-        r["analysis_error"] = o.analysis_error;
-      if (!o.message.empty() && o.row.status != "completed")
-        r["message"] = o.message;
-      rows.push_back(r);
-      test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
-      if (t.reference_for.empty() && t.kind == CampaignTest::Kind::load_controlled &&
-          std::isfinite(o.row.max_inertial_number))
-        largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
-    }
-    s["tests"] = rows;
-    std::vector<std::string> no_load_path;
-    for (const auto &t : tests)
-      if (outcomes[t.id].row.status == status_no_load_path)
-        no_load_path.push_back(t.id);
-    s["tests_without_load_path"] = no_load_path;
-    s["largest_inertial_number_before_failure"] = largest_inertial;
-
-    Json check = Json::array();
-    double worst = 0;
-    bool within = true;
-    for (const auto &t : tests)
-      if (!t.reference_for.empty())
-      {
-        const double d = relative_difference(outcomes[t.reference_for], outcomes[t.id]);
-        Json r;
-        r["test"] = t.reference_for;
-        r["reference"] = t.id;
-        r["relative_difference"] = std::isfinite(d) ? Json(d) : Json(nullptr);
-        const double base = base_relative_difference(outcomes[t.reference_for], outcomes[t.id]);
-        r["base_stress_relative_difference"] = std::isfinite(base) ? Json(base) : Json(nullptr);
-        r["within_tolerance"] = std::isfinite(d) && d <= c.quasi_static_tolerance;
-        within = within && std::isfinite(d) && d <= c.quasi_static_tolerance;
-        worst = std::isfinite(d) ? std::max(worst, d) : std::numeric_limits<double>::infinity();
-        check.push_back(r);
-      }
-    if (!check.empty())
-    {
-      Json q;
-      q["measure"] = "|(p, q) - (p, q)_ref| / |(p, q)_ref| at the failure point";
-      q["tolerance"] = c.quasi_static_tolerance;
-      q["largest_relative_difference"] = std::isfinite(worst) ? Json(worst) : Json(nullptr);
-      q["all_within_tolerance"] = within;
-      q["pairs"] = check;
-      s["quasi_static_check"] = q;
-    }
-    Json outputs;
-    outputs["campaign"] = "campaign.h5";
-    outputs["tests"] = "tests/<id>/summary.json, tests/<id>/history.h5";
-    s["outputs"] = outputs;
+    CampaignSummary summary = campaign_summary(scene, tests, outcomes, any_failed, options.command_line);
+    Json &s = summary.json;
     Json timing;
     timing["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    timing["sum_of_test_wall_s"] = test_wall;
+    timing["sum_of_test_wall_s"] = summary.test_wall_s;
     timing["ranks"] = mpi.size();
     timing["worker_processes"] = workers ? members : 0;
     timing["threads_per_rank"] = dem::DemSystem::threads();
@@ -704,17 +614,17 @@ namespace anticrack::dem
 
     std::cout << "campaign done in " << format_duration(timing["wall_s"].get<double>()) << ": "
               << tests.size() << " tests, campaign.h5 and summary.json in " << directory.string() << "\n";
-    if (!no_load_path.empty())
+    if (!summary.no_load_path.empty())
     {
-      std::cout << "  " << no_load_path.size() << " test(s) without a load path (their realization's bonds do not "
+      std::cout << "  " << summary.no_load_path.size() << " test(s) without a load path (their realization's bonds do not "
                 << "connect the base to the clump), recorded as such:";
-      for (const std::string &id : no_load_path)
+      for (const std::string &id : summary.no_load_path)
         std::cout << " " << id;
       std::cout << "\n";
     }
-    if (!check.empty())
+    if (summary.quasi_static_checked)
       std::cout << "  quasi-static check: largest difference of the failure point (p, q) to the "
-                << c.quasi_static_slowdown << "x slower runs " << 100 * worst << " % (tolerance "
+                << c.quasi_static_slowdown << "x slower runs " << 100 * summary.largest_difference << " % (tolerance "
                 << 100 * c.quasi_static_tolerance << " %)\n";
     if (interrupted)
     {

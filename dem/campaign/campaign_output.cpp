@@ -3,6 +3,8 @@
 #include "util/hdf5_file.h"
 #include "util/run_summary.h"
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace anticrack::dem::campaign
@@ -199,5 +201,109 @@ namespace anticrack::dem::campaign
                       "|s - s_ref| / |s_ref| of the base stresses s = (sigma, tau) at failure (reported)");
       }
     });
+  }
+
+  CampaignSummary campaign_summary(const SceneParameters &scene, const std::vector<CampaignTest> &tests,
+                                   std::map<std::string, TestOutcome> &outcomes, bool any_failed,
+                                   const std::string &command)
+  {
+    const auto &c = scene.campaign;
+    CampaignSummary summary;
+    Json &s = summary.json;
+    s["status"] = any_failed ? "failed" : "completed";
+    s["command"] = command;
+    s["scene"] = scene_info(scene);
+    Json spec;
+    spec["loading_angles_deg"] = c.loading_angles_deg;
+    spec["realizations"] = c.realizations;
+    spec["microstructures"] = c.microstructures_text;
+    spec["quasi_static_slowdown"] = c.quasi_static_slowdown;
+    spec["quasi_static_tolerance"] = c.quasi_static_tolerance;
+    spec["compaction_strain_rate_per_s"] = c.compaction_strain_rate;
+    spec["compaction_final_strain"] = c.compaction_final_strain;
+    spec["compaction_curve_strain_interval"] = c.compaction_curve_strain_interval;
+    spec["friction_normal_stress_Pa"] = c.friction_normal_stress;
+    spec["friction_shear_velocity_m_per_s"] = c.friction_shear_velocity;
+    spec["friction_consolidation_time_s"] = c.friction_consolidation_time;
+    spec["friction_final_shear_strain"] = c.friction_final_shear_strain;
+    spec["friction_sample"] = c.friction_sample_text;
+    s["campaign"] = spec;
+    Json rows = Json::array();
+    double test_wall = 0, largest_inertial = 0;
+    for (const auto &t : tests)
+    {
+      const TestOutcome &o = outcomes[t.id];
+      Json r;
+      r["test"] = t.id;
+      r["status"] = o.row.status;
+      r["loading_angle_deg"] = t.angle_deg;
+      r["microstructure"] = t.microstructure;
+      r["realization"] = t.realization;
+      r["rate_divisor"] = t.slowdown;
+      r["loading"] = t.loading_name();
+      auto finite = [](double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); };
+      r["sigma_Pa"] = finite(o.row.sigma);
+      r["tau_Pa"] = finite(o.row.tau);
+      r["p_Pa"] = finite(o.row.p);
+      r["q_Pa"] = finite(o.row.q);
+      r["flow_angle_deg"] = finite(o.row.flow_angle_deg);
+      r["max_inertial_number"] = finite(o.row.max_inertial_number);
+      r["steps"] = finite(o.steps);
+      r["wall_s"] = finite(o.wall_s);
+      if (!o.analysis_error.empty())
+        r["analysis_error"] = o.analysis_error;
+      if (!o.message.empty() && o.row.status != "completed")
+        r["message"] = o.message;
+      rows.push_back(r);
+      test_wall += std::isfinite(o.wall_s) ? o.wall_s : 0.0;
+      if (t.reference_for.empty() && t.kind == CampaignTest::Kind::load_controlled &&
+          std::isfinite(o.row.max_inertial_number))
+        largest_inertial = std::max(largest_inertial, o.row.max_inertial_number);
+    }
+    s["tests"] = rows;
+    std::vector<std::string> no_load_path;
+    for (const auto &t : tests)
+      if (outcomes[t.id].row.status == status_no_load_path)
+        no_load_path.push_back(t.id);
+    s["tests_without_load_path"] = no_load_path;
+    s["largest_inertial_number_before_failure"] = largest_inertial;
+
+    Json check = Json::array();
+    double worst = 0;
+    bool within = true;
+    for (const auto &t : tests)
+      if (!t.reference_for.empty())
+      {
+        const double d = relative_difference(outcomes[t.reference_for], outcomes[t.id]);
+        Json r;
+        r["test"] = t.reference_for;
+        r["reference"] = t.id;
+        r["relative_difference"] = std::isfinite(d) ? Json(d) : Json(nullptr);
+        const double base = base_relative_difference(outcomes[t.reference_for], outcomes[t.id]);
+        r["base_stress_relative_difference"] = std::isfinite(base) ? Json(base) : Json(nullptr);
+        r["within_tolerance"] = std::isfinite(d) && d <= c.quasi_static_tolerance;
+        within = within && std::isfinite(d) && d <= c.quasi_static_tolerance;
+        worst = std::isfinite(d) ? std::max(worst, d) : std::numeric_limits<double>::infinity();
+        check.push_back(r);
+      }
+    if (!check.empty())
+    {
+      Json q;
+      q["measure"] = "|(p, q) - (p, q)_ref| / |(p, q)_ref| at the failure point";
+      q["tolerance"] = c.quasi_static_tolerance;
+      q["largest_relative_difference"] = std::isfinite(worst) ? Json(worst) : Json(nullptr);
+      q["all_within_tolerance"] = within;
+      q["pairs"] = check;
+      s["quasi_static_check"] = q;
+    }
+    Json outputs;
+    outputs["campaign"] = "campaign.h5";
+    outputs["tests"] = "tests/<id>/summary.json, tests/<id>/history.h5";
+    s["outputs"] = outputs;
+    summary.test_wall_s = test_wall;
+    summary.no_load_path = no_load_path;
+    summary.quasi_static_checked = !check.empty();
+    summary.largest_difference = worst;
+    return summary;
   }
 } // namespace anticrack::dem::campaign
