@@ -2,6 +2,7 @@
 
 #include "dem/scene/parameters.h"
 #include "util/format.h"
+#include "util/parameter_files.h"
 #include "util/input_error.h"
 
 #include <algorithm>
@@ -163,9 +164,10 @@ namespace anticrack::coupling
       const std::size_t friction_count = friction_specimen_particle_count(specimen);
       const std::string c = text(specimen.friction_lateral_extent);
       changes.emplace_back("Campaign/Friction sample",
-                           "Particle count = " + std::to_string(friction_count) + ", Box edge [m] = " +
-                             text(friction_height) + ", Box aspect ratios = " + c + ", " + c + ", 1, Sweeps = " +
-                             std::to_string(sweeps_for(friction_count)));
+                           entry_changes_text({{"Particle count", std::to_string(friction_count)},
+                                               {"Box edge [m]", text(friction_height)},
+                                               {"Box aspect ratios", c + ", " + c + ", 1"},
+                                               {"Sweeps", std::to_string(sweeps_for(friction_count))}}));
       changes.emplace_back("Campaign/Friction shear velocity [m/s]",
                            text(scene.campaign.friction_shear_velocity * friction_height / scene_height));
     }

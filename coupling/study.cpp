@@ -50,13 +50,7 @@ namespace anticrack::coupling
       std::optional<std::size_t> same_as;
     };
 
-    std::string changes_text(const StudyVariant &v)
-    {
-      std::string text;
-      for (const auto &[path, value] : v.changes)
-        text += (text.empty() ? "" : ", ") + path + " = " + value;
-      return text;
-    }
+    std::string changes_text(const StudyVariant &v) { return entry_changes_text(v.changes); }
 
     /// The study's variants with their scene texts (the base scene, relocatable, and the changes).
     std::vector<VariantRun> variant_runs(const StudyScene &study)

@@ -204,6 +204,14 @@ namespace anticrack
     return changes;
   }
 
+  std::string entry_changes_text(const std::vector<EntryChange> &changes)
+  {
+    std::string text;
+    for (const auto &[path, value] : changes)
+      text += (text.empty() ? "" : ", ") + path + " = " + value;
+    return text;
+  }
+
   const std::vector<std::string> &scene_relative_file_entries()
   {
     static const std::vector<std::string> names{"Material file", "Profile file", "Weak layer scene", "Snowpack scenes",

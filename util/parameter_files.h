@@ -64,6 +64,10 @@ namespace anticrack
   std::vector<EntryChange> entry_changes_in_list(const std::string &list, const std::string &entry,
                                                  Problems &problems);
 
+  /// The list entry_changes_in_list reads back: `path = value, path = value` (a list value keeps its
+  /// commas, which the reader joins back to the change before them).
+  std::string entry_changes_text(const std::vector<EntryChange> &changes);
+
   /// The text of scene `file` as it must read when run from another folder: the entries that name
   /// files relative to the scene's own folder (scene_relative_file_entries) set again at its end
   /// with absolute paths. A study's variants and a pipeline's stages run such copies.

@@ -1,6 +1,7 @@
 #include "dem/campaign/campaign_output.h"
 
 #include "util/hdf5_file.h"
+#include "util/parameter_files.h"
 #include "util/run_summary.h"
 
 #include <cmath>
@@ -118,10 +119,8 @@ namespace anticrack::dem::campaign
         for (std::size_t m = 0; m < microstructure_scenes.size(); ++m)
         {
           const auto &d = microstructure_scenes[m].dem;
-          std::string label = c.microstructures.empty() ? "scene sample" : "";
-          if (!c.microstructures.empty())
-            for (const auto &[entry, value] : c.microstructures[m])
-              label += (label.empty() ? "" : ", ") + entry + " = " + value;
+          const std::string label =
+            c.microstructures.empty() ? std::string("scene sample") : entry_changes_text(c.microstructures[m]);
           labels.push_back(label);
           contact_modulus.push_back(d.material.contact.contact_modulus);
           bond_modulus.push_back(d.bond.bond.enabled ? d.bond.bond.modulus : nan);

@@ -171,6 +171,9 @@ TEST(StudyScene, EntryChangeListsCarryListValues)
   EXPECT_TRUE(problems.empty());
   EXPECT_EQ(changes, (std::vector<anticrack::EntryChange>{{"Campaign/Loading angles [deg]", "0, 45, 90"},
                                                           {"Campaign/Realizations", "1"}}));
+  // The writer gives back the text the reader read, list value included.
+  EXPECT_EQ(anticrack::entry_changes_text(changes),
+            "Campaign/Loading angles [deg] = 0, 45, 90, Campaign/Realizations = 1");
   anticrack::entry_changes_in_list("45, Campaign/Realizations = 1", "Study/Base scene changes", problems);
   EXPECT_EQ(problems.count(), 1u);
 }
