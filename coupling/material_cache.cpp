@@ -2,6 +2,7 @@
 
 #include "util/run_summary.h"
 #include "util/sha256.h"
+#include "util/source_version.h"
 
 #include <unistd.h>
 
@@ -22,13 +23,6 @@ namespace anticrack::coupling
       std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
       return text;
     }
-
-    /// The SHA-256 of the running executable, read once.
-    const std::string &executable_sha256()
-    {
-      static const std::string hash = util::sha256_of_file(fs::read_symlink("/proc/self/exe").string());
-      return hash;
-    }
   } // namespace
 
   MaterialCache::MaterialCache(fs::path directory)
@@ -37,7 +31,8 @@ namespace anticrack::coupling
 
   std::string MaterialCache::key(const std::string &stage_inputs_sha256)
   {
-    return util::sha256_hex("weak-layer stage inputs " + stage_inputs_sha256 + "\nexecutable " + executable_sha256());
+    return util::sha256_hex("weak-layer stage inputs " + stage_inputs_sha256 + "\ncalibrating code " +
+                            calibration_code_sha256());
   }
 
   std::optional<fs::path> MaterialCache::find(const std::string &key) const
@@ -73,7 +68,7 @@ namespace anticrack::coupling
     record["calibrated_at"] = utc_now(); // stored right after the calibration completed
     record["key"] = key;
     record["stage_inputs_sha256"] = stage_inputs_sha256;
-    record["executable_sha256"] = executable_sha256();
+    record["calibration_code_sha256"] = calibration_code_sha256();
     record["versions"] = version_info();
     write_json_atomically((staging / record_file).string(), record);
     std::error_code error;

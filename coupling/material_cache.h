@@ -7,9 +7,12 @@
 //
 // The key is what decides the stage's results, and nothing else: the SHA-256 of the stage's inputs
 // (the weak-layer scene's text with the pipeline's changes, and the snow units: the stage's own
-// inputs_sha256, coupling/pipeline.h) and of the executable that calibrates (a rebuilt anticrack may
-// calibrate differently, so it never reuses another build's material). Where the pipeline scene
-// lives, its output folder and its snowpack scenes are not in the key.
+// inputs_sha256, coupling/pipeline.h) and of the code that calibrates (util/, dem/ and params/ with
+// the compiler and flags that built them: anticrack::calibration_code_sha256(), util/source_version.h).
+// A change to the DEM or the calibration may calibrate differently, so it never reuses another
+// code's material; a rebuild, or a change to the FE solver, the coupling or the app, keeps the
+// entries, so that a field study's weak layers (hours of DEM) outlive the FE work done on top of
+// them. Where the pipeline scene lives, its output folder and its snowpack scenes are not in the key.
 //
 // An entry is written whole or not at all: the folder is copied next to the cache's entries under
 // a temporary name, its record (cache_entry.json: the key, what went into it, where and when it was
@@ -35,7 +38,7 @@ namespace anticrack::coupling
     [[nodiscard]] bool enabled() const { return !directory_.empty(); }
     [[nodiscard]] const std::filesystem::path &directory() const { return directory_; }
 
-    /// The key of a weak-layer stage with these inputs, built by this executable.
+    /// The key of a weak-layer stage with these inputs, calibrated by this build's calibrating code.
     [[nodiscard]] static std::string key(const std::string &stage_inputs_sha256);
 
     /// The cached entry of `key` (its folder), if one was stored whole.
@@ -46,7 +49,7 @@ namespace anticrack::coupling
     nlohmann::ordered_json restore(const std::string &key, const std::filesystem::path &stage_directory) const;
 
     /// Stores the completed stage folder under `key`; `record` says where it came from (it gets the
-    /// key, the inputs, the executable's hash and the time, calibrated_at, added). Throws std::filesystem::filesystem_error
+    /// key, the inputs, the calibrating code's hash and the time, calibrated_at, added). Throws std::filesystem::filesystem_error
     /// when the cache cannot be written.
     void store(const std::string &key, const std::string &stage_inputs_sha256,
                const std::filesystem::path &stage_directory, nlohmann::ordered_json record) const;

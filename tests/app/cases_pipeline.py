@@ -131,7 +131,7 @@ def pipeline_material_cache(work):
     check(entries == [stored["key"]] and stored["stored"] == os.path.join(cache, stored["key"]),
           f"cache {entries}, stage {stored}")
     record = json.load(open(os.path.join(cache, stored["key"], "cache_entry.json")))
-    check(record["key"] == stored["key"] and record["pipeline"] == first and len(record["executable_sha256"]) == 64,
+    check(record["key"] == stored["key"] and record["pipeline"] == first and len(record["calibration_code_sha256"]) == 64,
           f"cache_entry.json {record}")
 
     # Another pipeline elsewhere: the same weak layer (its own copy of the scene), another snowpack.
