@@ -7,12 +7,13 @@
 //
 // The key is what decides the stage's results, and nothing else: the SHA-256 of the stage's inputs
 // (the weak-layer scene's text with the pipeline's changes, and the snow units: the stage's own
-// inputs_sha256, coupling/pipeline.h) and of the code that calibrates (util/, dem/ and params/ with
-// the compiler and flags that built them: anticrack::calibration_code_sha256(), util/source_version.h).
-// A change to the DEM or the calibration may calibrate differently, so it never reuses another
-// code's material; a rebuild, or a change to the FE solver, the coupling or the app, keeps the
-// entries, so that a field study's weak layers (hours of DEM) outlive the FE work done on top of
-// them. Where the pipeline scene lives, its output folder and its snowpack scenes are not in the key.
+// inputs_sha256, coupling/pipeline.h) and of the code that calibrates (every file coupling/calibrate.cpp
+// reaches through its includes: the DEM, the calibration, the material models and the hand-off,
+// with the compiler and flags that built them: anticrack::calibration_code_sha256(),
+// util/source_version.h). A change to that code may calibrate differently, so it never reuses
+// another code's material; a rebuild, or a change to the FE solver's models and analyses, the
+// pipeline, the studies or the app, keeps the entries, so that a field study's weak layers (hours of
+// DEM) outlive the FE work done on top of them. Where the pipeline scene lives, its output folder and its snowpack scenes are not in the key.
 //
 // An entry is written whole or not at all: the folder is copied next to the cache's entries under
 // a temporary name, its record (cache_entry.json: the key, what went into it, where and when it was

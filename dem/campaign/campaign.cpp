@@ -397,6 +397,9 @@ namespace anticrack::dem
     // side rather than one test on many threads, which scale poorly on small samples. The cores are
     // --threads, else DEM/Threads, else all; 1 runs the tests one after another in this process.
     // The results do not depend on it: a test's DEM is the same on any number of threads.
+    // The process's thread count is put back when the campaign returns: a pipeline runs one campaign
+    // per weak-layer class in one process, and each must find the cores the first one found.
+    const ThreadCountRestorer restore_thread_count;
     int threads = options.threads >= 0 ? options.threads : scene.dem.threads;
     int members = mpi.size();
     const bool workers = !mpi.active() && std::min<std::size_t>(threads > 0 ? threads : dem::DemSystem::threads(),

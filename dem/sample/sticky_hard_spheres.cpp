@@ -313,6 +313,13 @@ namespace anticrack::dem::shs
       const double equilibrium_scatter = 0.54 / std::sqrt(static_cast<double>(n));
       return {(last - third) / last, std::max(std::sqrt(third_variance + last_variance) / last, equilibrium_scatter)};
     }
+
+    /// The sample has levelled off: its coordination rose by no more than the tolerance plus 1.5
+    /// times the rise's scatter at equilibrium (SamplerSpec::equilibration_tolerance).
+    bool levelled_off(const SamplerSpec &spec, double rise, double rise_error)
+    {
+      return !(spec.equilibration_tolerance > 0 && rise > spec.equilibration_tolerance + 1.5 * rise_error);
+    }
   } // namespace
 
   SamplerReport sample_sticky_hard_spheres(DemSystem &system, const SamplerSpec &spec)
@@ -329,6 +336,9 @@ namespace anticrack::dem::shs
       fail("well width " + std::to_string(spec.well_width) + " outside (0, 0.1] diameters");
     if (spec.sweeps < 1)
       fail("at least one sweep is needed");
+    if (!(spec.sweep_extension_limit >= 1 && spec.sweep_extension_limit <= max_sweep_extension_limit))
+      fail("sweep extension limit " + std::to_string(spec.sweep_extension_limit) + " outside [1, " +
+           std::to_string(max_sweep_extension_limit) + "]");
     if (spec.material < 0 || spec.material >= system.materials.size())
       fail("material " + std::to_string(spec.material) + " is not defined");
     if (!(spec.cluster_move_fraction >= 0 && spec.cluster_move_fraction < 1))
@@ -487,7 +497,13 @@ namespace anticrack::dem::shs
       return reject ? 0 : accept ? 2 : 1;
     };
 
-    for (Index sweep = 0; sweep < spec.sweeps; ++sweep)
+    // The sweeps to run: `sweeps`, extended by as many again at a time while the sample has not
+    // levelled off, up to the extension limit (SamplerSpec::sweep_extension_limit). Whole `sweeps`
+    // at a time: the check compares quarters of the whole history, so each extension also lengthens
+    // the windows it judges by, rather than re-judging a sample a few hundred sweeps later.
+    Index planned_sweeps = spec.sweeps;
+    const Index sweep_limit = static_cast<Index>(std::ceil(spec.sweep_extension_limit * static_cast<double>(spec.sweeps)));
+    for (Index sweep = 0; sweep < planned_sweeps; ++sweep)
     {
       Index sweep_accepted = 0, sweep_displacements = 0, displacements_accepted = 0;
       Index sweep_cluster_tried = 0, sweep_cluster_accepted = 0, sweep_cluster_translations = 0;
@@ -574,7 +590,14 @@ namespace anticrack::dem::shs
         cluster_accepted += sweep_cluster_accepted;
         cluster_tried += sweep_cluster_tried;
       }
+      if (sweep + 1 == planned_sweeps && planned_sweeps < sweep_limit)
+      {
+        const auto [rise, rise_error] = relative_rise(report.coordination_history, n);
+        if (!levelled_off(spec, rise, rise_error))
+          planned_sweeps = std::min(sweep_limit, planned_sweeps + spec.sweeps);
+      }
     }
+    report.sweeps = planned_sweeps;
     report.acceptance = tried > 0 ? static_cast<double>(accepted) / tried : 0;
     report.cluster_acceptance = cluster_tried > 0 ? static_cast<double>(cluster_accepted) / cluster_tried : 0;
 
@@ -648,20 +671,21 @@ namespace anticrack::dem::shs
       throw SetupError(why.str());
     }
     std::tie(report.coordination_rise, report.coordination_rise_error) = relative_rise(report.coordination_history, n);
-    if (spec.equilibration_tolerance > 0 &&
-        report.coordination_rise > spec.equilibration_tolerance + 1.5 * report.coordination_rise_error)
+    if (!levelled_off(spec, report.coordination_rise, report.coordination_rise_error))
     {
       std::ostringstream why;
-      why << "sticky hard spheres: the sample has not levelled off after " << spec.sweeps
-          << " sweeps: its coordination (partners in the well per sphere) still rose by "
+      why << "sticky hard spheres: the sample has not levelled off after " << report.sweeps << " sweeps"
+          << (report.sweeps > spec.sweeps ? " (DEM/Sample/Sweeps, extended up to DEM/Sample/Sweep extension limit)" : "")
+          << ": its coordination (partners in the well per sphere) still rose by "
           << 100 * report.coordination_rise << " % (+- " << 100 * report.coordination_rise_error
           << " % at equilibrium) from the third to the last quarter of the sweeps, more than the tolerance of "
           << 100 * spec.equilibration_tolerance
           << " % (DEM/Sample/Equilibration tolerance) plus 1.5 times that scatter. The start is an unbonded lattice: such a sample is less "
              "bonded than the fluid at phi = "
           << spec.volume_fraction << ", tau = " << report.stickiness
-          << ", and its strength is biased low (about 4 % per 1 % of z). Raise DEM/Sample/Sweeps (at phi = 0.3, z = "
-             "2.9: 20 000 for up to 2048 spheres, more in larger boxes; docs/work_precision.md)";
+          << ", and its strength is biased low (about 4 % per 1 % of z). Raise DEM/Sample/Sweeps or DEM/Sample/Sweep "
+             "extension limit (at phi = 0.3, z = 2.9: 20 000 for up to 2048 spheres, more in larger boxes and looser "
+             "samples; docs/work_precision.md)";
       throw SetupError(why.str());
     }
 

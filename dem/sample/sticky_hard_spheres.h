@@ -82,6 +82,9 @@ namespace anticrack::dem::shs
   /// Fewest sweeps whose coordination history (a point every 100 sweeps) has two quarters to
   /// compare: the equilibration check needs them (SamplerSpec::equilibration_tolerance).
   inline constexpr Index minimum_sweeps_to_judge_equilibrium = 400;
+  /// The largest SamplerSpec::sweep_extension_limit: a sample still rising after 10 times its sweeps
+  /// needs a better start or more sweeps, not a longer wait.
+  inline constexpr double max_sweep_extension_limit = 10;
 
   struct SamplerSpec
   {
@@ -95,6 +98,13 @@ namespace anticrack::dem::shs
     Vec3 aspect_ratios = Vec3::Ones();
     double well_width = 0.03;         ///< delta / sigma
     Index sweeps = 20000;             ///< Monte Carlo sweeps (N trial moves each)
+    /// A sample that has not levelled off after `sweeps` (`equilibration_tolerance`) runs on,
+    /// `sweeps` more at a time, until it has or until it has run this many times `sweeps` in all;
+    /// >= 1, 1: exactly `sweeps`. The criterion, not the count, decides when a sample is done: a
+    /// looser sample (lower phi, fewer collisions per sweep) levels off later than the count that a
+    /// denser one was measured to need. A sample that levels off within `sweeps` is the same bit for
+    /// bit whatever the limit.
+    double sweep_extension_limit = 1;
     int material = 0;
     std::uint64_t seed = 1;
     double cluster_move_fraction = 0; ///< fraction of trial moves that are cluster moves, in [0, 1)
@@ -137,6 +147,7 @@ namespace anticrack::dem::shs
     /// than 4 points).
     double coordination_rise = 0;
     double coordination_rise_error = 0;
+    Index sweeps = 0;                 ///< run in all (`sweeps`, or more when extended)
   };
 
   /// Samples the fluid, appends the spheres to `system` (domain set to the periodic box) and

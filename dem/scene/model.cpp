@@ -27,6 +27,9 @@ namespace anticrack::dem
     return dem::DemSystem::threads();
   }
 
+  ThreadCountRestorer::ThreadCountRestorer() : threads_(dem::DemSystem::threads()) {}
+  ThreadCountRestorer::~ThreadCountRestorer() { dem::DemSystem::set_threads(threads_); }
+
   namespace
   {
     using parameters::Walls;

@@ -74,6 +74,21 @@ namespace anticrack::dem
   /// Sets the engine's thread count (0: all available) and returns the count in use.
   int apply_thread_count(int threads);
 
+  /// Puts the engine's thread count back, when it goes out of scope, to what it was when made: a
+  /// driver that sets the count for its own runs (a campaign's worker processes run on one thread
+  /// each) leaves the process as it found it, for the next driver in the same process.
+  class ThreadCountRestorer
+  {
+  public:
+    ThreadCountRestorer();
+    ~ThreadCountRestorer();
+    ThreadCountRestorer(const ThreadCountRestorer &) = delete;
+    ThreadCountRestorer &operator=(const ThreadCountRestorer &) = delete;
+
+  private:
+    int threads_;
+  };
+
   /// What `anticrack check` prints: components, sample, walls, clump, time step, outputs.
   void describe_dem_model(std::ostream &out, const SceneParameters &scene, const DemModel &model);
 

@@ -153,6 +153,7 @@ namespace anticrack::dem
       double target_coordination = 0;   ///< z, 0 = use tau
       double well_width = 0.03;         ///< delta / sigma
       Index sweeps = 20000;
+      double sweep_extension_limit = 1; ///< sweeps run on until levelled off, up to this many times `sweeps`
       double equilibration_tolerance = 0.015; ///< relative rise of z allowed over the last half (0: not checked)
       double cluster_move_fraction = 0; ///< of the Monte Carlo trial moves, in [0, 1)
       double box_edge = 0;              ///< L [m]; > 0 sets the radius from phi and N

@@ -37,7 +37,8 @@ def pipeline_profile_specimen(work):
     A fourth pit (FC 158 kg/m^3, 2 mm) makes a class, 150 kg/m^3, whose 160-sphere sample has no load
     path (its bonds do not join base and clump): that class fails, recorded with the calibration's
     reason, its pit is not run, and the
-    others' pits are (exit 1, the pipeline failed). A pit whose weak layer has no density (surface
+    others' pits are (exit 1, the pipeline failed). Each class's campaign runs on both cores (two
+    worker processes), not only the first's. A pit whose weak layer has no density (surface
     hoar, which Geldsetzer & Jamieson (2000) do not cover) is refused, naming the pit and the layer,
     and so is the uncertainty stage over several pits."""
     weak = write(os.path.join(work, "weak.prm"), edit_scene(campaign_scene("0, 45, 90, 135, 180"), {"Scene": "calibration"}) +
@@ -59,7 +60,11 @@ def pipeline_profile_specimen(work):
     check("weak layer 275 kg/m^3, 8 grains" in stdout and "weak layer 250 kg/m^3, 8 grains" in stdout,
           f"`check` does not list the classes:\n{stdout}")
     out = os.path.join(work, "out")
-    anticrack("run", pipeline, "-o", out, "--threads", "2", expect=1)
+    # All cores (no --threads; OMP_NUM_THREADS makes them 2 on any machine): every class's campaign
+    # finds both, not only the first (a campaign puts the process's thread count back when it ends).
+    stdout, _ = anticrack("run", pipeline, "-o", out, expect=1, env={"OMP_NUM_THREADS": "2"})
+    campaigns = re.findall(r"tests \(compaction[^)]*\) on (\d+) (worker process\(es\)|rank\(s\)) x (\d+) thread", stdout)
+    check(campaigns == [("2", "worker process(es)", "1")] * 3, f"the classes' campaigns ran on {campaigns}")
     summary = json.load(open(os.path.join(out, "summary.json")))
     check(summary["status"] == "failed", f"pipeline status {summary['status']}")
     names = [s["name"] for s in summary["stages"]]

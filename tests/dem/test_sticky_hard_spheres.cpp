@@ -427,18 +427,25 @@ TEST(StickyHardSpheresSampler, NonPercolatingSampleIsRefused)
 // (1.7 %); after 20 000 it has levelled off (from 20 000 to 100 000 sweeps it stays within
 // 3.11-3.25, and the rise is within its scatter). The refusal names the entry to raise and nothing
 // is appended to the system; fewer than 400 sweeps cannot be judged.
-TEST(StickyHardSpheresSampler, SampleThatHasNotLevelledOffIsRefused)
+namespace
 {
-  const auto spec_for = [](Index sweeps) {
+  /// (phi, z) = (0.3, 2.9), N = 1024, from the unbonded lattice: the equilibration tests' sample.
+  shs::SamplerSpec spec_for(Index sweeps, double extension_limit = 1)
+  {
     shs::SamplerSpec spec;
     spec.particle_count = 1024;
     spec.volume_fraction = 0.3;
     spec.stickiness = 0;
     spec.target_coordination = 2.9;
     spec.sweeps = sweeps;
+    spec.sweep_extension_limit = extension_limit;
     spec.radius = 1e-3;
     return spec;
-  };
+  }
+} // namespace
+
+TEST(StickyHardSpheresSampler, SampleThatHasNotLevelledOffIsRefused)
+{
   DemSystem short_run;
   short_run.materials.add(Material{});
   try
@@ -466,4 +473,57 @@ TEST(StickyHardSpheresSampler, SampleThatHasNotLevelledOffIsRefused)
   DemSystem too_few;
   too_few.materials.add(Material{});
   EXPECT_THROW(shs::sample_sticky_hard_spheres(too_few, spec_for(300)), SetupError); // cannot be judged
+}
+
+// The criterion, not the count, ends the sampling (SamplerSpec::sweep_extension_limit). The sample
+// refused above after 2000 sweeps runs on, 2000 sweeps at a time, and stops at the first check that
+// finds it levelled off: after more than 2000 sweeps and, since the fixed-count run levels off by
+// 20 000, by 20 000 at the latest. Judged strictly (a tolerance of 1e-6, the scatter alone) with a
+// limit of 1.5, it gets one shortened extension (3000 sweeps) and is refused, the message naming
+// both entries. A sample that levels off within its sweeps is the same to the bit with a limit: the
+// extension never starts.
+TEST(StickyHardSpheresSampler, SampleRunsOnUntilLevelledOffUpToItsLimit)
+{
+  DemSystem extended;
+  extended.materials.add(Material{});
+  const shs::SamplerReport r = shs::sample_sticky_hard_spheres(extended, spec_for(2000, 10));
+  std::printf("[ measured ] levelled off after %lld sweeps (from 2000): rise %.4f (scatter %.4f), z = %.3f\n",
+              static_cast<long long>(r.sweeps), r.coordination_rise, r.coordination_rise_error, r.coordination);
+  EXPECT_GT(r.sweeps, 2000);
+  EXPECT_LE(r.sweeps, 20000);
+  EXPECT_EQ(r.sweeps % 2000, 0);
+  EXPECT_EQ(r.coordination_history.size(), static_cast<std::size_t>(r.sweeps / 100));
+  EXPECT_LE(r.coordination_rise, 0.015 + 1.5 * r.coordination_rise_error);
+  EXPECT_EQ(extended.particles.size(), 1024);
+
+  DemSystem once;
+  once.materials.add(Material{});
+  try
+  {
+    shs::SamplerSpec strict = spec_for(2000, 1.5);
+    strict.equilibration_tolerance = 1e-6;
+    shs::sample_sticky_hard_spheres(once, strict);
+    FAIL() << "a sample 3000 sweeps from its lattice start passed the strict check";
+  }
+  catch (const SetupError &e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("has not levelled off after 3000 sweeps (DEM/Sample/Sweeps, extended up to "
+                           "DEM/Sample/Sweep extension limit)"),
+              std::string::npos)
+      << message;
+  }
+  EXPECT_EQ(once.particles.size(), 0) << "nothing is appended to a refused system";
+
+  DemSystem fixed, with_limit;
+  fixed.materials.add(Material{});
+  with_limit.materials.add(Material{});
+  const shs::SamplerReport a = shs::sample_sticky_hard_spheres(fixed, spec_for(20000, 1));
+  const shs::SamplerReport b = shs::sample_sticky_hard_spheres(with_limit, spec_for(20000, 3));
+  EXPECT_EQ(a.sweeps, 20000);
+  EXPECT_EQ(b.sweeps, 20000);
+  ASSERT_EQ(fixed.particles.size(), with_limit.particles.size());
+  for (Index i = 0; i < fixed.particles.size(); ++i)
+    ASSERT_EQ(fixed.particles.position[i], with_limit.particles.position[i]) << "sphere " << i;
+  EXPECT_THROW(shs::sample_sticky_hard_spheres(once, spec_for(2000, 0.5)), SetupError);
 }

@@ -54,6 +54,12 @@ namespace anticrack::dem
                     "Monte Carlo sweeps of N trial moves each; the sample must level off within them "
                     "(Equilibration tolerance): at phi = 0.3, z = 2.9 it takes 15 000-20 000 "
                     "(docs/work_precision.md) (sticky hard spheres only).");
+      entries.entry("Sweep extension limit", "1", Patterns::Double(1, dem::shs::max_sweep_extension_limit),
+                    "a sample that has not levelled off after Sweeps (Equilibration tolerance) runs on, "
+                    "Sweeps more at a time, until it has or until it has run this many times Sweeps "
+                    "in all; it is refused only then. 1 = exactly Sweeps. A looser sample levels off later "
+                    "(fewer encounters per sweep); a sample that levels off within Sweeps is the same "
+                    "whatever the limit (sticky hard spheres only). Dimensionless, in [1, 10].");
       entries.entry("Equilibration tolerance", "0.015", Patterns::Double(0, 1),
                     "the largest rise of the sample's coordination (partners in the well per sphere) "
                     "allowed from the third to the last quarter of the sweeps, relative, beyond 1.5 times "
@@ -78,6 +84,7 @@ namespace anticrack::dem
       s.target_coordination = prm.get_double("Target coordination number");
       s.well_width = prm.get_double("Well width");
       s.sweeps = prm.get_integer("Sweeps");
+      s.sweep_extension_limit = prm.get_double("Sweep extension limit");
       s.cluster_move_fraction = prm.get_double("Cluster move fraction");
       s.equilibration_tolerance = prm.get_double("Equilibration tolerance");
       s.box_edge = prm.get_double("Box edge [m]");
@@ -146,6 +153,7 @@ namespace anticrack::dem
       spec.radius = d.sample.sticky_sphere_radius();
       spec.well_width = d.sample.well_width;
       spec.sweeps = d.sample.sweeps;
+      spec.sweep_extension_limit = d.sample.sweep_extension_limit;
       spec.cluster_move_fraction = d.sample.cluster_move_fraction;
       spec.equilibration_tolerance = d.sample.equilibration_tolerance;
       spec.material = 0;
@@ -161,7 +169,8 @@ namespace anticrack::dem
       const auto &r = *model.sticky_hard_spheres;
       s << "sticky hard spheres, N = " << sample.particle_count << ", R = " << model.system.particles.radius.front()
         << (sample.box_edge > 0 ? " (from Box edge [m])" : "")
-        << " m, well width delta/sigma = " << sample.well_width << ", " << sample.sweeps << " sweeps\n"
+        << " m, well width delta/sigma = " << sample.well_width << ", " << r.sweeps << " sweeps"
+        << (r.sweeps > sample.sweeps ? " (Sweeps extended until levelled off)" : "") << "\n"
         << "                      (DEM/Domain is replaced by the sampler's periodic box, edges "
         << format_vector(r.box_lengths) << " m)\n"
         << "  generator report    phi = " << r.volume_fraction << ", tau = " << r.stickiness
@@ -193,6 +202,7 @@ namespace anticrack::dem
       sample["coordination_rise"] = r.coordination_rise;
       sample["coordination_rise_error"] = r.coordination_rise_error;
       sample["equilibration_tolerance"] = scene.dem.sample.equilibration_tolerance;
+      sample["sweeps"] = r.sweeps;
     }
   } // namespace
 
