@@ -608,66 +608,11 @@ namespace anticrack::coupling
             std::cout << stage << ": completed earlier, inputs unchanged\n";
         }
         else if (cached)
-        {
-          const auto stage_start = Clock::now();
-          if (root_)
-          {
-            const Json record = cache.restore(cache_key, w.directory);
-            w.material_cache = {{"used", *cached}, {"key", cache_key},
-                                {"calibrated_by", record.value("pipeline", "")},
-                                {"calibrated_at", record.value("calibrated_at", "")}};
-            std::cout << stage << ": from the material cache, " << cached->string() << " (calibrated by "
-                      << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?") << ")\n";
-          }
-          barrier();
-          w.status = "completed";
-          w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
-        }
+          restore_from_cache(w, cache, cache_key, *cached, stage);
         else
         {
-          announce(k);
-          if (scene_.weak_layer_changed(k))
-          {
-            if (root_)
-            {
-              fs::create_directories(w.directory);
-              write_text_atomically(w.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene_, k); });
-            }
-            barrier();
-          }
-          CalibrateOptions calibration = weak_layer_calibration(scene_, w.scene_file);
-          calibration.output_directory = w.directory.string();
-          calibration.overwrite = true;
-          calibration.threads = options_.threads;
-          calibration.command_line = options_.command_line;
-          calibration.snow = scene_.snow;
-          const auto stage_start = Clock::now();
-          int code = exit_numerical_failure;
-          try
-          {
-            code = run_calibration(calibration);
-          }
-          catch (const InputError &e)
-          {
-            // A class's sample or fit that the DEM or the calibration refuses (a sample that does
-            // not percolate, a surface no cohesive Cam-Clay fits): with one weak layer the pipeline's
-            // bad input; of several, that class's failure, recorded, the others' pits still run.
-            if (scene_.weak_layers.size() == 1)
-              throw;
-            w.results = {{"error", e.what()}};
-            std::cerr << "anticrack: " << stage << " failed; its pits are not run:\n" << e.what() << "\n";
-          }
-          w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
-          barrier();
-          w.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
-          if (code != exit_success)
-          {
-            note(w);
-            materials_.emplace_back();
-            material_sha256s_.emplace_back();
-            write_summary(w.status);
+          if (const int code = calibrate_weak_layer(k, stage); code != exit_success)
             return code;
-          }
           if (cache.enabled() && root_)
             store_in_cache(w, cache, cache_key, material_inputs_sha256);
         }
@@ -681,6 +626,77 @@ namespace anticrack::coupling
         materials_.push_back(material);
         material_sha256s_.push_back(util::sha256_of_file(material.string()));
         return exit_success;
+      }
+
+      /// The weak-layer stage's folder copied from the material cache's entry `entry` (rank 0).
+      void restore_from_cache(Stage &w, const MaterialCache &cache, const std::string &cache_key,
+                              const fs::path &entry, const std::string &stage)
+      {
+        const auto stage_start = Clock::now();
+        if (root_)
+        {
+          const Json record = cache.restore(cache_key, w.directory);
+          w.material_cache = {{"used", entry}, {"key", cache_key},
+                              {"calibrated_by", record.value("pipeline", "")},
+                              {"calibrated_at", record.value("calibrated_at", "")}};
+          std::cout << stage << ": from the material cache, " << entry.string() << " (calibrated by "
+                    << record.value("pipeline", "?") << " at " << record.value("calibrated_at", "?") << ")\n";
+        }
+        barrier();
+        w.status = "completed";
+        w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+      }
+
+      /// The weak layer `k` calibrated from its DEM campaign into its stage's folder. A class that
+      /// the DEM or the calibration refuses is that class's failure when the pipeline has several
+      /// (recorded; its pits are not run), the pipeline's bad input when it has one. Returns the
+      /// calibration's exit code; on failure the stage is recorded and the summary written.
+      int calibrate_weak_layer(std::size_t k, const std::string &stage)
+      {
+        Stage &w = weak(k);
+        announce(k);
+        if (scene_.weak_layer_changed(k))
+        {
+          if (root_)
+          {
+            fs::create_directories(w.directory);
+            write_text_atomically(w.scene_file, [&](std::ostream &out) { out << weak_layer_scene_text(scene_, k); });
+          }
+          barrier();
+        }
+        CalibrateOptions calibration = weak_layer_calibration(scene_, w.scene_file);
+        calibration.output_directory = w.directory.string();
+        calibration.overwrite = true;
+        calibration.threads = options_.threads;
+        calibration.command_line = options_.command_line;
+        calibration.snow = scene_.snow;
+        const auto stage_start = Clock::now();
+        int code = exit_numerical_failure;
+        try
+        {
+          code = run_calibration(calibration);
+        }
+        catch (const InputError &e)
+        {
+          // A class's sample or fit that the DEM or the calibration refuses (a sample that does
+          // not percolate, a surface no cohesive Cam-Clay fits): with one weak layer the pipeline's
+          // bad input; of several, that class's failure, recorded, the others' pits still run.
+          if (scene_.weak_layers.size() == 1)
+            throw;
+          w.results = {{"error", e.what()}};
+          std::cerr << "anticrack: " << stage << " failed; its pits are not run:\n" << e.what() << "\n";
+        }
+        w.wall_s = std::chrono::duration<double>(Clock::now() - stage_start).count();
+        barrier();
+        w.status = code == exit_success ? "completed" : code == exit_interrupted ? "interrupted" : "failed";
+        if (code != exit_success)
+        {
+          note(w);
+          materials_.emplace_back();
+          material_sha256s_.emplace_back();
+          write_summary(w.status);
+        }
+        return code;
       }
 
       void store_in_cache(Stage &w, const MaterialCache &cache, const std::string &cache_key,
