@@ -467,6 +467,17 @@ def simple_shear_constant_normal_stress(work):
           f"steady ratio {results}")
 
 
+def run_lab_test(work, name, text):
+    """Runs the scene `text` (written as WORK/NAME.prm) into WORK/NAME and checks that its lab test
+    ended; returns its summary.json and the output folder."""
+    scene = write(os.path.join(work, f"{name}.prm"), text)
+    out = os.path.join(work, name)
+    anticrack("run", scene, "-o", out)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    check(summary["dem"]["lab_test"]["finished"], f"{name}: the test did not end: {summary['dem']['lab_test']}")
+    return summary, out
+
+
 @case
 def triaxial_small(work):
     """scenes/triaxial.prm shrunk to 300 spheres and 3 % axial strain: consolidation brings the six
@@ -474,20 +485,12 @@ def triaxial_small(work):
     during axial loading, the test stops at the final strain, and the peak mobilised friction angle
     of the dense mu = 0.5 packing lies in 20-45 degrees (dense packings of mu = 0.5 spheres peak at
     ~25-40 degrees; a walled sample of ~7 diameters adds a few; measured 38)."""
-    text = open(os.path.join(PATHS.source, "scenes", "triaxial.prm")).read()
-    text = edit_scene(text, {
-        "Output/History interval [steps]": "500", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
-        "Output/Write ParaView": "false", "DEM/Domain/Upper corner [m]": "0.004, 0.004, 0.004",
+    text = quiet_scene("triaxial.prm", 500, {
+        "DEM/Domain/Upper corner [m]": "0.004, 0.004, 0.004",
         "DEM/Sample/Particle count": "300", "DEM/Loading/Axial strain rate [1/s]": "2",
         "DEM/Loading/Final axial strain": "0.03"})
-    scene = write(os.path.join(work, "triaxial.prm"), text)
-    out = os.path.join(work, "run")
-    anticrack("run", scene, "-o", out)
-    summary = json.load(open(os.path.join(out, "summary.json")))
-    lab = summary["dem"]["lab_test"]
-    check(lab["finished"], f"the test did not end: {lab}")
-    results = lab["results"]
+    summary, out = run_lab_test(work, "triaxial", text)
+    results = summary["dem"]["lab_test"]["results"]
     check(abs(results["axial_strain"] - 0.03) < 0.005, f"final axial strain {results['axial_strain']}")
     phi = results["peak_friction_angle_deg"]
     check(20 <= phi <= 45, f"peak friction angle {phi} deg")
@@ -505,22 +508,11 @@ def brazilian_disc_small(work):
     """scenes/brazilian_disc.prm shrunk to a 5 mm disc: the bonded disc splits, the force falls below
     half its peak (the test's end), and the splitting strength 2F/(pi D t) lies between 0.05 and 1
     times the bond tensile strength (bonds cover only part of the diametral plane; measured ~0.5)."""
-    text = open(os.path.join(PATHS.source, "scenes", "brazilian_disc.prm")).read()
-    text = edit_scene(text, {
-        "Output/History interval [steps]": "100", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+    text = quiet_scene("brazilian_disc.prm", 100, {
         "DEM/Domain/Upper corner [m]": "0.005, 0.002, 0.005", "DEM/Sample/Particle count": "500",
-        "DEM/Sample/Disc diameter [m]": "0.005", "DEM/Loading/Platen speed [m/s]": "2.5e-3",
-        # 10x softer and weaker (same failure strain, 3x longer time step)
-        "DEM/Material/Contact modulus [Pa]": "1e9", "DEM/Bond/Modulus [Pa]": "1e9",
-        "DEM/Bond/Tensile strength [Pa]": "2e6", "DEM/Bond/Cohesion [Pa]": "2e6", "DEM/Sample/Packing pressure [Pa]": "1e5"})
-    scene = write(os.path.join(work, "brazilian.prm"), text)
-    out = os.path.join(work, "run")
-    anticrack("run", scene, "-o", out)
-    summary = json.load(open(os.path.join(out, "summary.json")))
-    lab = summary["dem"]["lab_test"]
-    check(lab["finished"], f"the test did not end: {lab}")
-    results = lab["results"]
+        "DEM/Sample/Disc diameter [m]": "0.005", "DEM/Loading/Platen speed [m/s]": "2.5e-3", **SOFT_ROCK})
+    summary, _ = run_lab_test(work, "brazilian", text)
+    results = summary["dem"]["lab_test"]["results"]
     check(results["force_N"] < 0.5 * results["peak_force_N"] or results["strain"] >= 0.2, f"results {results}")
     ratio = results["brazilian_tensile_strength_Pa"] / 2e6
     check(0.05 <= ratio <= 1, f"splitting strength / bond strength = {ratio}")
@@ -538,21 +530,10 @@ def bedded_compression_weaker(work):
     for name, changes in [("intact", {"DEM/Bedding/Enabled": "false"}),
                           ("same_strength", {"DEM/Bedding/Tensile strength [Pa]": "2e6", "DEM/Bedding/Cohesion [Pa]": "2e6"}),
                           ("bedded", {"DEM/Bedding/Tensile strength [Pa]": "2e5", "DEM/Bedding/Cohesion [Pa]": "2e5"})]:
-        text = open(os.path.join(PATHS.source, "scenes", "bedded_uniaxial_compression.prm")).read()
-        text = edit_scene(text, {
-            "Output/History interval [steps]": "200", "Output/Progress interval [steps]": "0",
-            "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+        text = quiet_scene("bedded_uniaxial_compression.prm", 200, {
             "DEM/Domain/Upper corner [m]": "0.003, 0.003, 0.006", "DEM/Sample/Particle count": "450",
-            # 10x softer and weaker than the scene (same failure strain, 3x longer time step)
-            "DEM/Material/Contact modulus [Pa]": "1e9", "DEM/Bond/Modulus [Pa]": "1e9",
-            "DEM/Bond/Tensile strength [Pa]": "2e6", "DEM/Bond/Cohesion [Pa]": "2e6",
-            "DEM/Sample/Packing pressure [Pa]": "1e5", "DEM/Bedding/Spacing [m]": "1.5e-3",
-            "DEM/Loading/Platen speed [m/s]": "3e-3", **changes})
-        scene = write(os.path.join(work, f"{name}.prm"), text)
-        out = os.path.join(work, name)
-        anticrack("run", scene, "-o", out)
-        summary = json.load(open(os.path.join(out, "summary.json")))
-        check(summary["dem"]["lab_test"]["finished"], f"{name}: the test did not end")
+            **SOFT_ROCK, "DEM/Bedding/Spacing [m]": "1.5e-3", "DEM/Loading/Platen speed [m/s]": "3e-3", **changes})
+        summary, _ = run_lab_test(work, name, text)
         peaks[name] = summary["dem"]["lab_test"]["results"]["peak_force_N"]
         if name != "intact":
             check(summary["dem"]["sample"]["bedding_bonds"] > 0, f"{name}: no bond in the bedding bands")

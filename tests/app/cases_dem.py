@@ -372,11 +372,8 @@ CONTROL_STRAIN_SLACK = 5e-6
 def tension_scene():
     """scenes/lattice_tension.prm on a 4 x 3 x 6 lattice, bottom layer fixed, top layer the clump,
     5000 steps, history every 10 steps, no other output."""
-    text = open(os.path.join(PATHS.source, "scenes", "lattice_tension.prm")).read()
-    return edit_scene(text, {
-        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
-        "Output/Write ParaView": "false", "DEM/Steps": "5000",
+    return quiet_scene("lattice_tension.prm", 10, {
+        "DEM/Steps": "5000",
         "DEM/Domain/Upper corner [m]": "0.008, 0.006, 0.012", "DEM/Sample/Lattice size": "4, 3, 6",
         "DEM/Boundary particles/Fix below [m]": "2e-3", "DEM/Boundary particles/Clump above [m]": "10e-3"})
 
@@ -448,21 +445,14 @@ def bench(work):
 # ------------------------------------------------------------------------- sample generators
 def shs_scene(steps, **changes):
     """scenes/shs_sample.prm (N = 1024, phi = 0.3, tau = 0.2) with few steps and quiet outputs."""
-    text = open(os.path.join(PATHS.source, "scenes", "shs_sample.prm")).read()
-    return edit_scene(text, {
-        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
-        "DEM/Steps": str(steps), **changes})
+    return quiet_scene("shs_sample.prm", 10, {"DEM/Steps": str(steps), **changes})
 
 
 def ballistic_scene(rule, count, steps=20, **changes):
     """scenes/ballistic_weak_layer.prm shrunk to R = 1 mm in a 2 cm x 2 cm periodic box, no fixed
     base, no clump, no gravity, no campaign: thick enough (sticky 1200, rolling 2000 spheres) for a
     nonempty bulk slab."""
-    text = open(os.path.join(PATHS.source, "scenes", "ballistic_weak_layer.prm")).read()
-    return edit_scene(text, {
-        "Output/History interval [steps]": "10", "Output/Progress interval [steps]": "0",
-        "Output/Snapshot interval [steps]": "0", "Output/Write ParaView": "false",
+    return quiet_scene("ballistic_weak_layer.prm", 10, {
         "DEM/Steps": str(steps), "DEM/Domain/Upper corner [m]": "0.02, 0.02, 0.01",
         "DEM/Sample/Deposition rule": rule, "DEM/Sample/Particle count": str(count),
         "DEM/Sample/Radius [m]": "1e-3", "DEM/Boundary particles/Base thickness [mean radii]": "",
@@ -470,8 +460,7 @@ def ballistic_scene(rule, count, steps=20, **changes):
         "DEM/Boundary particles/Clump force rate [N/s]": "0", "DEM/Domain/Periodic axes": "x, y",
         "DEM/Integration/Gravity [m/s^2]": "0, 0, 0", "Scene": "dem",
         "DEM/Loading/Test": "clump force", "DEM/Loading/Adaptive rate": "false", "DEM/Loading/Stop strain": "0",
-        "DEM/Sample/Actuator layer count": "0",
-        "Output/Checkpoint interval [steps]": "0", **changes}, remove=["Campaign"])
+        "DEM/Sample/Actuator layer count": "0", **changes}, remove=["Campaign"])
 
 
 @case

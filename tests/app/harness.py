@@ -168,6 +168,23 @@ def files_of(directory):
 # there at 0.05 s (~1 s of wall time). (With 1 mm it stops at 0.88 m at 0.05 s and only the free
 # end's failure at 0.19 s makes it "reach the column end"; over that time the softening weak layer
 # amplifies round-off, 1 vs 2 ranks, from 1e-15 to 1e-4.)
+def quiet_scene(name, history_interval, changes, remove=()):
+    """The shipped scene scenes/NAME with its outputs quiet (a history row every `history_interval`
+    steps, no progress lines, snapshots, checkpoints or ParaView files) and `changes` on top."""
+    text = open(os.path.join(PATHS.source, "scenes", name)).read()
+    return edit_scene(text, {
+        "Output/History interval [steps]": str(history_interval), "Output/Progress interval [steps]": "0",
+        "Output/Snapshot interval [steps]": "0", "Output/Checkpoint interval [steps]": "0",
+        "Output/Write ParaView": "false", **changes}, remove=list(remove))
+
+
+# A rock scene 10 times softer and weaker than the shipped ones: the same failure strain on a 3x
+# longer time step, for the small lab tests.
+SOFT_ROCK = {"DEM/Material/Contact modulus [Pa]": "1e9", "DEM/Bond/Modulus [Pa]": "1e9",
+             "DEM/Bond/Tensile strength [Pa]": "2e6", "DEM/Bond/Cohesion [Pa]": "2e6",
+             "DEM/Sample/Packing pressure [Pa]": "1e5"}
+
+
 WEAK_LAYER_MATERIAL = {
     "Yield surface plane": "invariants", "Density [kg/m^3]": "150", "Young's modulus [Pa]": "2e5", "Poisson's ratio": "0.2",
     "Compressive strength p0 [Pa]": "5000", "Tensile strength ratio beta": "0.5", "Critical state slope M": "1",
