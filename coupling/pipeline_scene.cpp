@@ -36,6 +36,7 @@ namespace anticrack::coupling
     constexpr const char *lateral_extent_entry = "Lateral extent [thicknesses]";
     constexpr const char *friction_thickness_entry = "Friction thickness [grains]";
     constexpr const char *friction_lateral_extent_entry = "Friction lateral extent [thicknesses]";
+    constexpr const char *friction_solid_fraction_entry = "Friction thickness solid fraction";
 
     /// The weak layer's DEM scene, read as its kind reads it with `changes` (throws InputError).
     dem::SceneParameters weak_layer_dem_scene(const std::string &file,
@@ -153,6 +154,12 @@ namespace anticrack::coupling
                       "max(n, n_f) grains thick: a collapsed 10-grain layer sticks and slips with tau/sigma "
                       "swinging through zero, a 15-grain one slides at a steady ratio (docs/calibration.md, the "
                       "thickness study). Dimensionless.");
+    prm.declare_entry(friction_solid_fraction_entry, "0.218", Patterns::Double(0, 1),
+                      "phi_f: the solid fraction at which n_f was measured; a looser class's friction specimen "
+                      "is n_f phi_f / phi grains thick, so that it holds as much ice per area, and as many grain "
+                      "layers once the normal stress has collapsed it: at phi = 0.164 and n_f = 15 a 15-grain "
+                      "cube, about 5 grains once collapsed, stuck and slipped (tau/sigma 0.19, -0.17, 0.12). "
+                      "Never thinner than n_f; 0 = n_f at every phi. Dimensionless.");
     prm.declare_entry(friction_lateral_extent_entry, "1", Patterns::Double(1),
                       "c_f: the friction specimen's lateral edges over its thickness (periodic laterally); a "
                       "wider box adds slip events at large shear strain (docs/calibration.md). Dimensionless.");
@@ -270,6 +277,7 @@ namespace anticrack::coupling
     scene.specimen_rules.lateral_extent = prm.get_double(lateral_extent_entry);
     scene.specimen_rules.friction_thickness = prm.get_double(friction_thickness_entry);
     scene.specimen_rules.friction_lateral_extent = prm.get_double(friction_lateral_extent_entry);
+    scene.specimen_rules.friction_solid_fraction = prm.get_double(friction_solid_fraction_entry);
     prm.leave_subsection();
     prm.leave_subsection();
     if (!std::is_sorted(scene.specimen_rules.thickness_classes.begin(), scene.specimen_rules.thickness_classes.end()))

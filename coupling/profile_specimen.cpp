@@ -77,7 +77,10 @@ namespace anticrack::coupling
       if (c <= n)
         s.thickness_in_grains = c;
     s.lateral_extent = rules.lateral_extent;
-    s.friction_thickness_in_grains = std::max(s.thickness_in_grains, rules.friction_thickness);
+    // A collapsed specimen holds n phi / phi_d grain layers: a looser class needs more grains of
+    // height to slide like the specimen n_f was measured on (SpecimenRules::friction_solid_fraction).
+    const double looser = std::max(1.0, rules.friction_solid_fraction / s.solid_fraction);
+    s.friction_thickness_in_grains = std::max(s.thickness_in_grains, rules.friction_thickness * looser);
     s.friction_lateral_extent = rules.friction_lateral_extent;
     return s;
   }

@@ -73,6 +73,9 @@ namespace anticrack::coupling
     double lateral_extent = 0;             ///< c: lateral edges over thickness
     double friction_thickness = 0;         ///< n_f: the friction tests' specimen is at least this thick, in grains
     double friction_lateral_extent = 0;    ///< c_f: its lateral edges over its thickness
+    /// φ_f: the solid fraction n_f was measured at; a looser class's friction specimen is
+    /// n_f φ_f / φ thick (as much ice per area, as many grain layers once collapsed); 0: n_f at any φ.
+    double friction_solid_fraction = 0;
   };
 
   /// The DEM specimen of one class of weak layers.
@@ -82,7 +85,8 @@ namespace anticrack::coupling
     double solid_fraction = 0;      ///< φ = ρ / ρ_grain
     double thickness_in_grains = 0; ///< n, a thickness class
     double lateral_extent = 0;      ///< c
-    /// The friction tests' own specimen (Campaign/Friction sample): max(n, n_f) grains thick, c_f wide.
+    /// The friction tests' own specimen (Campaign/Friction sample): max(n, n_f max(1, φ_f / φ)) grains
+    /// thick, c_f wide.
     double friction_thickness_in_grains = 0;
     double friction_lateral_extent = 0;
     [[nodiscard]] std::string name() const;      ///< "150 kg/m^3, 10 grains"

@@ -77,6 +77,15 @@ TEST(ProfileSpecimen, ClassOfAPitsLayer)
   coupling::SpecimenRules thin_friction = rules();
   thin_friction.friction_thickness = 8;
   EXPECT_EQ(coupling::profile_specimen(layer(158, 0.16, 2e-3), thin_friction, 917).friction_thickness_in_grains, 10);
+  // Measured at phi_f = 0.218: the 150 kg/m^3 class (phi = 0.1636) gets 15 x 0.218 / 0.1636 = 19.99
+  // grains, as much ice per area as 15 grains at 0.218; the 200 and 250 kg/m^3 classes (phi 0.218
+  // and 0.273, not looser) keep 15.
+  coupling::SpecimenRules measured = rules();
+  measured.friction_solid_fraction = 0.218;
+  EXPECT_DOUBLE_EQ(coupling::profile_specimen(layer(158, 0.16, 2e-3), measured, 917).friction_thickness_in_grains,
+                   15 * 0.218 / (150.0 / 917));
+  EXPECT_EQ(coupling::profile_specimen(layer(205, 0.16, 2e-3), measured, 917).friction_thickness_in_grains, 15);
+  EXPECT_EQ(coupling::profile_specimen(layer(250, 0.16, 2e-3), measured, 917).friction_thickness_in_grains, 15);
   EXPECT_EQ(coupling::profile_specimen(layer(162.7, 0.02, 1e-3), rules(), 917).density, 175);
   EXPECT_EQ(coupling::profile_specimen(layer(460, 0.05, 1e-3), rules(), 917).density, 450);
   EXPECT_EQ(coupling::profile_specimen(layer(200, 0.01, 1.5e-3), rules(), 917).thickness_in_grains, 5);
