@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <ctime>
 #include <fstream>
 
@@ -22,6 +23,27 @@ namespace anticrack::coupling
       char text[32];
       std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
       return text;
+    }
+
+    /// The stage folder's files but the campaign's raw data (MaterialCache::raw_campaign_data).
+    void copy_without_raw_campaign(const fs::path &stage_directory, const fs::path &entry)
+    {
+      fs::create_directories(entry);
+      for (auto it = fs::recursive_directory_iterator(stage_directory); it != fs::recursive_directory_iterator(); ++it)
+      {
+        const fs::path relative = fs::relative(it->path(), stage_directory);
+        const auto &left_out = MaterialCache::raw_campaign_data;
+        if (std::find(std::begin(left_out), std::end(left_out), relative.generic_string()) != std::end(left_out))
+        {
+          if (it->is_directory())
+            it.disable_recursion_pending();
+          continue;
+        }
+        if (it->is_directory())
+          fs::create_directories(entry / relative);
+        else
+          fs::copy_file(it->path(), entry / relative);
+      }
     }
   } // namespace
 
@@ -64,12 +86,14 @@ namespace anticrack::coupling
     const fs::path entry = directory_ / key;
     const fs::path staging = directory_ / (".incoming-" + key + "-" + std::to_string(::getpid()));
     fs::remove_all(staging);
-    fs::copy(stage_directory, staging, fs::copy_options::recursive);
+    copy_without_raw_campaign(stage_directory, staging);
     record["calibrated_at"] = utc_now(); // stored right after the calibration completed
     record["key"] = key;
     record["stage_inputs_sha256"] = stage_inputs_sha256;
     record["calibration_code_sha256"] = calibration_code_sha256();
     record["versions"] = version_info();
+    record["left_out"] = std::vector<std::string>(std::begin(raw_campaign_data), std::end(raw_campaign_data));
+    record["calibrated_in"] = fs::absolute(stage_directory).string();
     write_json_atomically((staging / record_file).string(), record);
     std::error_code error;
     fs::rename(staging, entry, error); // fails if another run stored the same key first

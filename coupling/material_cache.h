@@ -15,6 +15,12 @@
 // pipeline, the studies or the app, keeps the entries, so that a field study's weak layers (hours of
 // DEM) outlive the FE work done on top of them. Where the pipeline scene lives, its output folder and its snowpack scenes are not in the key.
 //
+// An entry keeps what the pipeline, its report and its uncertainty read (the material files,
+// calibration.h5, the calibration's and the campaign's summary.json, the plots), not the campaign's
+// raw data (campaign.h5 with the samples and histories, and each test's folder: 25 MB for a class of
+// 2 500 spheres against well under 1 MB), which stays in the run that calibrated it (the record's
+// calibrated_in). So a season's classes fit in a folder one can keep beside the scenes.
+//
 // An entry is written whole or not at all: the folder is copied next to the cache's entries under
 // a temporary name, its record (cache_entry.json: the key, what went into it, where and when it was
 // calibrated) written last, and then renamed to the key; an entry without its record is not used.
@@ -56,6 +62,8 @@ namespace anticrack::coupling
                const std::filesystem::path &stage_directory, nlohmann::ordered_json record) const;
 
     static constexpr const char *record_file = "cache_entry.json";
+    /// The stage folder's paths an entry leaves out: the campaign's raw data.
+    static constexpr const char *raw_campaign_data[] = {"campaign/campaign.h5", "campaign/tests"};
 
   private:
     std::filesystem::path directory_;

@@ -121,7 +121,8 @@ def pipeline_material_cache(work):
     """`run --material-cache DIR` (or ANTICRACK_MATERIAL_CACHE): the first pipeline calibrates its weak
     layer and stores the stage's folder under a key (cache_entry.json records it); a second pipeline
     with the same weak layer, in another folder, under another name and with other snowpack scenes,
-    copies it instead of running the campaign: the same material file to the byte. The key is the weak layer's inputs: other snow units miss the cache and store a second
+    copies it instead of running the campaign: the same material file to the byte. An entry keeps the
+    calibration and the campaign's summary, not its raw data (campaign.h5, the tests' folders). The key is the weak layer's inputs: other snow units miss the cache and store a second
     entry; without the option nothing is read or stored."""
     pipeline, weak, flat, _ = pipeline_files(work)
     cache = os.path.join(work, "cache")
@@ -138,6 +139,15 @@ def pipeline_material_cache(work):
     record = json.load(open(os.path.join(cache, stored["key"], "cache_entry.json")))
     check(record["key"] == stored["key"] and record["pipeline"] == first and len(record["calibration_code_sha256"]) == 64,
           f"cache_entry.json {record}")
+    # The entry leaves the campaign's raw data in the run that calibrated it.
+    entry = os.path.join(cache, stored["key"])
+    check(not os.path.exists(os.path.join(entry, "campaign", "campaign.h5")) and
+          not os.path.exists(os.path.join(entry, "campaign", "tests")) and
+          os.path.isfile(os.path.join(entry, "campaign", "summary.json")) and
+          os.path.isfile(os.path.join(entry, "calibration.h5")) and
+          record["left_out"] == ["campaign/campaign.h5", "campaign/tests"] and
+          record["calibrated_in"] == os.path.join(work, "out1", "weak_layer"),
+          f"cache entry {sorted(os.listdir(entry))}, record {record}")
 
     # Another pipeline elsewhere: the same weak layer (its own copy of the scene), another snowpack.
     other = os.path.join(work, "elsewhere")
