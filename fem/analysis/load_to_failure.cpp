@@ -72,6 +72,78 @@ namespace anticrack::fem
     }
   } // namespace
 
+  namespace
+  {
+    /// Where the ramp stopped: the load factor reached, the last step tried, and why it stopped.
+    struct RampEnd
+    {
+      double load = 0, step = 0;
+      bool failed = false;
+      std::string failure;
+    };
+
+    /// Ramps the load factor from 0 in Newton steps until equilibrium is lost (or the maximum load
+    /// factor is reached), one series row per converged step. Steps that soften the weak layer are
+    /// held to the resolution: a large step past the peak could otherwise land on the collapsed
+    /// layer's lock-up branch, which carries more load again. Such a step is undone (the model's
+    /// history from a snapshot) and halved. The layer has failed when the ramp cannot go on by the
+    /// resolution, or when its failed elements span the column.
+    template <int dim>
+    RampEnd ramp_to_failure(const SnowpackScene &scene, const LoadToFailureSettings &settings, SnowpackModel<dim> &model,
+                            QuasiStaticSolver<dim> &solver, typename SnowpackModel<dim>::VectorType &u,
+                            TimeSeries &series, double normal_per_load, double shear_per_load, MPI_Comm comm)
+    {
+      RampEnd end;
+      double &load = end.load, &step = end.step;
+      step = 1. / scene.analysis.gravity_steps;
+      double softening = model.weak_layer_softening();
+      // Resolved: the step is the resolution's fraction of the load reached (at no load yet, 1e-12 of
+      // the first step: the layer carries nothing).
+      const double resolution = settings.resolution, first_step = step;
+      const auto resolved = [&load, &step, resolution, first_step] {
+        return load > 0 ? step <= resolution * load : step <= 1e-12 * first_step;
+      };
+      typename SnowpackModel<dim>::VectorType before = u;
+      while (load < settings.maximum_load_factor)
+      {
+        stop_if_signalled("load to failure", "load factor " + format_number(load, 6), comm);
+        step = std::min(step, settings.maximum_load_factor - load);
+        std::stringstream history;
+        model.save(history);
+        before = u;
+        const NewtonResult result = solver.solve(u, load + step);
+        const double softened = result.converged ? model.weak_layer_softening() : softening;
+        const bool failed_through = result.converged && model.crack_fronts(scene.analysis.failure_fraction).crack_tip >=
+                                                          scene.pst.column_length * (1 - 1e-9);
+        if (!result.converged || failed_through || (softened > softening + 1e-9 && !resolved()))
+        {
+          if (result.converged)
+          {
+            model.load(history);
+            u = before;
+            u.update_ghost_values();
+          }
+          if (resolved())
+          {
+            end.failed = true;
+            end.failure = result.converged ? "the weak layer fails through the column at the next step" : result.failure;
+            break;
+          }
+          step /= 2;
+          continue;
+        }
+        load += step;
+        softening = softened;
+        const WeakLayerMeans m = weak_layer_means(model, comm);
+        series.append({load, load * normal_per_load, load * shear_per_load, m.normal_stress, m.shear_stress,
+                       m.normal_strain, m.shear_strain, softening, double(result.iterations)});
+        if (result.iterations <= 4)
+          step *= 2;
+      }
+      return end;
+    }
+  } // namespace
+
   template <int dim>
   Json run_load_to_failure(const SnowpackScene &given, const SnowpackRunOptions &options, MPI_Comm comm)
   {
@@ -103,64 +175,15 @@ namespace anticrack::fem
                                    {"weak_layer_shear_strain", "1", "mean engineering shear strain of the weak layer"},
                                    {"weak_layer_softening", "1", "mean (p0_initial - p0) / (p0_initial - p0_floor) of the weak layer"},
                                    {"newton_iterations", "1", "Newton iterations of the step"}});
-    // Steps that soften the weak layer are held to the resolution: a large step past the peak could
-    // otherwise land on the collapsed layer's lock-up branch, which carries more load again. Such a
-    // step is undone (the model's history from a snapshot) and halved. The layer has failed when
-    // the ramp cannot go on by the resolution, or when its failed elements span the column.
-    double load = 0, step = 1. / scene.analysis.gravity_steps, softening = model.weak_layer_softening();
-    // Resolved: the step is the resolution's fraction of the load reached (at no load yet, 1e-12 of
-    // the first step: the layer carries nothing).
-    const double resolution = settings.resolution, first_step = step;
-    const auto resolved = [&load, &step, resolution, first_step] {
-      return load > 0 ? step <= resolution * load : step <= 1e-12 * first_step;
-    };
-    std::string failure;
-    bool failed = false;
-    typename SnowpackModel<dim>::VectorType before = u;
-    while (load < settings.maximum_load_factor)
-    {
-      stop_if_signalled("load to failure", "load factor " + format_number(load, 6), comm);
-      step = std::min(step, settings.maximum_load_factor - load);
-      std::stringstream history;
-      model.save(history);
-      before = u;
-      const NewtonResult result = solver.solve(u, load + step);
-      const double softened = result.converged ? model.weak_layer_softening() : softening;
-      const bool failed_through = result.converged && model.crack_fronts(scene.analysis.failure_fraction).crack_tip >=
-                                                        scene.pst.column_length * (1 - 1e-9);
-      if (!result.converged || failed_through || (softened > softening + 1e-9 && !resolved()))
-      {
-        if (result.converged)
-        {
-          model.load(history);
-          u = before;
-          u.update_ghost_values();
-        }
-        if (resolved())
-        {
-          failed = true;
-          failure = result.converged ? "the weak layer fails through the column at the next step"
-                                     : result.failure;
-          break;
-        }
-        step /= 2;
-        continue;
-      }
-      load += step;
-      softening = softened;
-      const WeakLayerMeans m = weak_layer_means(model, comm);
-      series.append({load, load * normal_per_load, load * shear_per_load, m.normal_stress, m.shear_stress,
-                     m.normal_strain, m.shear_strain, softening, double(result.iterations)});
-      if (result.iterations <= 4)
-        step *= 2;
-    }
+    const RampEnd end = ramp_to_failure(scene, settings, model, solver, u, series, normal_per_load, shear_per_load, comm);
+    const double load = end.load;
     u.update_ghost_values();
     fields.write(model, u, load);
     write_on_root(series, options.output_directory + "/series.h5", "load to failure, one row per converged load step",
                   comm);
     const WeakLayerMeans means = weak_layer_means(model, comm);
     const double sigma = means.normal_stress, tau = means.shear_stress;
-    log.line("[fem] ", failed ? "failed" : "held", " at load factor ", format_number(load, 6), ": slab traction (",
+    log.line("[fem] ", end.failed ? "failed" : "held", " at load factor ", format_number(load, 6), ": slab traction (",
              format_number(load * normal_per_load, 5), ", ", format_number(load * shear_per_load, 5),
              ") Pa, weak layer mean stress (", format_number(sigma, 5), ", ", format_number(tau, 5), ") Pa");
 
@@ -168,12 +191,12 @@ namespace anticrack::fem
     results["analysis"] = scene.analysis.type->name;
     results["mesh"] = mesh_json(model, comm);
     results["load_angle_deg"] = settings.load_angle * 180 / pi;
-    results["failed"] = failed;
-    results["failure_load_factor"] = failed ? Json(load) : Json(nullptr);
-    results["failure_load_factor_bracket"] = failed ? Json::array({load, load + step}) : Json(nullptr);
-    results["failure_reason"] = failed ? failure
-                                       : "equilibrium holds up to Analysis/Load to failure/Maximum load factor = " +
-                                           format_number(settings.maximum_load_factor);
+    results["failed"] = end.failed;
+    results["failure_load_factor"] = end.failed ? Json(load) : Json(nullptr);
+    results["failure_load_factor_bracket"] = end.failed ? Json::array({load, load + end.step}) : Json(nullptr);
+    results["failure_reason"] = end.failed ? end.failure
+                                           : "equilibrium holds up to Analysis/Load to failure/Maximum load factor = " +
+                                               format_number(settings.maximum_load_factor);
     results["largest_load_factor"] = load;
     // The DEM's base stresses, the clump force over the area: the slab's weight per area at the
     // failure load, along and across the layer normal.
