@@ -148,6 +148,70 @@ namespace anticrack::fem
     };
   } // namespace
 
+  namespace
+  {
+    /// The advancing saw's run (DIR/saw/, practice only), whose crack runs by itself near the
+    /// answer: its results, and the cut the fixed-cut trials start from (where its crack ran, or
+    /// where it broke the slab, else the longest cut).
+    std::pair<Json, std::optional<double>> advancing_saw(const SnowpackScene &scene, const CompletedRuns &completed,
+                                                         const PstInTime &run_in_time, ConditionalStream &log)
+    {
+      SnowpackScene advancing = scene;
+      advancing.pst.saw = SawTest::Saw::advancing;
+      log.line("[fem] practice critical cut: the saw advances at ", format_number(scene.pst.saw_speed), " m/s (DIR/saw/)");
+      const Json saw_results = completed.get("saw", [&](const SnowpackRunOptions &o) {
+        return run_in_time(advancing, o, std::nullopt);
+      });
+      if (!saw_results["critical_cut_bracket_m"].is_null())
+        return {saw_results, saw_results["critical_cut_bracket_m"][1].get<double>()}; // the saw's cut when the crack ran
+      if (!saw_results["slab_fracture"].is_null())
+        return {saw_results, saw_results["slab_fracture"]["cut_length_m"].get<double>()};
+      return {saw_results, scene.pst.cut_length}; // the saw's crack never ran: the search starts at the longest cut
+    }
+
+    /// Whether the onset the bracket reads is sharp. Whether a trial "ends the test" is read at a
+    /// threshold, the tip's lead (the crack runs by itself once it leads the cut by
+    /// Analysis/Self-propagation lead). The answer is the snowpack's only where the onset is sharp:
+    /// the longest holding cut's crack stays well short of the lead, the shortest ending cut's runs
+    /// well past it. Where the run grows smoothly with the cut, the bracket moves with the threshold:
+    /// said (a warning appended), not hidden.
+    Json onset_record(const SnowpackScene &scene, const CutBracket &bracket,
+                      const std::map<double, Json> &trials_results, Json &warnings)
+    {
+      const double lead = self_propagation_lead(scene);
+      const Json &ending = trials_results.at(*bracket.shortest_ending);
+      const double ran = crack_run(ending),
+                   held = bracket.longest_holding > 0 ? crack_run(trials_results.at(bracket.longest_holding)) : 0.;
+      const bool through = ending["outcome"] == pst_outcome_names().name(PstOutcome::end);
+      const bool sharp = held < 0.5 * lead && (through || ran > 2 * lead);
+      if (!sharp)
+        warnings.push_back("the onset of propagation is not sharp: the crack of the longest cut that holds ran " +
+                           format_number(held, 3) + " m ahead of it, that of the shortest cut that ends the test " +
+                           format_number(ran, 3) + " m (" + std::string(through ? "to the end" : "and stopped") +
+                           "), against the self-propagation lead of " + format_number(lead, 3) +
+                           " m: the crack grows with the cut, and the critical cut moves with Analysis/Self-propagation "
+                           "lead [m] (docs/fem.md \"The critical cut\")");
+      return {{"sharp", sharp},
+              {"self_propagation_lead_m", lead},
+              {"longest_holding_cut_crack_run_m", held},
+              {"shortest_ending_cut_crack_run_m", ran}};
+    }
+
+    /// The advancing saw's own answers, a second and named figure: where the tip began to lead the
+    /// saw (depends on the saw speed and the element length), and where its crack ran by itself.
+    Json saw_run_record(const SnowpackScene &scene, const Json &saw_results)
+    {
+      const Json &bracket_of_saw = saw_results["critical_cut_bracket_m"];
+      return {{"directory", "saw"},
+              {"saw_speed_m_per_s", scene.pst.saw_speed},
+              {"outcome", saw_results["outcome"]},
+              {"tip_lead_onset_m", saw_results["critical_cut_length_m"]},
+              {"crack_runs_by_itself_at_cut_m", bracket_of_saw.is_null() ? Json(nullptr) : bracket_of_saw[1]},
+              {"propagation_speed_m_per_s", saw_results["propagation_speed_m_per_s"]},
+              {"explicit_wall_time_s", saw_results["explicit_wall_time_s"]}};
+    }
+  } // namespace
+
   Json run_critical_cut_search(const SnowpackScene &scene, const SnowpackRunOptions &options, MPI_Comm comm,
                                const PstInTime &run_in_time)
   {
@@ -160,20 +224,7 @@ namespace anticrack::fem
     Json saw_results;
     std::optional<double> seed = scene.pst.first_trial_cut;
     if (practice)
-    {
-      SnowpackScene advancing = scene;
-      advancing.pst.saw = SawTest::Saw::advancing;
-      log.line("[fem] practice critical cut: the saw advances at ", format_number(scene.pst.saw_speed), " m/s (DIR/saw/)");
-      saw_results = completed.get("saw", [&](const SnowpackRunOptions &o) {
-        return run_in_time(advancing, o, std::nullopt);
-      });
-      if (!saw_results["critical_cut_bracket_m"].is_null())
-        seed = saw_results["critical_cut_bracket_m"][1].get<double>(); // the saw's cut when the crack ran
-      else if (!saw_results["slab_fracture"].is_null())
-        seed = saw_results["slab_fracture"]["cut_length_m"].get<double>();
-      else
-        seed = scene.pst.cut_length; // the saw's crack never ran: the search starts at the longest cut
-    }
+      std::tie(saw_results, seed) = advancing_saw(scene, completed, run_in_time, log);
 
     std::map<double, Json> trials_results;
     Json trials = Json::array();
@@ -203,28 +254,7 @@ namespace anticrack::fem
       r = trials_results.at(*bracket.shortest_ending);
       r["series_directory"] = trial_folder(*bracket.shortest_ending);
       warnings = r.value("warnings", Json::array());
-      // Whether a trial "ends the test" is read at a threshold, the tip's lead (the crack runs by
-      // itself once it leads the cut by Analysis/Self-propagation lead). The answer is the
-      // snowpack's only where the onset is sharp: the longest holding cut's crack stays well
-      // short of the lead, the shortest ending cut's runs well past it. Where the run grows
-      // smoothly with the cut, the bracket moves with the threshold: said, not hidden.
-      const double lead = self_propagation_lead(scene);
-      const Json &ending = trials_results.at(*bracket.shortest_ending);
-      const double ran = crack_run(ending),
-                   held = bracket.longest_holding > 0 ? crack_run(trials_results.at(bracket.longest_holding)) : 0.;
-      const bool through = ending["outcome"] == pst_outcome_names().name(PstOutcome::end);
-      const bool sharp = held < 0.5 * lead && (through || ran > 2 * lead);
-      r["onset"] = {{"sharp", sharp},
-                    {"self_propagation_lead_m", lead},
-                    {"longest_holding_cut_crack_run_m", held},
-                    {"shortest_ending_cut_crack_run_m", ran}};
-      if (!sharp)
-        warnings.push_back("the onset of propagation is not sharp: the crack of the longest cut that holds ran " +
-                           format_number(held, 3) + " m ahead of it, that of the shortest cut that ends the test " +
-                           format_number(ran, 3) + " m (" + std::string(through ? "to the end" : "and stopped") +
-                           "), against the self-propagation lead of " + format_number(lead, 3) +
-                           " m: the crack grows with the cut, and the critical cut moves with Analysis/Self-propagation "
-                           "lead [m] (docs/fem.md \"The critical cut\")");
+      r["onset"] = onset_record(scene, bracket, trials_results, warnings);
     }
     else
     {
@@ -247,17 +277,8 @@ namespace anticrack::fem
     r["fixed_cut_trials"] = {{"resolution_m", dx}, {"seed_m", seed ? Json(*seed) : Json(nullptr)}, {"trials", trials}};
     if (practice)
     {
-      // The advancing saw's own answers, a second and named figure: where the tip began to lead the
-      // saw (depends on the saw speed and the element length), and where its crack ran by itself.
-      const Json &bracket_of_saw = saw_results["critical_cut_bracket_m"];
       r["tip_lead_onset_m"] = saw_results["critical_cut_length_m"];
-      r["saw_run"] = {{"directory", "saw"},
-                      {"saw_speed_m_per_s", scene.pst.saw_speed},
-                      {"outcome", saw_results["outcome"]},
-                      {"tip_lead_onset_m", saw_results["critical_cut_length_m"]},
-                      {"crack_runs_by_itself_at_cut_m", bracket_of_saw.is_null() ? Json(nullptr) : bracket_of_saw[1]},
-                      {"propagation_speed_m_per_s", saw_results["propagation_speed_m_per_s"]},
-                      {"explicit_wall_time_s", saw_results["explicit_wall_time_s"]}};
+      r["saw_run"] = saw_run_record(scene, saw_results);
     }
     log.line("[fem] critical cut: ", bracket.shortest_ending ? format_number(r["critical_cut_length_m"].get<double>(), 4) + " m, bracket [" +
                                                                  format_number(bracket.longest_holding, 4) + ", " +
