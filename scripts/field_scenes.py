@@ -69,8 +69,10 @@ def main():
 # pit gives its failed layer's density and grain size and whose class the weak layer scene can sample
 # ({n} of {len(kept)}; scenes/field/refused_own_weak_layer.md says why the others not), each weak layer
 # sampled at its pit's density and thickness in grains (Pipeline/Weak layer specimen = profile,
-# docs/pipeline.md), one calibration per class. Written by scripts/field_scenes.py.
+# docs/pipeline.md), one calibration per class. Written by scripts/field_scenes.py. The classes
+# calibrated so far are kept in data/material_cache (its README): seed a cache with them.
 #
+#   cp -r data/material_cache out/material_cache
 #   anticrack run scenes/field/field_psts_own_weak_layer.prm -o out/field_own --material-cache out/material_cache &&
 #     scripts/field_score.py out/field_own
 """, kept)
